@@ -1,0 +1,163 @@
+#include "cli/config.h"
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "rules/rule.h"
+#include "world/pattern.h"
+
+namespace fs = std::filesystem;
+
+namespace lwc {
+
+namespace {
+
+// Glob over path segments: `*` and `?` stay inside a segment, `**` spans any number of them.
+bool match_segments(const std::vector<std::string>& pat, size_t p, const std::vector<std::string>& path, size_t s) {
+  if (p == pat.size()) return s == path.size();
+  if (pat[p] == "**") {
+    for (size_t k = s; k <= path.size(); ++k)
+      if (match_segments(pat, p + 1, path, k)) return true;
+    return false;
+  }
+  return s < path.size() && glob_match(pat[p], path[s]) && match_segments(pat, p + 1, path, s + 1);
+}
+
+std::vector<std::string> split(std::string_view text) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  while (start <= text.size()) {
+    size_t slash = text.find('/', start);
+    if (slash == std::string_view::npos) slash = text.size();
+    if (slash > start) out.emplace_back(text.substr(start, slash - start));
+    start = slash + 1;
+  }
+  return out;
+}
+
+}  // namespace
+
+bool gitignore_match(std::string_view pattern, std::string_view relative, bool is_dir) {
+  if (pattern.empty() || pattern[0] == '#') return false;
+  bool dir_only = pattern.back() == '/';
+  if (dir_only) pattern.remove_suffix(1);
+  if (dir_only && !is_dir) return false;
+  bool anchored = pattern.find('/') != std::string_view::npos;
+  if (!pattern.empty() && pattern[0] == '/') pattern.remove_prefix(1);
+  std::vector<std::string> pat = split(pattern), path = split(relative);
+  if (!anchored) pat.insert(pat.begin(), "**");  // a bare name matches at any depth
+  return match_segments(pat, 0, path, 0);
+}
+
+ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text) {
+  auto fail = [&](const std::string& what) { throw std::runtime_error(fmt::format("{}: {}", file.string(), what)); };
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    fail(fmt::format("invalid JSON at byte {}: {}", e.byte, e.what()));
+  }
+  if (!j.is_object()) fail("the config must be a JSON object");
+  ProjectConfig c;
+  c.dir = file.parent_path();
+  auto strings = [&](const char* key) {
+    std::vector<std::string> out;
+    if (!j.contains(key)) return out;
+    if (!j.at(key).is_array()) fail(fmt::format("\"{}\" must be an array of strings", key));
+    for (const auto& v : j.at(key)) {
+      if (!v.is_string()) fail(fmt::format("\"{}\" must be an array of strings", key));
+      out.push_back(v.get<std::string>());
+    }
+    return out;
+  };
+  auto known_rule = [&](const std::string& id) {
+    if (!find_rule(id)) fail(fmt::format("unknown rule id \"{}\"", id));
+  };
+  for (auto& [key, value] : j.items()) {
+    static const char* known[] = {"severity", "select", "ignore", "include-dirs", "virtual-roots", "exclude", "world-sources", "max-file-bytes"};
+    if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) == std::end(known))
+      fail(fmt::format("unknown key \"{}\"", key));
+    (void)value;
+  }
+  if (j.contains("severity")) {
+    if (!j.at("severity").is_object()) fail("\"severity\" must map rule ids to note|warning|error");
+    for (auto& [id, level] : j.at("severity").items()) {
+      known_rule(id);
+      Severity s;
+      if (!level.is_string() || !parse_severity(level.get<std::string>(), s))
+        fail(fmt::format("severity of \"{}\" must be note, warning or error", id));
+      c.severity[id] = s;
+    }
+  }
+  c.select = strings("select");
+  c.ignore = strings("ignore");
+  for (const auto& id : c.select) known_rule(id);
+  for (const auto& id : c.ignore) known_rule(id);
+  for (const auto& d : strings("include-dirs")) c.include_dirs.push_back(c.dir / d);
+  if (j.contains("virtual-roots")) {
+    if (!j.at("virtual-roots").is_object()) fail("\"virtual-roots\" must map prefixes such as \"/Engine/\" to folders");
+    for (auto& [prefix, folder] : j.at("virtual-roots").items()) {
+      if (!folder.is_string()) fail(fmt::format("virtual root \"{}\" must name a folder", prefix));
+      c.virtual_roots.emplace_back(prefix, c.dir / folder.get<std::string>());
+    }
+  }
+  c.exclude = strings("exclude");
+  if (j.contains("world-sources")) {
+    c.world_sources = j.at("world-sources");
+    if (!c.world_sources.is_array()) fail("\"world-sources\" must be an array of {\"match\", \"kind\"}");
+    for (const auto& s : c.world_sources) {
+      if (!s.is_object() || !s.contains("match") || !s.contains("kind") || !s.at("match").is_string() || !s.at("kind").is_string())
+        fail("each world source needs a \"match\" pattern and a \"kind\"");
+      if (!parse_kind(s.at("kind").get<std::string>())) fail(fmt::format("unknown world-space kind {}", s.at("kind").dump()));
+    }
+  }
+  if (j.contains("max-file-bytes")) {
+    if (!j.at("max-file-bytes").is_number_unsigned()) fail("\"max-file-bytes\" must be a positive integer");
+    c.max_file_bytes = j.at("max-file-bytes").get<size_t>();
+  }
+  return c;
+}
+
+bool ProjectConfig::excluded(const fs::path& path, bool is_dir) const {
+  if (exclude.empty()) return false;
+  std::string rel = fs::relative(path, dir.empty() ? fs::path(".") : dir).generic_string();
+  if (rel.rfind("..", 0) == 0) return false;
+  for (const auto& p : exclude)
+    if (gitignore_match(p, rel, is_dir)) return true;
+  return false;
+}
+
+std::shared_ptr<const ProjectConfig> ConfigFinder::for_dir(const fs::path& start) {
+  std::error_code ec;
+  fs::path dir = fs::absolute(start, ec).lexically_normal();
+  std::lock_guard lock(mutex_);
+  std::vector<fs::path> visited;
+  std::shared_ptr<const ProjectConfig> found;
+  for (fs::path d = dir;; d = d.parent_path()) {
+    if (auto it = by_dir_.find(d); it != by_dir_.end()) {
+      found = it->second;
+      break;
+    }
+    visited.push_back(d);
+    fs::path file = d / ".lwcport.json";
+    if (fs::is_regular_file(file, ec)) {
+      std::ifstream in(file, std::ios::binary);
+      if (!in) throw std::runtime_error(file.string() + ": cannot read");
+      std::stringstream text;
+      text << in.rdbuf();
+      found = std::make_shared<const ProjectConfig>(ProjectConfig::parse(file, text.str()));
+      break;
+    }
+    if (d == d.parent_path() || d.empty()) {
+      found = std::make_shared<const ProjectConfig>();
+      break;
+    }
+  }
+  for (const auto& d : visited) by_dir_[d] = found;
+  return found;
+}
+
+}  // namespace lwc

@@ -1,0 +1,45 @@
+#pragma once
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/finding.h"
+
+namespace lwc {
+
+// One .lwcport.json: settings for the files under its folder.
+struct ProjectConfig {
+  std::filesystem::path dir;  // the folder holding the file ("" for the built-in defaults)
+  std::map<std::string, Severity> severity;
+  std::vector<std::string> select, ignore;
+  std::vector<std::filesystem::path> include_dirs;
+  std::vector<std::pair<std::string, std::filesystem::path>> virtual_roots;  // "/Engine/" -> folder
+  std::vector<std::string> exclude;  // .gitignore-style patterns, relative to dir
+  nlohmann::json world_sources = nlohmann::json::array();
+  size_t max_file_bytes = 16u << 20;
+
+  // Parses a config's text; throws std::runtime_error naming the file and the problem.
+  static ProjectConfig parse(const std::filesystem::path& file, const std::string& text);
+  bool excluded(const std::filesystem::path& path, bool is_dir) const;
+};
+
+// Finds the nearest .lwcport.json upward from a folder, loading each at most once.
+class ConfigFinder {
+ public:
+  // Throws std::runtime_error for a config that cannot be read or parsed.
+  std::shared_ptr<const ProjectConfig> for_dir(const std::filesystem::path& dir);
+
+ private:
+  std::mutex mutex_;
+  std::map<std::filesystem::path, std::shared_ptr<const ProjectConfig>> by_dir_;
+};
+
+// .gitignore-style match of a pattern against a path relative to the pattern's folder.
+bool gitignore_match(std::string_view pattern, std::string_view relative, bool is_dir);
+
+}  // namespace lwc

@@ -1,0 +1,123 @@
+#include "cli/files.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <set>
+
+namespace fs = std::filesystem;
+
+namespace lwc {
+
+namespace {
+
+struct Walker {
+  ConfigFinder& configs;
+  bool any_extension;
+  std::vector<InputFile> out;
+  std::vector<std::pair<dev_t, ino_t>> walking;  // folders on the current path
+
+  void add(const fs::path& path, std::string display, std::string error = {}) {
+    InputFile f{path, std::move(display), nullptr, std::move(error)};
+    f.config = configs.for_dir(path.parent_path().empty() ? fs::path(".") : path.parent_path());
+    out.push_back(std::move(f));
+  }
+
+  void walk_dir(const fs::path& dir, const std::string& display) {
+    struct stat st;
+    if (::stat(dir.c_str(), &st) != 0) {
+      add(dir, display, std::strerror(errno));
+      return;
+    }
+    auto id = std::make_pair(st.st_dev, st.st_ino);
+    if (std::find(walking.begin(), walking.end(), id) != walking.end()) {
+      add(dir, display, "symlink loop: this folder is already being walked; not followed");
+      return;
+    }
+    walking.push_back(id);
+    std::error_code ec;
+    std::vector<fs::directory_entry> entries;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) entries.push_back(*it);
+    if (ec) add(dir, display, ec.message());
+    std::sort(entries.begin(), entries.end(), [](auto& a, auto& b) { return a.path().filename() < b.path().filename(); });
+    auto config = configs.for_dir(dir);
+    for (const auto& e : entries) {
+      std::string name = e.path().filename().string();
+      std::string child = display.empty() || display == "." ? name : (display.back() == '/' ? display + name : display + "/" + name);
+      std::error_code type_ec;
+      bool is_dir = e.is_directory(type_ec);
+      if (name == ".git" || name == "node_modules") continue;
+      if (config->excluded(e.path(), is_dir)) continue;
+      if (is_dir) {
+        walk_dir(e.path(), child);
+        continue;
+      }
+      if (!lang_from_path(name)) continue;
+      bool is_symlink = e.is_symlink(type_ec);
+      bool regular = e.is_regular_file(type_ec);
+      if (regular) add(e.path(), child);
+      else if (is_symlink) add(e.path(), child, type_ec ? type_ec.message() : "broken symbolic link");
+      else add(e.path(), child, "not a regular file");
+    }
+    walking.pop_back();
+  }
+};
+
+}  // namespace
+
+std::vector<InputFile> discover(const std::vector<std::string>& args, ConfigFinder& configs, bool any_extension) {
+  Walker w{configs, any_extension, {}, {}};
+  for (const std::string& arg : args) {
+    fs::path p(arg);
+    std::error_code ec;
+    fs::file_status st = fs::status(p, ec);
+    if (fs::is_directory(st)) w.walk_dir(p, arg);
+    else w.add(p, arg, ec && !fs::is_symlink(fs::symlink_status(p)) ? ec.message() : std::string());
+  }
+  std::stable_sort(w.out.begin(), w.out.end(), [](const InputFile& a, const InputFile& b) { return a.display < b.display; });
+  w.out.erase(std::unique(w.out.begin(), w.out.end(), [](const InputFile& a, const InputFile& b) { return a.display == b.display; }),
+              w.out.end());
+  return w.out;
+}
+
+ReadResult read_file(const fs::path& path, size_t max_bytes) {
+  ReadResult r;
+  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) {
+    r.error = std::strerror(errno);
+    return r;
+  }
+  struct stat st;
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    r.error = S_ISDIR(st.st_mode) ? "is a directory" : "not a regular file";
+    ::close(fd);
+    return r;
+  }
+  r.size = static_cast<size_t>(st.st_size);
+  if (r.size > max_bytes) {
+    r.too_large = true;
+    ::close(fd);
+    return r;
+  }
+  r.text.resize(r.size);
+  size_t done = 0;
+  while (done < r.size) {
+    ssize_t n = ::read(fd, r.text.data() + done, r.size - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      r.error = std::strerror(errno);
+      break;
+    }
+    if (n == 0) break;
+    done += static_cast<size_t>(n);
+  }
+  r.text.resize(done);
+  ::close(fd);
+  return r;
+}
+
+}  // namespace lwc

@@ -1,0 +1,86 @@
+#include "cli/includes.h"
+
+#include "cli/files.h"
+#include "rules/analyze.h"
+
+namespace fs = std::filesystem;
+
+namespace lwc {
+
+namespace {
+constexpr int kMaxIncludeDepth = 16;
+
+void merge(FileSummary& into, const FileSummary& from) {
+  into.globals.insert(from.globals.begin(), from.globals.end());
+  into.function_returns.insert(from.function_returns.begin(), from.function_returns.end());
+  into.function_return_types.insert(from.function_return_types.begin(), from.function_return_types.end());
+}
+}  // namespace
+
+std::optional<fs::path> IncludeSummaries::resolve(const std::string& include, const fs::path& from,
+                                                  const ProjectConfig& config) const {
+  std::error_code ec;
+  for (const auto& [prefix, folder] : config.virtual_roots) {
+    if (include.rfind(prefix, 0) == 0) {
+      fs::path p = folder / include.substr(prefix.size());
+      if (fs::is_regular_file(p, ec)) return p;
+    }
+  }
+  if (!include.empty() && include[0] != '/') {
+    fs::path local = from.parent_path() / include;
+    if (fs::is_regular_file(local, ec)) return local;
+    for (const auto& dir : config.include_dirs) {
+      fs::path p = dir / include;
+      if (fs::is_regular_file(p, ec)) return p;
+    }
+  }
+  return std::nullopt;
+}
+
+std::shared_ptr<const FileSummary> IncludeSummaries::own_summary(const fs::path& file, const ProjectConfig& config,
+                                                                std::string& text) {
+  std::error_code ec;
+  fs::path key = fs::weakly_canonical(file, ec);
+  {
+    std::lock_guard lock(mutex_);
+    if (auto it = cache_.find(key); it != cache_.end()) {
+      text = it->second.second;
+      return it->second.first;
+    }
+  }
+  auto summary = std::make_shared<FileSummary>();
+  ReadResult r = read_file(file, config.max_file_bytes);
+  std::optional<Lang> lang = lang_from_path(file.string());
+  if (r.error.empty() && !r.too_large && !find_binary_marker(r.text)) {
+    Source src(file.string(), r.text);
+    SyntaxTree tree = parse(src, lang.value_or(Lang::hlsl));
+    WorldModel model(tree, world_data(tree.lang, config.world_sources));
+    *summary = model.summary();
+    text = r.text;
+  }
+  std::lock_guard lock(mutex_);
+  cache_.emplace(key, std::make_pair(summary, text));
+  return summary;
+}
+
+void IncludeSummaries::merge_includes(const fs::path& path, std::string_view text, const ProjectConfig& config,
+                                      FileSummary& into, std::set<fs::path>& seen, int depth) {
+  if (depth > kMaxIncludeDepth) return;
+  for (const std::string& inc : include_paths(text)) {
+    auto file = resolve(inc, path, config);
+    if (!file || !seen.insert(fs::weakly_canonical(*file)).second) continue;
+    std::string included_text;
+    auto summary = own_summary(*file, config, included_text);
+    merge(into, *summary);
+    merge_includes(*file, included_text, config, into, seen, depth + 1);
+  }
+}
+
+FileSummary IncludeSummaries::for_file(const fs::path& path, std::string_view text, const ProjectConfig& config) {
+  FileSummary out;
+  std::set<fs::path> seen{fs::weakly_canonical(path)};
+  merge_includes(path, text, config, out, seen, 0);
+  return out;
+}
+
+}  // namespace lwc

@@ -1,0 +1,42 @@
+#pragma once
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/finding.h"
+#include "core/source.h"
+
+namespace lwc {
+
+// A finding with its positions resolved, so the source can be dropped before output.
+struct ReportedFinding {
+  std::string rule;
+  Severity severity;
+  std::string message;
+  std::string hint;
+  Position start, end;
+  std::string line_text;  // the start line, for carets and snippets
+};
+
+struct FileReport {
+  std::string path;
+  std::vector<ReportedFinding> findings;
+};
+
+ReportedFinding locate(const Source& source, const Finding& finding);
+// The JSON form of one finding (docs/json-output.md), shared by --format json and the goldens.
+nlohmann::json finding_json(const ReportedFinding& f);
+
+enum class Format { text, json, sarif, github };
+
+struct ReportOptions {
+  Format format = Format::text;
+  bool color = false;
+  std::string working_dir;  // absolute, for SARIF's base URI
+};
+
+void write_report(std::ostream& out, const std::vector<FileReport>& files, const ReportOptions& options);
+
+}  // namespace lwc

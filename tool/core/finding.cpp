@@ -1,0 +1,33 @@
+#include "core/finding.h"
+
+#include <algorithm>
+#include <tuple>
+
+namespace lwc {
+
+std::string_view severity_name(Severity s) {
+  switch (s) {
+    case Severity::note: return "note";
+    case Severity::warning: return "warning";
+    case Severity::error: return "error";
+  }
+  return "warning";
+}
+
+bool parse_severity(std::string_view text, Severity& out) {
+  for (Severity s : {Severity::note, Severity::warning, Severity::error}) {
+    if (text == severity_name(s)) {
+      out = s;
+      return true;
+    }
+  }
+  return false;
+}
+
+void sort_findings(std::vector<Finding>& findings) {
+  std::stable_sort(findings.begin(), findings.end(), [](const Finding& a, const Finding& b) {
+    return std::tie(a.span.begin, a.span.end, a.rule) < std::tie(b.span.begin, b.span.end, b.rule);
+  });
+}
+
+}  // namespace lwc

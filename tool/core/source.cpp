@@ -1,0 +1,89 @@
+#include "core/source.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace lwc {
+
+Source::Source(std::string path, std::string text) : path_(std::move(path)), text_(std::move(text)) {
+  bom_ = text_.size() >= 3 && std::memcmp(text_.data(), "\xEF\xBB\xBF", 3) == 0;
+  line_starts_.push_back(0);
+  for (uint32_t i = 0; i < text_.size(); ++i) {
+    if (text_[i] == '\n') {
+      line_starts_.push_back(i + 1);
+      if (i > 0 && text_[i - 1] == '\r') crlf_ = true;
+    }
+  }
+}
+
+static bool is_continuation(unsigned char c) { return (c & 0xC0) == 0x80; }
+
+Position Source::position(uint32_t offset) const {
+  offset = std::min<uint32_t>(offset, text_.size());
+  auto it = std::upper_bound(line_starts_.begin(), line_starts_.end(), offset);
+  int line = static_cast<int>(it - line_starts_.begin());
+  uint32_t start = line_starts_[line - 1];
+  if (line == 1 && bom_) start = std::min<uint32_t>(3, offset);
+  int column = 1;
+  for (uint32_t i = start; i < offset; ++i) {
+    if (!is_continuation(static_cast<unsigned char>(text_[i]))) ++column;
+  }
+  return {line, column};
+}
+
+uint32_t Source::offset(Position pos) const {
+  if (pos.line < 1) return 0;
+  if (pos.line > line_count()) return static_cast<uint32_t>(text_.size());
+  uint32_t i = line_starts_[pos.line - 1];
+  if (pos.line == 1 && bom_) i = 3;
+  std::string_view line = line_text(pos.line);
+  uint32_t end = static_cast<uint32_t>(line.data() - text_.data() + line.size());
+  for (int column = 1; column < pos.column && i < end; ++i) {
+    if (i + 1 >= end || !is_continuation(static_cast<unsigned char>(text_[i + 1]))) ++column;
+  }
+  return i;
+}
+
+std::string_view Source::line_text(int line) const {
+  if (line < 1 || line > line_count()) return {};
+  uint32_t begin = line_starts_[line - 1];
+  if (line == 1 && bom_) begin = 3;
+  uint32_t end = line < line_count() ? line_starts_[line] : static_cast<uint32_t>(text_.size());
+  if (end > begin && text_[end - 1] == '\n') --end;
+  if (end > begin && text_[end - 1] == '\r') --end;
+  return std::string_view(text_).substr(begin, end - begin);
+}
+
+std::optional<uint32_t> find_binary_marker(std::string_view text) {
+  size_t n = std::min<size_t>(text.size(), 8192);
+  const void* nul = std::memchr(text.data(), 0, n);
+  if (!nul) return std::nullopt;
+  return static_cast<uint32_t>(static_cast<const char*>(nul) - text.data());
+}
+
+std::optional<uint32_t> find_invalid_utf8(std::string_view text) {
+  const auto* s = reinterpret_cast<const unsigned char*>(text.data());
+  size_t n = text.size(), i = 0;
+  while (i < n) {
+    unsigned char c = s[i];
+    if (c < 0x80) { ++i; continue; }
+    size_t len;
+    uint32_t min;
+    if ((c & 0xE0) == 0xC0) { len = 2; min = 0x80; }
+    else if ((c & 0xF0) == 0xE0) { len = 3; min = 0x800; }
+    else if ((c & 0xF8) == 0xF0) { len = 4; min = 0x10000; }
+    else return static_cast<uint32_t>(i);
+    if (i + len > n) return static_cast<uint32_t>(i);
+    uint32_t cp = c & (0x7F >> len);
+    for (size_t k = 1; k < len; ++k) {
+      if (!is_continuation(s[i + k])) return static_cast<uint32_t>(i);
+      cp = (cp << 6) | (s[i + k] & 0x3F);
+    }
+    // Overlong forms, surrogates and values past U+10FFFF are not UTF-8.
+    if (cp < min || (cp >= 0xD800 && cp <= 0xDFFF) || cp > 0x10FFFF) return static_cast<uint32_t>(i);
+    i += len;
+  }
+  return std::nullopt;
+}
+
+}  // namespace lwc

@@ -1,0 +1,143 @@
+#include "lang/syntax.h"
+
+#include <tree_sitter/api.h>
+
+#include <memory>
+
+#include "lang/hlsl_mask.h"
+
+extern "C" const TSLanguage* tree_sitter_cpp(void);
+extern "C" const TSLanguage* tree_sitter_glsl(void);
+
+namespace lwc {
+
+std::string_view lang_name(Lang lang) { return lang == Lang::hlsl ? "hlsl" : "glsl"; }
+
+std::optional<Lang> parse_lang(std::string_view name) {
+  if (name == "hlsl") return Lang::hlsl;
+  if (name == "glsl") return Lang::glsl;
+  return std::nullopt;
+}
+
+std::optional<Lang> lang_from_path(std::string_view path) {
+  size_t dot = path.rfind('.');
+  size_t slash = path.rfind('/');
+  if (dot == std::string_view::npos || (slash != std::string_view::npos && dot < slash)) return std::nullopt;
+  std::string ext(path.substr(dot + 1));
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (const char* e : {"usf", "ush", "hlsl", "hlsli", "fx"})
+    if (ext == e) return Lang::hlsl;
+  for (const char* e : {"glsl", "vert", "frag", "comp", "geom", "tesc", "tese"})
+    if (ext == e) return Lang::glsl;
+  return std::nullopt;
+}
+
+std::string_view SyntaxTree::text(int id) const { return source->slice(span(id)); }
+
+int SyntaxTree::child_by_field(int id, std::string_view field) const {
+  for (int c = nodes[id].first_child; c >= 0; c = nodes[c].next_sibling)
+    if (nodes[c].field && field == nodes[c].field) return c;
+  return -1;
+}
+
+int SyntaxTree::named_child(int id, int n) const {
+  for (int c = nodes[id].first_child; c >= 0; c = nodes[c].next_sibling)
+    if (nodes[c].named && n-- == 0) return c;
+  return -1;
+}
+
+std::vector<int> SyntaxTree::named_children(int id) const {
+  std::vector<int> out;
+  for (int c = nodes[id].first_child; c >= 0; c = nodes[c].next_sibling)
+    if (nodes[c].named) out.push_back(c);
+  return out;
+}
+
+int SyntaxTree::ancestor(int id, std::string_view type) const {
+  for (; id >= 0; id = nodes[id].parent)
+    if (type == nodes[id].type) return id;
+  return -1;
+}
+
+namespace {
+
+struct ParserDeleter {
+  void operator()(TSParser* p) const { ts_parser_delete(p); }
+};
+struct TreeDeleter {
+  void operator()(TSTree* t) const { ts_tree_delete(t); }
+};
+
+// One parser per thread and language: creating one costs more than parsing a small file.
+TSParser* thread_parser(Lang lang) {
+  thread_local std::unique_ptr<TSParser, ParserDeleter> parsers[2];
+  auto& p = parsers[lang == Lang::hlsl ? 0 : 1];
+  if (!p) {
+    p.reset(ts_parser_new());
+    ts_parser_set_language(p.get(), lang == Lang::hlsl ? tree_sitter_cpp() : tree_sitter_glsl());
+  }
+  return p.get();
+}
+
+void flatten(TSTree* tree, SyntaxTree& out) {
+  TSTreeCursor cursor = ts_tree_cursor_new(ts_tree_root_node(tree));
+  std::vector<int32_t> parents;        // ids of the open ancestors
+  std::vector<int32_t> last_child;     // per node id, its last child so far
+  auto add = [&]() {
+    TSNode n = ts_tree_cursor_current_node(&cursor);
+    Node node;
+    node.type = ts_node_type(n);
+    node.field = ts_tree_cursor_current_field_name(&cursor);
+    node.begin = ts_node_start_byte(n);
+    node.end = ts_node_end_byte(n);
+    node.named = ts_node_is_named(n);
+    node.error = ts_node_is_missing(n) || (ts_node_symbol(n) == static_cast<TSSymbol>(-1));
+    node.parent = parents.empty() ? -1 : parents.back();
+    node.depth = static_cast<uint32_t>(parents.size());
+    int32_t id = static_cast<int32_t>(out.nodes.size());
+    if (node.error) {
+      if (out.error_count++ == 0) out.first_error = node.begin;
+    }
+    if (node.parent >= 0) {
+      int32_t& last = last_child[node.parent];
+      if (last < 0) out.nodes[node.parent].first_child = id;
+      else out.nodes[last].next_sibling = id;
+      last = id;
+    }
+    out.nodes.push_back(node);
+    last_child.push_back(-1);
+    return id;
+  };
+  int32_t current = add();
+  for (;;) {
+    if (ts_tree_cursor_goto_first_child(&cursor)) {
+      parents.push_back(current);
+      current = add();
+      continue;
+    }
+    while (!ts_tree_cursor_goto_next_sibling(&cursor)) {
+      if (!ts_tree_cursor_goto_parent(&cursor)) {
+        ts_tree_cursor_delete(&cursor);
+        return;
+      }
+      parents.pop_back();
+    }
+    current = add();
+  }
+}
+
+}  // namespace
+
+SyntaxTree parse(const Source& source, Lang lang) {
+  SyntaxTree out;
+  out.lang = lang;
+  out.source = &source;
+  MaskResult masked = lang == Lang::hlsl ? mask_hlsl(source.text()) : mask_glsl(source.text());
+  out.unterminated_comment = masked.unterminated_comment;
+  std::unique_ptr<TSTree, TreeDeleter> tree(ts_parser_parse_string(
+      thread_parser(lang), nullptr, masked.text.data(), static_cast<uint32_t>(masked.text.size())));
+  flatten(tree.get(), out);
+  return out;
+}
+
+}  // namespace lwc

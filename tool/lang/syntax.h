@@ -1,0 +1,55 @@
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/source.h"
+
+namespace lwc {
+
+enum class Lang { hlsl, glsl };
+std::string_view lang_name(Lang lang);
+std::optional<Lang> parse_lang(std::string_view name);
+// By extension: .usf .ush .hlsl .hlsli .fx are HLSL; .glsl .vert .frag .comp .geom .tesc .tese GLSL.
+std::optional<Lang> lang_from_path(std::string_view path);
+
+// One tree-sitter node, flattened: the tree is a pre-order array so analyses walk it without
+// recursion (10,000 nested parentheses are fine) and the tree-sitter tree is freed after parsing.
+struct Node {
+  const char* type = "";      // tree-sitter node type (a static string of the grammar)
+  const char* field = nullptr;  // field name in the parent, if any
+  uint32_t begin = 0, end = 0;
+  int32_t parent = -1, first_child = -1, next_sibling = -1;
+  uint32_t depth = 0;
+  bool named = false;
+  bool error = false;  // an ERROR node or a MISSING token
+};
+
+class SyntaxTree {
+ public:
+  Lang lang = Lang::hlsl;
+  const Source* source = nullptr;
+  std::vector<Node> nodes;  // nodes[0] is the root
+  int error_count = 0;
+  uint32_t first_error = 0;
+  std::optional<uint32_t> unterminated_comment;  // offset of a `/*` that never ends
+
+  const Node& at(int id) const { return nodes[id]; }
+  bool is(int id, std::string_view type) const { return id >= 0 && type == nodes[id].type; }
+  std::string_view text(int id) const;
+  Span span(int id) const { return {nodes[id].begin, nodes[id].end}; }
+  int child_by_field(int id, std::string_view field) const;
+  // The first named child, or the n-th named child.
+  int named_child(int id, int n = 0) const;
+  std::vector<int> named_children(int id) const;
+  // Nearest ancestor (or self) of the given type, or -1.
+  int ancestor(int id, std::string_view type) const;
+};
+
+// Parses a source in the given language. HLSL is parsed with the C++ grammar after masking
+// (see hlsl_mask.h); byte offsets always match the original text.
+SyntaxTree parse(const Source& source, Lang lang);
+
+}  // namespace lwc

@@ -1,0 +1,46 @@
+#pragma once
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/finding.h"
+#include "core/source.h"
+#include "lang/syntax.h"
+#include "world/model.h"
+
+namespace lwc {
+
+struct AnalyzeOptions {
+  std::optional<Lang> lang;              // overrides the extension
+  std::set<std::string> select;          // empty: every rule
+  std::set<std::string> ignore;
+  std::map<std::string, Severity> severity;  // per-rule overrides
+  nlohmann::json world_sources = nlohmann::json::array();  // the project's extra sources
+  const FileSummary* includes = nullptr;  // what the file's #includes declare
+  size_t max_bytes = 16u << 20;          // larger files are skipped with a diagnostic
+
+  bool enabled(const std::string& rule) const;
+};
+
+// Everything lwcport says about one buffer. Pure: no file system, no global state beyond the
+// immutable rule data.
+std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options);
+
+// The language a path is analysed as, honouring the override.
+std::optional<Lang> language_for(const Source& source, const AnalyzeOptions& options);
+
+// World-space data for a language plus extra sources, built once per distinct extra list.
+const WorldData& world_data(Lang lang, const nlohmann::json& extra_sources);
+
+// The paths a file #includes, in order, as written (a scan of its directive lines).
+std::vector<std::string> include_paths(std::string_view text);
+
+// An lwc-input finding: a problem with the file itself rather than its code.
+Finding input_finding(Severity severity, uint32_t offset, std::string message, std::string hint);
+Finding too_large_finding(size_t bytes, size_t limit);
+
+}  // namespace lwc

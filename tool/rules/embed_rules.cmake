@@ -1,0 +1,12 @@
+# Writes OUT: a C++ table of every rules/*.json file, embedded as raw strings.
+file(GLOB files ${RULE_DIR}/*.json)
+list(SORT files)
+set(body "// Generated from rules/*.json by embed_rules.cmake; do not edit.\n#include \"rules/rule_files.h\"\nnamespace lwc {\nconst std::vector<EmbeddedFile>& embedded_rule_files() {\n  static const std::vector<EmbeddedFile> files = {\n")
+foreach(f ${files})
+  get_filename_component(name ${f} NAME)
+  file(READ ${f} text)
+  string(APPEND body "    {\"${name}\", R\"lwcjson(${text})lwcjson\"},\n")
+endforeach()
+string(APPEND body "  };\n  return files;\n}\n}  // namespace lwc\n")
+file(WRITE ${OUT}.tmp "${body}")
+file(COPY_FILE ${OUT}.tmp ${OUT} ONLY_IF_DIFFERENT)

@@ -1,0 +1,92 @@
+#include "rules/rule.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "rules/rule_files.h"
+
+namespace lwc {
+
+bool RuleInfo::applies_to(Lang lang) const {
+  return std::find(languages.begin(), languages.end(), lang) != languages.end();
+}
+
+namespace {
+
+struct Loaded {
+  std::vector<RuleInfo> rules;
+  nlohmann::json world_space;
+};
+
+RuleInfo parse_rule(std::string_view file, const nlohmann::json& j) {
+  auto fail = [&](const std::string& what) { throw std::runtime_error("rules/" + std::string(file) + ": " + what); };
+  RuleInfo r;
+  for (const char* key : {"id", "name", "severity", "languages", "summary", "message", "hint", "rationale", "examples"})
+    if (!j.contains(key)) fail(std::string("missing \"") + key + "\"");
+  r.id = j.at("id").get<std::string>();
+  if (std::string(file) != r.id + ".json") fail("file name must be the rule id");
+  r.name = j.at("name").get<std::string>();
+  if (!parse_severity(j.at("severity").get<std::string>(), r.severity)) fail("bad severity");
+  for (const auto& l : j.at("languages")) {
+    auto lang = parse_lang(l.get<std::string>());
+    if (!lang) fail("unknown language " + l.dump());
+    r.languages.push_back(*lang);
+  }
+  r.summary = j.at("summary").get<std::string>();
+  r.message = j.at("message").get<std::string>();
+  r.hint = j.at("hint").get<std::string>();
+  r.rationale = j.at("rationale").get<std::string>();
+  r.data = j.value("data", nlohmann::json::object());
+  r.examples = j.at("examples");
+  return r;
+}
+
+const Loaded& loaded() {
+  static const Loaded data = [] {
+    Loaded l;
+    for (const EmbeddedFile& f : embedded_rule_files()) {
+      nlohmann::json j = nlohmann::json::parse(f.text);
+      if (j.contains("world-space")) l.world_space = j.at("world-space");
+      else l.rules.push_back(parse_rule(f.name, j));
+    }
+    std::sort(l.rules.begin(), l.rules.end(), [](const RuleInfo& a, const RuleInfo& b) { return a.id < b.id; });
+    return l;
+  }();
+  return data;
+}
+
+}  // namespace
+
+const std::vector<RuleInfo>& all_rules() { return loaded().rules; }
+
+const RuleInfo* find_rule(std::string_view id) {
+  for (const RuleInfo& r : all_rules())
+    if (r.id == id) return &r;
+  return nullptr;
+}
+
+const nlohmann::json& world_space_data() { return loaded().world_space; }
+
+std::string expand(std::string_view tmpl, const Vars& vars) {
+  std::string out;
+  size_t i = 0;
+  while (i < tmpl.size()) {
+    size_t open = tmpl.find('{', i);
+    if (open == std::string_view::npos) break;
+    size_t close = tmpl.find('}', open);
+    if (close == std::string_view::npos) break;
+    out.append(tmpl.substr(i, open - i));
+    auto it = vars.find(std::string(tmpl.substr(open + 1, close - open - 1)));
+    if (it != vars.end()) out += it->second;
+    else out.append(tmpl.substr(open, close - open + 1));
+    i = close + 1;
+  }
+  out.append(tmpl.substr(i));
+  return out;
+}
+
+void CheckContext::report(Span span, const Vars& vars) const {
+  out.push_back({rule.id, rule.severity, span, expand(rule.message, vars), expand(rule.hint, vars)});
+}
+
+}  // namespace lwc

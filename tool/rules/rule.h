@@ -1,0 +1,67 @@
+#pragma once
+#include <map>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/finding.h"
+#include "lang/syntax.h"
+#include "world/model.h"
+
+namespace lwc {
+
+// One rule as described by its rules/<id>.json file.
+struct RuleInfo {
+  std::string id;
+  std::string name;
+  Severity severity = Severity::warning;
+  std::vector<Lang> languages;
+  std::string summary;
+  std::string message;    // a template: {name} placeholders filled by the check
+  std::string hint;       // a template too
+  std::string rationale;
+  nlohmann::json data;
+  nlohmann::json examples;
+
+  bool applies_to(Lang lang) const;
+};
+
+// Every rule, sorted by id. Throws std::runtime_error on malformed rule data (a build defect).
+const std::vector<RuleInfo>& all_rules();
+const RuleInfo* find_rule(std::string_view id);
+// The "world-space" object of rules/world-space.json.
+const nlohmann::json& world_space_data();
+
+using Vars = std::map<std::string, std::string>;
+// Replaces each {key} in a template with its value; unknown keys stay as written.
+std::string expand(std::string_view tmpl, const Vars& vars);
+
+struct CheckContext {
+  const SyntaxTree& tree;
+  const WorldModel& world;
+  const RuleInfo& rule;
+  std::vector<Finding>& out;
+
+  // Reports the rule at a span, its message and hint filled from vars.
+  void report(Span span, const Vars& vars) const;
+};
+
+// A check: the code half of a rule (its data half is rules/<id>.json).
+class Check {
+ public:
+  virtual ~Check() = default;
+  virtual void run(const CheckContext& ctx) const = 0;
+};
+
+// Check factories by rule id (checks.cpp registers each one).
+using CheckFactory = std::unique_ptr<Check> (*)(const RuleInfo&);
+const std::map<std::string_view, CheckFactory>& check_factories();
+
+// Ids of the rules that are not checks over the tree but come from the driver.
+inline constexpr std::string_view kInputRule = "lwc-input";
+inline constexpr std::string_view kUnusedSuppressionRule = "lwc-unused-suppression";
+
+}  // namespace lwc

@@ -1,0 +1,908 @@
+#include "world/model.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <set>
+#include <stdexcept>
+
+namespace lwc {
+
+namespace {
+
+constexpr std::pair<Kind, std::string_view> kKindNames[] = {
+    {Kind::unknown, "unknown"},
+    {Kind::local, "local"},
+    {Kind::direction, "direction"},
+    {Kind::translated, "translated-position"},
+    {Kind::absolute, "absolute-position"},
+    {Kind::camera_offset, "camera-offset"},
+    {Kind::world_matrix, "world-matrix"},
+    {Kind::translated_world_matrix, "translated-world-matrix"},
+    {Kind::from_world_matrix, "from-world-matrix"},
+    {Kind::from_translated_matrix, "from-translated-matrix"},
+    {Kind::rotation_matrix, "rotation-matrix"},
+    {Kind::local_matrix, "local-matrix"},
+};
+
+constexpr std::pair<FunctionRole, std::string_view> kRoleNames[] = {
+    {FunctionRole::transform, "transform"}, {FunctionRole::direction, "direction"},
+    {FunctionRole::local, "local"},         {FunctionRole::join, "join"},
+    {FunctionRole::invert, "invert"},       {FunctionRole::same, "same"},
+    {FunctionRole::demote_marker, "demote-marker"},
+    {FunctionRole::add, "add"},             {FunctionRole::subtract, "subtract"},
+    {FunctionRole::translated, "translated"},
+};
+
+// How strongly a kind calls for attention when two flows meet.
+int rank(Kind k) {
+  switch (k) {
+    case Kind::unknown: return 0;
+    case Kind::local: return 1;
+    case Kind::direction:
+    case Kind::rotation_matrix:
+    case Kind::local_matrix: return 2;
+    case Kind::translated:
+    case Kind::translated_world_matrix:
+    case Kind::from_translated_matrix: return 3;
+    case Kind::camera_offset:
+    case Kind::from_world_matrix: return 4;
+    case Kind::absolute:
+    case Kind::world_matrix: return 5;
+  }
+  return 0;
+}
+
+Kind join(Kind a, Kind b) { return rank(b) > rank(a) ? b : a; }
+
+bool small(Kind k) { return k == Kind::direction || k == Kind::local || k == Kind::unknown; }
+
+Kind add(Kind a, Kind b) {
+  if ((a == Kind::absolute && b == Kind::camera_offset) || (a == Kind::camera_offset && b == Kind::absolute))
+    return Kind::translated;
+  for (auto [x, y] : {std::pair{a, b}, std::pair{b, a}}) {
+    if ((x == Kind::absolute || x == Kind::translated || x == Kind::camera_offset) && small(y)) return x;
+  }
+  if (a == Kind::direction || b == Kind::direction) return (small(a) && small(b)) ? Kind::direction : Kind::unknown;
+  if (a == Kind::local && b == Kind::local) return Kind::local;
+  return Kind::unknown;
+}
+
+Kind subtract(Kind a, Kind b) {
+  if (a == b && (a == Kind::absolute || a == Kind::translated)) return Kind::direction;
+  if (a == Kind::translated && b == Kind::camera_offset) return Kind::absolute;
+  if ((a == Kind::absolute || a == Kind::translated || a == Kind::camera_offset) && small(b)) return a;
+  if (a == Kind::direction && (b == Kind::direction || b == Kind::local)) return Kind::direction;
+  if (a == Kind::local && b == Kind::local) return Kind::local;
+  return Kind::unknown;
+}
+
+// Component-wise multiply or divide by a non-matrix.
+Kind scale(Kind a, Kind b) {
+  if (is_matrix(a) || is_matrix(b)) return Kind::unknown;
+  Kind k = join(a, b);
+  return k == Kind::unknown ? Kind::unknown : k;
+}
+
+Kind negate(Kind k) {
+  if (k == Kind::absolute) return Kind::camera_offset;
+  if (k == Kind::camera_offset) return Kind::absolute;
+  return k;
+}
+
+Kind invert(Kind k) {
+  switch (k) {
+    case Kind::world_matrix: return Kind::from_world_matrix;
+    case Kind::from_world_matrix: return Kind::world_matrix;
+    case Kind::translated_world_matrix: return Kind::from_translated_matrix;
+    case Kind::from_translated_matrix: return Kind::translated_world_matrix;
+    case Kind::rotation_matrix:
+    case Kind::local_matrix: return k;
+    default: return Kind::unknown;
+  }
+}
+
+// Apply `first`, then `second`.
+Kind compose(Kind first, Kind second) {
+  if (first == Kind::world_matrix && second == Kind::from_world_matrix) return Kind::local_matrix;
+  if (first == Kind::translated_world_matrix && second == Kind::from_translated_matrix) return Kind::local_matrix;
+  if ((first == Kind::local_matrix || first == Kind::rotation_matrix) && second != Kind::unknown) return second;
+  if ((second == Kind::local_matrix || second == Kind::rotation_matrix) &&
+      (first == Kind::from_world_matrix || first == Kind::from_translated_matrix))
+    return first;
+  return Kind::unknown;
+}
+
+bool is_swizzle(std::string_view f) {
+  if (f.empty() || f.size() > 4) return false;
+  bool xyzw = f.find_first_not_of("xyzw") == std::string_view::npos;
+  bool rgba = f.find_first_not_of("rgba") == std::string_view::npos;
+  return xyzw || rgba;
+}
+
+bool ends_with(std::string_view s, std::string_view suffix) {
+  return s.size() >= suffix.size() && s.substr(s.size() - suffix.size()) == suffix;
+}
+
+// float3x3, half3x3, mat3, mat3x3, matrix<float,3,3>.
+bool is_3x3_type(std::string_view t) {
+  return ends_with(t, "3x3") || t == "mat3" || (t.find("matrix") == 0 && ends_with(t, "3,3>")) ||
+         (t.find("matrix") == 0 && ends_with(t, "3, 3>"));
+}
+
+constexpr int kMaxDepth = 400;
+
+}  // namespace
+
+std::string_view kind_name(Kind kind) {
+  for (auto [k, n] : kKindNames)
+    if (k == kind) return n;
+  return "unknown";
+}
+
+std::optional<Kind> parse_kind(std::string_view name) {
+  for (auto [k, n] : kKindNames)
+    if (n == name) return k;
+  return std::nullopt;
+}
+
+bool holds_absolute(Kind k) {
+  return k == Kind::absolute || k == Kind::camera_offset || k == Kind::world_matrix || k == Kind::from_world_matrix;
+}
+
+bool is_matrix(Kind k) {
+  return k == Kind::world_matrix || k == Kind::translated_world_matrix || k == Kind::from_world_matrix ||
+         k == Kind::from_translated_matrix || k == Kind::rotation_matrix || k == Kind::local_matrix;
+}
+
+static bool applies_to(const nlohmann::json& entry, Lang lang) {
+  if (!entry.contains("languages")) return true;
+  for (const auto& l : entry.at("languages"))
+    if (l.get<std::string>() == lang_name(lang)) return true;
+  return false;
+}
+
+WorldData WorldData::load(const nlohmann::json& ws, const nlohmann::json& extra_sources, Lang lang) {
+  WorldData d;
+  for (const auto& t : ws.at("float-types")) d.float_types.push_back(t.get<std::string>());
+  auto add_sources = [&](const nlohmann::json& list, std::string_view where) {
+    for (const auto& s : list) {
+      if (!s.is_object() || !s.contains("match") || !s.contains("kind"))
+        throw std::runtime_error(std::string(where) + ": a world source needs \"match\" and \"kind\": " + s.dump());
+      auto kind = parse_kind(s.at("kind").get<std::string>());
+      if (!kind) throw std::runtime_error(std::string(where) + ": unknown world-space kind " + s.at("kind").dump());
+      if (applies_to(s, lang)) d.sources.push_back({PathPattern(s.at("match").get<std::string>()), *kind});
+    }
+  };
+  // The project's sources come first so they can override the built-in ones.
+  if (extra_sources.is_array()) add_sources(extra_sources, "world-sources");
+  add_sources(ws.at("sources"), "rules/world-space.json");
+  for (const auto& f : ws.at("functions")) {
+    if (!applies_to(f, lang)) continue;
+    std::string role = f.at("role").get<std::string>();
+    auto it = std::find_if(std::begin(kRoleNames), std::end(kRoleNames), [&](auto& p) { return p.second == role; });
+    if (it == std::end(kRoleNames)) throw std::runtime_error("rules/world-space.json: unknown function role " + role);
+    d.functions.push_back({PathPattern(f.at("match").get<std::string>()), it->first});
+  }
+  return d;
+}
+
+bool WorldData::is_float_type(std::string_view type) const {
+  for (const auto& g : float_types)
+    if (glob_match(g, type)) return true;
+  return false;
+}
+
+std::vector<std::string_view> leading_words(const SyntaxTree& tree, int declaration) {
+  std::vector<std::string_view> words;
+  int type = tree.child_by_field(declaration, "type");
+  uint32_t end = type >= 0 ? tree.at(type).begin : tree.at(declaration).begin;
+  std::string_view text = tree.source->slice({tree.at(declaration).begin, end});
+  size_t i = 0;
+  while (i < text.size()) {
+    if (std::isalpha(static_cast<unsigned char>(text[i])) || text[i] == '_') {
+      size_t b = i;
+      while (i < text.size() && (std::isalnum(static_cast<unsigned char>(text[i])) || text[i] == '_')) ++i;
+      words.push_back(text.substr(b, i - b));
+    } else {
+      ++i;
+    }
+  }
+  return words;
+}
+
+static bool has_word(const std::vector<std::string_view>& words, std::string_view w) {
+  return std::find(words.begin(), words.end(), w) != words.end();
+}
+
+// The analysis itself; WorldModel keeps only its results.
+class Analyzer {
+ public:
+  Analyzer(WorldModel& m, const FileSummary* includes) : m_(m), t_(m.tree_), d_(m.data_), inc_(includes) {}
+
+  void run() {
+    collect();
+    for (int fn : function_order_) analyze_function(fn, {});
+  }
+
+ private:
+  struct Summary {
+    Kind ret = Kind::unknown;
+    std::vector<Kind> outs;
+  };
+  struct Frame {
+    int function = -1;
+    std::unordered_map<std::string, int> scope;  // name -> variable
+    std::unordered_map<int, Kind> current;       // variable -> kind now
+    Kind ret = Kind::unknown;
+  };
+
+  // ---- declarations -------------------------------------------------------------------------
+  std::string_view type_of(int declaration) const {
+    int type = t_.child_by_field(declaration, "type");
+    return type >= 0 ? t_.text(type) : std::string_view();
+  }
+
+  // The identifier inside a declarator (through arrays, pointers, references, initialisers).
+  int declarator_name(int d) const {
+    while (d >= 0) {
+      std::string_view type = t_.at(d).type;
+      if (type == "identifier" || type == "field_identifier") return d;
+      int inner = t_.child_by_field(d, "declarator");
+      d = inner >= 0 ? inner : t_.named_child(d);
+    }
+    return -1;
+  }
+
+  int new_variable(Variable v) {
+    auto it = decl_var_.find(v.decl);
+    if (it != decl_var_.end()) return it->second;
+    int id = static_cast<int>(m_.variables_.size());
+    decl_var_[v.decl] = id;
+    m_.variables_.push_back(std::move(v));
+    return id;
+  }
+
+  void collect() {
+    const auto& nodes = t_.nodes;
+    for (int id = 0; id < static_cast<int>(nodes.size()); ++id) {
+      std::string_view type = nodes[id].type;
+      if (type == "function_definition") {
+        int name = declarator_name(t_.child_by_field(id, "declarator"));
+        if (name >= 0) functions_[std::string(t_.text(name))].push_back(id);
+        function_order_.push_back(id);
+      } else if (type == "struct_specifier") {
+        collect_struct(id);
+      } else if (type == "declaration" && t_.ancestor(id, "function_definition") < 0) {
+        collect_global(id);
+      }
+    }
+  }
+
+  void collect_struct(int id) {
+    int name = t_.child_by_field(id, "name");
+    int body = t_.child_by_field(id, "body");
+    if (name < 0 || body < 0) return;
+    std::string owner(t_.text(name));
+    for (int f : t_.named_children(body)) {
+      if (!t_.is(f, "field_declaration")) continue;
+      for (int c = t_.at(f).first_child; c >= 0; c = t_.at(c).next_sibling) {
+        if (!t_.at(c).field || std::string_view(t_.at(c).field) != "declarator") continue;
+        int n = declarator_name(c);
+        if (n < 0) continue;
+        Variable v{std::string(t_.text(n)), std::string(type_of(f)), Variable::Role::field, n, f};
+        v.owner = owner;
+        int var = new_variable(std::move(v));
+        fields_[owner + "." + std::string(t_.text(n))] = var;
+        fields_by_name_[std::string(t_.text(n))].push_back(var);
+      }
+    }
+  }
+
+  void collect_global(int id) {
+    auto words = leading_words(t_, id);
+    int block = t_.ancestor(id, "linkage_specification");  // an HLSL cbuffer after masking
+    bool uniform;
+    if (t_.lang == Lang::hlsl) {
+      uniform = block >= 0 || (!has_word(words, "static") && !has_word(words, "groupshared"));
+    } else {
+      uniform = has_word(words, "uniform");
+    }
+    // A GLSL interface block: its members are globals, reached directly or through its instance.
+    for (int c : t_.named_children(id)) {
+      if (!t_.is(c, "field_declaration_list")) continue;
+      for (int f : t_.named_children(c)) {
+        if (!t_.is(f, "field_declaration")) continue;
+        int n = declarator_name(t_.child_by_field(f, "declarator"));
+        if (n < 0) continue;
+        add_global(f, n, std::string(type_of(f)), id, uniform, has_word(leading_words(t_, f), "precise"));
+      }
+      int after = t_.at(c).next_sibling;
+      while (after >= 0 && !t_.at(after).named) after = t_.at(after).next_sibling;
+      if (after >= 0 && t_.is(after, "identifier")) block_instances_.insert(std::string(t_.text(after)));
+      return;
+    }
+    std::string type(type_of(id));
+    for (int c = t_.at(id).first_child; c >= 0; c = t_.at(c).next_sibling) {
+      if (!t_.at(c).field || std::string_view(t_.at(c).field) != "declarator") continue;
+      int n = declarator_name(c);
+      if (n < 0 || t_.is(c, "function_declarator")) continue;
+      int var = add_global(id, n, type, block, uniform, has_word(words, "precise"));
+      if (t_.is(c, "init_declarator")) m_.variables_[var].init = t_.child_by_field(c, "value");
+    }
+  }
+
+  int add_global(int declaration, int name, std::string type, int block, bool uniform, bool precise) {
+    Variable v{std::string(t_.text(name)), std::move(type), Variable::Role::global, name, declaration};
+    v.block = block;
+    v.uniform = uniform;
+    v.precise = precise;
+    v.kind = source_kind(Path{{v.name, false}}).value_or(Kind::unknown);
+    int var = new_variable(std::move(v));
+    globals_[m_.variables_[var].name] = var;
+    return var;
+  }
+
+  // ---- functions ----------------------------------------------------------------------------
+  Summary analyze_function(int fn, const std::vector<Kind>& args) {
+    auto key = std::make_pair(fn, args);
+    if (auto it = memo_.find(key); it != memo_.end()) return it->second;
+    if (active_.count(fn)) return {};
+    active_.insert(fn);
+    Frame frame;
+    frame.function = fn;
+    Frame* outer = frame_;
+    frame_ = &frame;
+
+    std::vector<int> params;
+    int declarator = t_.child_by_field(fn, "declarator");
+    while (declarator >= 0 && !t_.is(declarator, "function_declarator"))
+      declarator = t_.child_by_field(declarator, "declarator");
+    int list = declarator >= 0 ? t_.child_by_field(declarator, "parameters") : -1;
+    if (list >= 0) {
+      for (int p : t_.named_children(list)) {
+        if (!t_.is(p, "parameter_declaration")) continue;
+        int n = declarator_name(t_.child_by_field(p, "declarator"));
+        if (n < 0) continue;
+        auto words = leading_words(t_, p);
+        Variable v{std::string(t_.text(n)), std::string(type_of(p)), Variable::Role::parameter, n, p, fn};
+        v.output = has_word(words, "out") || has_word(words, "inout");
+        v.precise = has_word(words, "precise");
+        int var = new_variable(std::move(v));
+        Kind k = params.size() < args.size() ? args[params.size()] : Kind::unknown;
+        frame.scope[m_.variables_[var].name] = var;
+        params.push_back(var);
+        hold(var, k, -1);
+      }
+    }
+    int body = t_.child_by_field(fn, "body");
+    if (body >= 0) walk(body);
+
+    Summary s;
+    s.ret = frame.ret;
+    for (int var : params) s.outs.push_back(m_.variables_[var].output ? current(var) : Kind::unknown);
+    if (args.empty()) {
+      int name = declarator_name(t_.child_by_field(fn, "declarator"));
+      if (name >= 0) {
+        std::string n(t_.text(name));
+        m_.returns_[n] = join(m_.returns_[n], s.ret);
+        m_.return_types_[n] = std::string(type_of(fn));
+      }
+    }
+    frame_ = outer;
+    active_.erase(fn);
+    memo_[key] = s;
+    return s;
+  }
+
+  // Statements in order, without recursion: nesting depth is the file's, not the stack's.
+  void walk(int body) {
+    std::vector<int> stack{body};
+    while (!stack.empty()) {
+      int id = stack.back();
+      stack.pop_back();
+      std::string_view type = t_.at(id).type;
+      if (type == "declaration") {
+        declare_locals(id);
+      } else if (type == "return_statement") {
+        int value = t_.named_child(id);
+        if (value >= 0) {
+          Kind k = eval(value, 0);
+          frame_->ret = join(frame_->ret, k);
+          note_return(k);
+        }
+      } else if (is_expression(id)) {
+        eval(id, 0);
+      } else {
+        std::vector<int> children = t_.named_children(id);
+        for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back(*it);
+      }
+    }
+  }
+
+  bool is_expression(int id) const {
+    std::string_view type = t_.at(id).type;
+    return ends_with(type, "_expression") || type == "identifier" || type == "initializer_list";
+  }
+
+  void declare_locals(int id) {
+    std::string type(type_of(id));
+    bool precise = has_word(leading_words(t_, id), "precise");
+    for (int c = t_.at(id).first_child; c >= 0; c = t_.at(c).next_sibling) {
+      if (!t_.at(c).field || std::string_view(t_.at(c).field) != "declarator") continue;
+      int n = declarator_name(c);
+      if (n < 0) continue;
+      Variable v{std::string(t_.text(n)), type, Variable::Role::local, n, id, frame_->function};
+      v.precise = precise;
+      int value = t_.is(c, "init_declarator") ? t_.child_by_field(c, "value") : -1;
+      v.init = value;
+      int var = new_variable(std::move(v));
+      frame_->scope[m_.variables_[var].name] = var;
+      Kind k = value >= 0 ? eval(value, 0) : Kind::unknown;
+      if (is_3x3_type(type) && is_matrix(k)) k = Kind::rotation_matrix;
+      hold(var, k, -1);
+    }
+  }
+
+  void note_return(Kind k) {
+    int fn = frame_->function;
+    std::string_view type = type_of(fn);
+    if (!holds_absolute(k) || !d_.is_float_type(type)) return;
+    int name = declarator_name(t_.child_by_field(fn, "declarator"));
+    if (name >= 0) report({AbsoluteHolder::What::return_value, name, std::string(t_.text(name)), std::string(type), k});
+  }
+
+  Kind current(int var) const {
+    if (frame_) {
+      auto it = frame_->current.find(var);
+      if (it != frame_->current.end()) return it->second;
+    }
+    return m_.variables_[var].kind;
+  }
+
+  // `var` now holds `k`: remember it, and report a float-typed holder of absolute data.
+  void hold(int var, Kind k, int site) {
+    Variable& v = m_.variables_[var];
+    if (frame_ && v.role != Variable::Role::global && v.role != Variable::Role::field) frame_->current[var] = k;
+    v.kind = join(v.kind, k);
+    if (!holds_absolute(k) || v.uniform || !d_.is_float_type(v.type)) return;
+    AbsoluteHolder::What what = v.role == Variable::Role::parameter ? AbsoluteHolder::What::parameter
+                                : v.role == Variable::Role::field  ? AbsoluteHolder::What::field
+                                                                   : AbsoluteHolder::What::variable;
+    std::string name = v.role == Variable::Role::field ? v.owner + "." + v.name : v.name;
+    report({what, site >= 0 ? site : v.decl, name, v.type, k});
+  }
+
+  void report(AbsoluteHolder h) {
+    if (reported_.insert(h.site).second) m_.holders_.push_back(std::move(h));
+  }
+
+  // ---- expressions --------------------------------------------------------------------------
+  std::optional<Kind> source_kind(const Path& path) {
+    std::string key;
+    for (const auto& s : path) key += s.name + (s.call ? "()." : ".");
+    auto it = source_cache_.find(key);
+    if (it != source_cache_.end()) return it->second;
+    std::optional<Kind> found;
+    for (const auto& s : d_.sources)
+      if (s.pattern.matches(path)) {
+        found = s.kind;
+        break;
+      }
+    source_cache_.emplace(key, found);
+    return found;
+  }
+
+  std::optional<FunctionRole> role_of(std::string_view name) const {
+    Path p{{std::string(name), false}};
+    for (const auto& f : d_.functions)
+      if (f.pattern.matches(p)) return f.role;
+    return std::nullopt;
+  }
+
+  int lookup(std::string_view name) const {
+    if (frame_) {
+      auto it = frame_->scope.find(std::string(name));
+      if (it != frame_->scope.end()) return it->second;
+    }
+    auto g = globals_.find(std::string(name));
+    return g != globals_.end() ? g->second : -1;
+  }
+
+  Kind record(int id, Kind k) {
+    auto [it, inserted] = m_.kinds_.emplace(id, k);
+    if (!inserted) it->second = join(it->second, k);
+    return k;
+  }
+
+  Kind eval(int id, int depth) {
+    if (depth > kMaxDepth) {
+      m_.too_deep_.push_back(id);
+      return Kind::unknown;
+    }
+    return record(id, eval_node(id, depth + 1));
+  }
+
+  Kind eval_node(int id, int depth) {
+    std::string_view type = t_.at(id).type;
+    if (type == "parenthesized_expression") {
+      int inner = t_.named_child(id);
+      return inner >= 0 ? eval(inner, depth) : Kind::unknown;
+    }
+    if (type == "identifier") return eval_identifier(id);
+    if (type == "number_literal" || type == "true" || type == "false") return Kind::local;
+    if (type == "field_expression") return eval_field(id, depth);
+    if (type == "subscript_expression") return eval_subscript(id, depth);
+    if (type == "call_expression") return eval_call(id, depth);
+    if (type == "binary_expression") return eval_binary(id, depth);
+    if (type == "assignment_expression") return eval_assignment(id, depth);
+    if (type == "cast_expression") {
+      int value = t_.child_by_field(id, "value");
+      Kind k = value >= 0 ? eval(value, depth) : Kind::unknown;
+      int target = t_.child_by_field(id, "type");
+      if (target >= 0 && is_3x3_type(t_.text(target)) && is_matrix(k)) return Kind::rotation_matrix;
+      return k;
+    }
+    if (type == "unary_expression") {
+      int arg = t_.child_by_field(id, "argument");
+      Kind k = arg >= 0 ? eval(arg, depth) : Kind::unknown;
+      int op = t_.child_by_field(id, "operator");
+      return op >= 0 && t_.text(op) == "-" ? negate(k) : (op >= 0 && t_.text(op) == "!" ? Kind::local : k);
+    }
+    if (type == "conditional_expression") {
+      int c = t_.child_by_field(id, "condition");
+      if (c >= 0) eval(c, depth);
+      int a = t_.child_by_field(id, "consequence"), b = t_.child_by_field(id, "alternative");
+      return join(a >= 0 ? eval(a, depth) : Kind::unknown, b >= 0 ? eval(b, depth) : Kind::unknown);
+    }
+    Kind k = Kind::unknown;
+    bool last_only = type == "comma_expression";
+    for (int c : t_.named_children(id)) {
+      Kind ck = eval(c, depth);
+      k = last_only ? ck : join(k, ck);
+    }
+    return (type == "initializer_list" || last_only) ? k : Kind::unknown;
+  }
+
+  Kind eval_identifier(int id) {
+    std::string_view name = t_.text(id);
+    int var = lookup(name);
+    if (var >= 0) {
+      m_.refs_[id] = var;
+      return current(var);
+    }
+    if (auto k = source_kind(Path{{std::string(name), false}})) return *k;
+    if (inc_) {
+      auto it = inc_->globals.find(std::string(name));
+      if (it != inc_->globals.end()) return it->second;
+    }
+    return Kind::unknown;
+  }
+
+  Kind eval_field(int id, int depth) {
+    int base = t_.child_by_field(id, "argument");
+    int field = t_.child_by_field(id, "field");
+    Kind base_kind = base >= 0 ? eval(base, depth) : Kind::unknown;
+    if (auto p = m_.path(id)) {
+      if (auto k = source_kind(*p)) return *k;
+    }
+    if (field < 0) return Kind::unknown;
+    std::string name(t_.text(field));
+    if (base >= 0 && t_.is(base, "identifier") && block_instances_.count(std::string(t_.text(base)))) {
+      int var = lookup(name);
+      if (var >= 0) {
+        m_.refs_[field] = var;
+        return current(var);
+      }
+    }
+    if (is_swizzle(name)) return is_matrix(base_kind) ? Kind::unknown : base_kind;
+    auto it = field_kinds_.find(owner_of(base) + "." + name);
+    if (it == field_kinds_.end()) it = field_kinds_.find("." + name);
+    return it != field_kinds_.end() ? it->second : Kind::unknown;
+  }
+
+  // The struct type of a field access's base, when the base is a known variable.
+  std::string owner_of(int base) const {
+    if (base < 0 || !t_.is(base, "identifier")) return {};
+    int var = lookup(t_.text(base));
+    return var >= 0 ? m_.variables_[var].type : std::string();
+  }
+
+  Kind eval_subscript(int id, int depth) {
+    int base = t_.child_by_field(id, "argument");
+    int index = t_.child_by_field(id, "index");
+    if (index < 0) index = t_.named_child(id, 1);
+    Kind k = base >= 0 ? eval(base, depth) : Kind::unknown;
+    if (index >= 0) eval(index, depth);
+    if (!is_matrix(k)) return k;
+    // Row (HLSL) or column (GLSL) 3 of a 4x4 transform is its translation.
+    bool translation = index >= 0 && t_.text(index) == "3";
+    if (!translation) return Kind::direction;
+    if (k == Kind::world_matrix) return Kind::absolute;
+    if (k == Kind::translated_world_matrix) return Kind::translated;
+    return Kind::unknown;
+  }
+
+  // A vector that a matrix transforms as a point (w = 1) rather than a direction (w = 0 or no w).
+  bool is_point(int v) const {
+    while (v >= 0 && (t_.is(v, "parenthesized_expression") || t_.is(v, "cast_expression")))
+      v = t_.is(v, "cast_expression") ? t_.child_by_field(v, "value") : t_.named_child(v);
+    if (v < 0) return true;
+    if (t_.is(v, "call_expression")) {
+      int fn = t_.child_by_field(v, "function");
+      int args = t_.child_by_field(v, "arguments");
+      std::string_view name = fn >= 0 ? t_.text(fn) : std::string_view();
+      bool ctor4 = ends_with(name, "4") && d_.is_float_type(name);
+      if (ctor4 && args >= 0) {
+        auto list = t_.named_children(args);
+        if (list.size() >= 2 && t_.is(list.back(), "number_literal")) {
+          std::string_view w = t_.text(list.back());
+          return w.find_first_of("123456789") != std::string_view::npos;
+        }
+      }
+      if (d_.is_float_type(name) && ends_with(name, "3")) return false;
+    }
+    if (t_.is(v, "field_expression")) {
+      int field = t_.child_by_field(v, "field");
+      if (field >= 0 && is_swizzle(t_.text(field)) && t_.text(field).size() == 3) return false;
+    }
+    if (t_.is(v, "identifier")) {
+      int var = lookup(t_.text(v));
+      if (var >= 0 && ends_with(m_.variables_[var].type, "3")) return false;
+    }
+    return true;
+  }
+
+  Kind transform(int vec, Kind vk, Kind mk) {
+    if (mk == Kind::rotation_matrix) return Kind::direction;
+    if (!is_matrix(mk)) return Kind::unknown;
+    if (vk == Kind::direction || !is_point(vec)) return Kind::direction;
+    switch (mk) {
+      case Kind::world_matrix: return Kind::absolute;
+      case Kind::translated_world_matrix: return Kind::translated;
+      default: return Kind::local;
+    }
+  }
+
+  Kind eval_call(int id, int depth) {
+    int fn = t_.child_by_field(id, "function");
+    int args_node = t_.child_by_field(id, "arguments");
+    std::vector<int> args = args_node >= 0 ? t_.named_children(args_node) : std::vector<int>{};
+    std::vector<Kind> kinds;
+    for (int a : args) kinds.push_back(eval(a, depth));
+    if (fn < 0) return Kind::unknown;
+    if (!t_.is(fn, "identifier")) {
+      if (t_.is(fn, "field_expression")) {  // a method call: texture.Sample(...)
+        int base = t_.child_by_field(fn, "argument");
+        if (base >= 0) eval(base, depth);
+      }
+      return Kind::unknown;
+    }
+    std::string name(t_.text(fn));
+    if (auto p = m_.path(id)) {
+      if (auto k = source_kind(*p)) return *k;
+    }
+    if (d_.is_float_type(name)) {  // a constructor: float4(P, 1), vec3(...), float3x3(M)
+      Kind k = Kind::unknown;
+      for (Kind a : kinds) k = join(k, a);
+      if (is_3x3_type(name) && is_matrix(k)) return Kind::rotation_matrix;
+      return k;
+    }
+    if (auto it = functions_.find(name); it != functions_.end()) return call_user(it->second, args, kinds);
+    if (auto role = role_of(name)) return apply_role(*role, args, kinds);
+    if (inc_) {
+      auto it = inc_->function_returns.find(name);
+      if (it != inc_->function_returns.end()) return it->second;
+    }
+    return Kind::unknown;
+  }
+
+  Kind apply_role(FunctionRole role, const std::vector<int>& args, const std::vector<Kind>& k) {
+    Kind a = k.size() > 0 ? k[0] : Kind::unknown, b = k.size() > 1 ? k[1] : Kind::unknown;
+    switch (role) {
+      case FunctionRole::transform:
+        if (k.size() < 2) return a;
+        if (is_matrix(a) && is_matrix(b)) return compose(a, b);
+        if (is_matrix(b)) return transform(args[0], a, b);
+        if (is_matrix(a)) return transform(args[1], b, a);
+        return scale(a, b);
+      case FunctionRole::direction: return Kind::direction;
+      case FunctionRole::local: return Kind::local;
+      case FunctionRole::join: {
+        Kind j = Kind::unknown;
+        for (size_t i = 0; i < k.size() && i < 2; ++i) j = join(j, k[i]);
+        return j;
+      }
+      case FunctionRole::invert: return invert(a);
+      case FunctionRole::same: return a;
+      case FunctionRole::demote_marker: return a == Kind::unknown ? Kind::absolute : a;
+      case FunctionRole::add: return add(a, b);
+      case FunctionRole::subtract: return subtract(a, b);
+      case FunctionRole::translated:
+        if (a == Kind::absolute || a == Kind::world_matrix || b == Kind::world_matrix || b == Kind::camera_offset ||
+            a == Kind::unknown || a == Kind::local)
+          return is_matrix(a) ? Kind::translated_world_matrix : Kind::translated;
+        return Kind::unknown;
+    }
+    return Kind::unknown;
+  }
+
+  Kind call_user(const std::vector<int>& overloads, const std::vector<int>& args, const std::vector<Kind>& kinds) {
+    int fn = overloads.front();
+    for (int candidate : overloads) {
+      int d = t_.child_by_field(candidate, "declarator");
+      while (d >= 0 && !t_.is(d, "function_declarator")) d = t_.child_by_field(d, "declarator");
+      int list = d >= 0 ? t_.child_by_field(d, "parameters") : -1;
+      if (list >= 0 && t_.named_children(list).size() == args.size()) fn = candidate;
+    }
+    bool interesting = std::any_of(kinds.begin(), kinds.end(), [](Kind k) { return k != Kind::unknown && k != Kind::local; });
+    Summary s = analyze_function(fn, interesting ? kinds : std::vector<Kind>{});
+    for (size_t i = 0; i < s.outs.size() && i < args.size(); ++i)
+      if (s.outs[i] != Kind::unknown) assign(args[i], s.outs[i]);
+    return s.ret;
+  }
+
+  Kind eval_binary(int id, int depth) {
+    int l = t_.child_by_field(id, "left"), r = t_.child_by_field(id, "right");
+    int op_node = t_.child_by_field(id, "operator");
+    Kind a = l >= 0 ? eval(l, depth) : Kind::unknown;
+    Kind b = r >= 0 ? eval(r, depth) : Kind::unknown;
+    std::string_view op = op_node >= 0 ? t_.text(op_node) : std::string_view();
+    return binary(op, l, a, r, b);
+  }
+
+  Kind binary(std::string_view op, int l, Kind a, int r, Kind b) {
+    if (op == "+") return add(a, b);
+    if (op == "-") return subtract(a, b);
+    if (op == "*" && t_.lang == Lang::glsl) {
+      if (is_matrix(a) && is_matrix(b)) return compose(b, a);  // column vectors: b applies first
+      if (is_matrix(a)) return transform(r, b, a);
+      if (is_matrix(b)) return transform(l, a, b);
+    }
+    if (op == "*" || op == "/") return scale(a, b);
+    return Kind::local;  // comparisons, logic, bit operations
+  }
+
+  Kind eval_assignment(int id, int depth) {
+    int l = t_.child_by_field(id, "left"), r = t_.child_by_field(id, "right");
+    int op_node = t_.child_by_field(id, "operator");
+    std::string_view op = op_node >= 0 ? t_.text(op_node) : "=";
+    Kind k = r >= 0 ? eval(r, depth) : Kind::unknown;
+    if (op != "=" && l >= 0) k = binary(op.substr(0, op.size() - 1), l, eval(l, depth), r, k);
+    else if (l >= 0 && !t_.is(l, "identifier")) eval(l, depth);  // field bases and indices are uses too
+    if (l >= 0) assign(l, k);
+    return k;
+  }
+
+  void assign(int lhs, Kind k) {
+    while (lhs >= 0 && t_.is(lhs, "parenthesized_expression")) lhs = t_.named_child(lhs);
+    if (lhs < 0) return;
+    if (t_.is(lhs, "identifier")) {
+      int var = lookup(t_.text(lhs));
+      if (var >= 0) {
+        m_.refs_[lhs] = var;
+        hold(var, k, -1);
+      }
+      return;
+    }
+    if (t_.is(lhs, "subscript_expression")) {
+      if (holds_absolute(k)) assign(t_.child_by_field(lhs, "argument"), k);
+      return;
+    }
+    if (!t_.is(lhs, "field_expression")) return;
+    int base = t_.child_by_field(lhs, "argument");
+    int field = t_.child_by_field(lhs, "field");
+    if (field < 0) return;
+    std::string name(t_.text(field));
+    if (is_swizzle(name)) {
+      if (holds_absolute(k)) assign(base, k);
+      return;
+    }
+    std::string owner = owner_of(base);
+    Kind& by_owner = field_kinds_[owner + "." + name];
+    by_owner = join(by_owner, k);
+    Kind& by_name = field_kinds_["." + name];
+    by_name = join(by_name, k);
+    // Report at the struct's field declaration when it is in this file, else at the assignment.
+    int var = -1;
+    if (auto it = fields_.find(owner + "." + name); it != fields_.end()) var = it->second;
+    else if (auto f = fields_by_name_.find(name); f != fields_by_name_.end() && f->second.size() == 1) var = f->second[0];
+    if (var >= 0) {
+      hold(var, k, -1);
+    } else if (holds_absolute(k) && lookup(name) < 0) {
+      report({AbsoluteHolder::What::field, lhs, std::string(t_.text(lhs)), std::string(), k});
+    }
+  }
+
+  WorldModel& m_;
+  const SyntaxTree& t_;
+  const WorldData& d_;
+  const FileSummary* inc_;
+  Frame* frame_ = nullptr;
+  std::unordered_map<std::string, std::vector<int>> functions_;
+  std::vector<int> function_order_;
+  std::unordered_map<std::string, int> globals_;
+  std::unordered_map<std::string, int> fields_;
+  std::unordered_map<std::string, std::vector<int>> fields_by_name_;
+  std::unordered_map<std::string, Kind> field_kinds_;
+  std::set<std::string> block_instances_;
+  std::unordered_map<int, int> decl_var_;
+  std::map<std::pair<int, std::vector<Kind>>, Summary> memo_;
+  std::set<int> active_;
+  std::set<int> reported_;
+  std::unordered_map<std::string, std::optional<Kind>> source_cache_;
+};
+
+WorldModel::WorldModel(const SyntaxTree& tree, const WorldData& data, const FileSummary* includes)
+    : tree_(tree), data_(data) {
+  Analyzer(*this, includes).run();
+}
+
+WorldModel::~WorldModel() = default;
+
+Kind WorldModel::kind(int node) const {
+  auto it = kinds_.find(node);
+  return it != kinds_.end() ? it->second : Kind::unknown;
+}
+
+std::optional<Path> WorldModel::path(int node) const {
+  Path out;
+  // Walk down the left spine: a.b(c).d -> [a, b(), d], built back to front.
+  while (node >= 0) {
+    std::string_view type = tree_.at(node).type;
+    if (type == "identifier") {
+      out.push_back({std::string(tree_.text(node)), false});
+      break;
+    }
+    if (type == "field_expression") {
+      int field = tree_.child_by_field(node, "field");
+      if (field < 0) return std::nullopt;
+      out.push_back({std::string(tree_.text(field)), false});
+      node = tree_.child_by_field(node, "argument");
+    } else if (type == "call_expression") {
+      int fn = tree_.child_by_field(node, "function");
+      if (fn < 0) return std::nullopt;
+      if (tree_.is(fn, "identifier")) {
+        out.push_back({std::string(tree_.text(fn)), true});
+        break;
+      }
+      if (!tree_.is(fn, "field_expression")) return std::nullopt;
+      int field = tree_.child_by_field(fn, "field");
+      if (field < 0) return std::nullopt;
+      out.push_back({std::string(tree_.text(field)), true});
+      node = tree_.child_by_field(fn, "argument");
+    } else if (type == "parenthesized_expression") {
+      node = tree_.named_child(node);
+    } else {
+      return std::nullopt;
+    }
+  }
+  if (out.empty()) return std::nullopt;
+  std::reverse(out.begin(), out.end());
+  return out;
+}
+
+int WorldModel::variable_at(int identifier) const {
+  auto it = refs_.find(identifier);
+  return it != refs_.end() ? it->second : -1;
+}
+
+std::vector<int> WorldModel::uses(int variable) const {
+  std::vector<int> out;
+  for (auto [node, var] : refs_)
+    if (var == variable) out.push_back(node);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+FileSummary WorldModel::summary() const {
+  FileSummary s;
+  for (const Variable& v : variables_)
+    if (v.role == Variable::Role::global && v.kind != Kind::unknown) s.globals[v.name] = v.kind;
+  s.function_returns = returns_;
+  s.function_return_types = return_types_;
+  return s;
+}
+
+}  // namespace lwc

@@ -1,0 +1,136 @@
+#pragma once
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "lang/syntax.h"
+#include "world/pattern.h"
+
+namespace lwc {
+
+// What a value is, as far as large coordinates go.
+enum class Kind : uint8_t {
+  unknown,
+  local,                   // small: object-local, clip, a scalar such as a distance
+  direction,               // a vector with no position: normal, axis, difference of positions
+  translated,              // translated-world (camera-relative) position
+  absolute,                // absolute-world position
+  camera_offset,           // PreViewTranslation: minus the camera's absolute position
+  world_matrix,            // local (or screen/clip) -> absolute world, translation included
+  translated_world_matrix, // local -> translated world
+  from_world_matrix,       // absolute world -> view/clip/local
+  from_translated_matrix,  // translated world -> view/clip/local
+  rotation_matrix,         // 3x3 part: directions only
+  local_matrix,            // small -> small (projection, model-view computed on the host)
+};
+std::string_view kind_name(Kind kind);
+std::optional<Kind> parse_kind(std::string_view name);
+// Kinds whose float32 form loses precision far from the origin.
+bool holds_absolute(Kind kind);
+bool is_matrix(Kind kind);
+
+enum class FunctionRole { transform, direction, local, join, invert, same, demote_marker, add, subtract, translated };
+
+// World-space knowledge for one language: rules/world-space.json plus the project's additions.
+struct WorldData {
+  struct Source {
+    PathPattern pattern;
+    Kind kind;
+  };
+  struct Function {
+    PathPattern pattern;
+    FunctionRole role;
+  };
+  std::vector<std::string> float_types;
+  std::vector<Source> sources;
+  std::vector<Function> functions;
+
+  // `world_space` is the "world-space" object; `extra_sources` is the config's list of
+  // {"match", "kind", "languages"?}. Throws std::runtime_error naming a bad entry.
+  static WorldData load(const nlohmann::json& world_space, const nlohmann::json& extra_sources, Lang lang);
+  bool is_float_type(std::string_view type) const;
+};
+
+// A name the model tracks: a local, parameter, global (uniform, varying...) or struct field.
+struct Variable {
+  enum class Role { local, parameter, global, field };
+  std::string name;
+  std::string type;
+  Role role = Role::local;
+  int decl = -1;          // the declarator's identifier node
+  int declaration = -1;   // the whole declaration / parameter / field node
+  int function = -1;      // enclosing function_definition, -1 outside functions
+  int init = -1;          // initialiser expression, if any
+  int block = -1;         // cbuffer / uniform block node for globals declared in one
+  bool precise = false;
+  bool uniform = false;
+  bool output = false;    // an `out`/`inout` parameter
+  std::string owner;      // for fields: the struct's name
+  Kind kind = Kind::unknown;  // for uniforms: from the sources; otherwise the most absolute kind held
+};
+
+// A float-typed place found holding absolute-world data.
+struct AbsoluteHolder {
+  enum class What { variable, field, parameter, return_value };
+  What what;
+  int site;           // node to report at
+  std::string name;
+  std::string type;
+  Kind kind;
+};
+
+// What an included file teaches: its globals' kinds and its functions' return kinds.
+struct FileSummary {
+  std::map<std::string, Kind> globals;
+  std::map<std::string, Kind> function_returns;
+  std::map<std::string, std::string> function_return_types;
+};
+
+// Classifies every value of one parsed file. Function parameters and returns are followed within
+// the file through summaries computed at call sites (memoised per argument kinds): one pass per
+// function, no whole-tree fixpoint.
+class WorldModel {
+ public:
+  WorldModel(const SyntaxTree& tree, const WorldData& data, const FileSummary* includes = nullptr);
+  ~WorldModel();
+
+  // The kind recorded for an expression node (joined over every analysis of its function).
+  Kind kind(int node) const;
+  // A node's path (`View.WorldCameraOrigin`, `GetPrimitiveData(..).LocalToWorld`), if it has one.
+  std::optional<Path> path(int node) const;
+  const std::vector<Variable>& variables() const { return variables_; }
+  // The variable an identifier refers to, or -1.
+  int variable_at(int identifier) const;
+  // Identifier nodes that refer to a variable (its declaration excluded).
+  std::vector<int> uses(int variable) const;
+  const std::vector<AbsoluteHolder>& absolute_holders() const { return holders_; }
+  // Nodes whose analysis was cut because they nest too deeply.
+  const std::vector<int>& too_deep() const { return too_deep_; }
+  FileSummary summary() const;
+  const SyntaxTree& tree() const { return tree_; }
+  const WorldData& data() const { return data_; }
+
+ private:
+  friend class Analyzer;
+  const SyntaxTree& tree_;
+  const WorldData& data_;
+  std::vector<Variable> variables_;
+  std::unordered_map<int, int> refs_;  // identifier node -> variable
+  std::unordered_map<int, Kind> kinds_;
+  std::vector<AbsoluteHolder> holders_;
+  std::vector<int> too_deep_;
+  std::map<std::string, Kind> returns_;
+  std::map<std::string, std::string> return_types_;
+};
+
+// Words written before a declaration's type: qualifiers and modifiers (`static const`,
+// `uniform`, `precise`, `out`...), read from the original text so HLSL's masked words count.
+std::vector<std::string_view> leading_words(const SyntaxTree& tree, int declaration);
+
+}  // namespace lwc
