@@ -27,7 +27,8 @@ constexpr std::pair<Kind, std::string_view> kKindNames[] = {
 };
 
 constexpr std::pair<FunctionRole, std::string_view> kRoleNames[] = {
-    {FunctionRole::transform, "transform"}, {FunctionRole::direction, "direction"},
+    {FunctionRole::transform, "transform"}, {FunctionRole::transform_point, "transform-point"},
+    {FunctionRole::direction, "direction"},
     {FunctionRole::local, "local"},         {FunctionRole::join, "join"},
     {FunctionRole::invert, "invert"},       {FunctionRole::same, "same"},
     {FunctionRole::demote_marker, "demote-marker"},
@@ -197,8 +198,19 @@ bool WorldData::is_float_type(std::string_view type) const {
 std::vector<std::string_view> leading_words(const SyntaxTree& tree, int declaration) {
   std::vector<std::string_view> words;
   int type = tree.child_by_field(declaration, "type");
-  uint32_t end = type >= 0 ? tree.at(type).begin : tree.at(declaration).begin;
-  std::string_view text = tree.source->slice({tree.at(declaration).begin, end});
+  uint32_t begin = tree.at(declaration).begin;
+  uint32_t end = type >= 0 ? tree.at(type).begin : begin;
+  // HLSL's masked modifiers (`out`, `uniform`...) lie just before the node: take the words
+  // before it on the same line, back to the nearest punctuation.
+  if (tree.lang == Lang::hlsl) {
+    const std::string& src = tree.source->text();
+    while (begin > 0) {
+      char c = src[begin - 1];
+      if (c == '\n' || !(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == ' ' || c == '\t')) break;
+      --begin;
+    }
+  }
+  std::string_view text = tree.source->slice({begin, end});
   size_t i = 0;
   while (i < text.size()) {
     if (std::isalpha(static_cast<unsigned char>(text[i])) || text[i] == '_') {
@@ -214,6 +226,18 @@ std::vector<std::string_view> leading_words(const SyntaxTree& tree, int declarat
 
 static bool has_word(const std::vector<std::string_view>& words, std::string_view w) {
   return std::find(words.begin(), words.end(), w) != words.end();
+}
+
+static Variable make_variable(std::string name, std::string type, Variable::Role role, int decl, int declaration,
+                              int function = -1) {
+  Variable v;
+  v.name = std::move(name);
+  v.type = std::move(type);
+  v.role = role;
+  v.decl = decl;
+  v.declaration = declaration;
+  v.function = function;
+  return v;
 }
 
 // The analysis itself; WorldModel keeps only its results.
@@ -291,7 +315,7 @@ class Analyzer {
         if (!t_.at(c).field || std::string_view(t_.at(c).field) != "declarator") continue;
         int n = declarator_name(c);
         if (n < 0) continue;
-        Variable v{std::string(t_.text(n)), std::string(type_of(f)), Variable::Role::field, n, f};
+        Variable v = make_variable(std::string(t_.text(n)), std::string(type_of(f)), Variable::Role::field, n, f);
         v.owner = owner;
         int var = new_variable(std::move(v));
         fields_[owner + "." + std::string(t_.text(n))] = var;
@@ -334,7 +358,7 @@ class Analyzer {
   }
 
   int add_global(int declaration, int name, std::string type, int block, bool uniform, bool precise) {
-    Variable v{std::string(t_.text(name)), std::move(type), Variable::Role::global, name, declaration};
+    Variable v = make_variable(std::string(t_.text(name)), std::move(type), Variable::Role::global, name, declaration);
     v.block = block;
     v.uniform = uniform;
     v.precise = precise;
@@ -366,7 +390,7 @@ class Analyzer {
         int n = declarator_name(t_.child_by_field(p, "declarator"));
         if (n < 0) continue;
         auto words = leading_words(t_, p);
-        Variable v{std::string(t_.text(n)), std::string(type_of(p)), Variable::Role::parameter, n, p, fn};
+        Variable v = make_variable(std::string(t_.text(n)), std::string(type_of(p)), Variable::Role::parameter, n, p, fn);
         v.output = has_word(words, "out") || has_word(words, "inout");
         v.precise = has_word(words, "precise");
         int var = new_variable(std::move(v));
@@ -433,7 +457,7 @@ class Analyzer {
       if (!t_.at(c).field || std::string_view(t_.at(c).field) != "declarator") continue;
       int n = declarator_name(c);
       if (n < 0) continue;
-      Variable v{std::string(t_.text(n)), type, Variable::Role::local, n, id, frame_->function};
+      Variable v = make_variable(std::string(t_.text(n)), type, Variable::Role::local, n, id, frame_->function);
       v.precise = precise;
       int value = t_.is(c, "init_declarator") ? t_.child_by_field(c, "value") : -1;
       v.init = value;
@@ -654,10 +678,11 @@ class Analyzer {
     return true;
   }
 
-  Kind transform(int vec, Kind vk, Kind mk) {
+  // `as_point`: the function treats a 3-vector as a point (DFMultiply(float3, FDFMatrix)).
+  Kind transform(int vec, Kind vk, Kind mk, bool as_point = false) {
     if (mk == Kind::rotation_matrix) return Kind::direction;
     if (!is_matrix(mk)) return Kind::unknown;
-    if (vk == Kind::direction || !is_point(vec)) return Kind::direction;
+    if (vk == Kind::direction || (!as_point && !is_point(vec))) return Kind::direction;
     switch (mk) {
       case Kind::world_matrix: return Kind::absolute;
       case Kind::translated_world_matrix: return Kind::translated;
@@ -701,11 +726,12 @@ class Analyzer {
   Kind apply_role(FunctionRole role, const std::vector<int>& args, const std::vector<Kind>& k) {
     Kind a = k.size() > 0 ? k[0] : Kind::unknown, b = k.size() > 1 ? k[1] : Kind::unknown;
     switch (role) {
+      case FunctionRole::transform_point:
       case FunctionRole::transform:
         if (k.size() < 2) return a;
         if (is_matrix(a) && is_matrix(b)) return compose(a, b);
-        if (is_matrix(b)) return transform(args[0], a, b);
-        if (is_matrix(a)) return transform(args[1], b, a);
+        if (is_matrix(b)) return transform(args[0], a, b, role == FunctionRole::transform_point);
+        if (is_matrix(a)) return transform(args[1], b, a, role == FunctionRole::transform_point);
         return scale(a, b);
       case FunctionRole::direction: return Kind::direction;
       case FunctionRole::local: return Kind::local;

@@ -1,0 +1,25 @@
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/finding.h"
+#include "lang/syntax.h"
+
+namespace lwc::test {
+
+struct Run {
+  int exit_code;
+  std::string out;
+};
+// Runs a shell command, capturing standard output (standard error goes to the test log).
+Run run(const std::string& command);
+std::string read(const std::string& path);
+void write(const std::string& path, const std::string& text);
+// A fresh, empty scratch folder under the build tree.
+std::string scratch(const std::string& name);
+// Findings for a code string in a language, optionally only one rule's.
+std::vector<Finding> lint_text(const std::string& code, Lang lang, const std::string& rule = "");
+std::string source_dir();
+std::string binary();
+
+}  // namespace lwc::test

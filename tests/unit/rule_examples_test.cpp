@@ -1,0 +1,68 @@
+// Every rule's bad/good examples (rules/<id>.json) run here, so rule data and checks agree.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "rules/rule.h"
+#include "support.h"
+
+namespace lwc {
+namespace {
+
+class RuleExamples : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(RuleExamples, BadExamplesFindExactlyTheExpectedSpotsAndGoodOnesNothing) {
+  const RuleInfo* rule = find_rule(GetParam());
+  ASSERT_NE(rule, nullptr);
+  ASSERT_FALSE(rule->examples.empty());
+  bool has_bad = false, has_good = false;
+  for (const auto& ex : rule->examples) {
+    Lang lang = *parse_lang(ex.at("language").get<std::string>());
+    bool bad = ex.contains("bad");
+    std::string code = ex.at(bad ? "bad" : "good").get<std::string>();
+    std::vector<std::pair<int, int>> got;
+    Source src("example", code);
+    for (const Finding& f : test::lint_text(code, lang))
+      if (f.rule == rule->id) {
+        Position p = src.position(f.span.begin);
+        got.emplace_back(p.line, p.column);
+      }
+    std::vector<std::pair<int, int>> want;
+    if (bad)
+      for (const auto& pos : ex.at("expect")) want.emplace_back(pos.at(0).get<int>(), pos.at(1).get<int>());
+    EXPECT_EQ(got, want) << rule->id << (bad ? " bad" : " good") << " example:\n" << code;
+    (bad ? has_bad : has_good) = true;
+  }
+  EXPECT_TRUE(has_bad) << rule->id << " needs a bad example";
+  EXPECT_TRUE(has_good) << rule->id << " needs a good example";
+}
+
+std::vector<std::string> rule_ids() {
+  std::vector<std::string> ids;
+  for (const RuleInfo& r : all_rules()) ids.push_back(r.id);
+  return ids;
+}
+
+INSTANTIATE_TEST_SUITE_P(AllRules, RuleExamples, ::testing::ValuesIn(rule_ids()), [](const auto& info) {
+  std::string name = info.param;
+  for (char& c : name)
+    if (c == '-') c = '_';
+  return name;
+});
+
+TEST(RuleRegistry, EveryRuleHasACheckOrIsADriverRuleAndADocsPage) {
+  for (const RuleInfo& r : all_rules()) {
+    bool driver = r.id == kInputRule || r.id == kUnusedSuppressionRule;
+    EXPECT_EQ(check_factories().count(r.id) == 1, !driver) << r.id;
+    std::string page = test::source_dir() + "/docs/rules/" + r.id + ".md";
+    ASSERT_TRUE(std::filesystem::exists(page)) << page;
+    std::string text = test::read(page);
+    EXPECT_NE(text.find(r.id), std::string::npos) << page;
+    EXPECT_NE(text.find(r.summary), std::string::npos) << page << " should state the rule's summary";
+  }
+  for (const auto& [id, factory] : check_factories()) EXPECT_NE(find_rule(id), nullptr) << id << " has no rule data";
+  EXPECT_EQ(all_rules().size(), 11u);
+}
+
+}  // namespace
+}  // namespace lwc

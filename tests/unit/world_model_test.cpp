@@ -1,0 +1,99 @@
+#include <gtest/gtest.h>
+
+#include "rules/analyze.h"
+#include "support.h"
+
+namespace lwc {
+namespace {
+
+// "line:col name" of each lwc-float-world-position finding.
+std::vector<std::string> holders(const std::string& code, Lang lang = Lang::hlsl) {
+  std::vector<std::string> out;
+  Source src("t", code);
+  for (const Finding& f : test::lint_text(code, lang, "lwc-float-world-position")) {
+    Position p = src.position(f.span.begin);
+    out.push_back(std::to_string(p.line) + ":" + std::to_string(p.column) + " " + std::string(src.slice(f.span)));
+  }
+  return out;
+}
+
+using V = std::vector<std::string>;
+
+TEST(WorldModel, DirectionsAreNeverFlagged) {
+  EXPECT_EQ(holders("void F(float3 N, float3 T) {\n"
+                    "  float3 A = mul(float4(N, 0), Primitive.LocalToWorld).xyz;\n"
+                    "  float3 B = mul(N, (float3x3)Primitive.LocalToWorld);\n"
+                    "  float3x3 R = (float3x3)Primitive.LocalToWorld;\n"
+                    "  float3 C = mul(T, R);\n"
+                    "  float3 D = normalize(mul(float4(T, 1), Primitive.LocalToWorld).xyz - View.WorldCameraOrigin);\n"
+                    "}\n"),
+            V{});
+  EXPECT_EQ(holders("uniform mat4 modelMatrix; in vec3 n; out vec3 o;\n"
+                    "void main() { o = mat3(modelMatrix) * n; vec4 d = modelMatrix * vec4(n, 0.0); }\n",
+                    Lang::glsl),
+            V{});
+}
+
+TEST(WorldModel, FollowsLocalsSwizzlesAndCompoundAssignments) {
+  EXPECT_EQ(holders("float3 F(float3 L) {\n"
+                    "  float4 P = mul(float4(L, 1), Primitive.LocalToWorld);\n"
+                    "  float3 Q = P.xyz;\n"
+                    "  float3 T = Q;\n"
+                    "  T += PrimaryView.PreViewTranslation;\n"
+                    "  return T;\n"
+                    "}\n"),
+            (V{"2:10 P", "3:10 Q", "4:10 T"}));
+}
+
+TEST(WorldModel, TranslatedWorldIsNotAbsolute) {
+  EXPECT_EQ(holders("float3 F(float3 L) {\n"
+                    "  float3 T = mul(float4(L, 1), Primitive.LocalToTranslatedWorld).xyz;\n"
+                    "  float3 U = T - View.TranslatedWorldCameraOrigin;\n"
+                    "  float3 V = GetTranslatedWorldPosition(Parameters);\n"
+                    "  return T + U + V;\n"
+                    "}\n"),
+            V{});
+}
+
+TEST(WorldModel, FollowsParametersReturnsAndOutParametersWithinTheFile) {
+  EXPECT_EQ(holders("float3 ToWorld(float3 L) { return mul(float4(L, 1), Primitive.LocalToWorld).xyz; }\n"
+                    "float Fog(float3 P) { return length(P - ResolvedView.WorldCameraOrigin); }\n"
+                    "void Get(float3 L, out float3 W) { W = ToWorld(L); }\n"
+                    "float Main(float3 L) {\n"
+                    "  float3 A;\n"
+                    "  Get(L, A);\n"
+                    "  return Fog(ToWorld(L)) + Fog(float3(0, 0, 0)) + length(A - ResolvedView.WorldCameraOrigin);\n"
+                    "}\n"),
+            (V{"1:8 ToWorld", "2:18 P", "3:31 W", "5:10 A"}));
+}
+
+TEST(WorldModel, StructFieldsAreReportedAtTheirDeclaration) {
+  EXPECT_EQ(holders("struct VSOut { float4 Pos : SV_Position; float3 PosW : TEXCOORD0; };\n"
+                    "VSOut VS(float3 L) { VSOut o; o.PosW = mul(float4(L, 1), World).xyz; o.Pos = 0; return o; }\n"
+                    "float4 PS(VSOut i) : SV_Target { float3 d = i.PosW - EyePosW; return float4(d, 1); }\n"),
+            (V{"1:49 PosW"}));
+}
+
+TEST(WorldModel, DoubleFloatTypesAreNotFloatHolders) {
+  EXPECT_EQ(holders("FDFVector3 F(float3 L) { FDFVector3 W = DFMultiply(L, Primitive.LocalToWorld); return W; }\n"), V{});
+}
+
+TEST(WorldModel, GlslMatrixTimesPoint) {
+  EXPECT_EQ(holders("uniform mat4 modelMatrix; in vec3 position; out vec3 vWorld;\n"
+                    "void main() { vec4 w = modelMatrix * vec4(position, 1.0); vWorld = w.xyz; }\n",
+                    Lang::glsl),
+            (V{"1:54 vWorld", "2:20 w"}));
+}
+
+TEST(WorldModel, ProjectSourcesExtendTheBuiltInOnes) {
+  std::string code = "float3 F(float3 L) { float3 P = mul(float4(L, 1), MyObjectToWorld).xyz; return 0; }\n";
+  AnalyzeOptions o;
+  o.lang = Lang::hlsl;
+  o.select = {"lwc-float-world-position"};
+  EXPECT_TRUE(analyze(Source("t", code), o).empty());
+  o.world_sources = nlohmann::json::parse(R"([{"match": "MyObjectToWorld", "kind": "world-matrix"}])");
+  EXPECT_EQ(analyze(Source("t", code), o).size(), 1u);
+}
+
+}  // namespace
+}  // namespace lwc
