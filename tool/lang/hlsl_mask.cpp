@@ -248,10 +248,34 @@ MaskResult mask_hlsl(std::string_view text) {
   return result;
 }
 
+// Statements the GLSL grammar (0.2.0) does not parse and lwcport does not need:
+// `precision highp float;` and interface defaults such as `layout(local_size_x = 64) in;`.
 MaskResult mask_glsl(std::string_view text) {
   Lexer lexer{text, {}, std::nullopt};
   lexer.run();
   MaskResult result{std::string(text), lexer.unterminated_comment};
+  const auto& t = lexer.tokens;
+  auto word = [&](size_t i) { return i < t.size() ? text.substr(t[i].begin, t[i].end - t[i].begin) : std::string_view(); };
+  auto blank = [&](size_t from, size_t to) {
+    for (uint32_t k = t[from].begin; k < t[to].end; ++k)
+      if (result.text[k] != '\n' && result.text[k] != '\r') result.text[k] = ' ';
+  };
+  for (size_t i = 0; i < t.size(); ++i) {
+    bool statement_start = i == 0 || word(i - 1) == ";" || word(i - 1) == "}" || t[i - 1].kind == Tok::directive;
+    if (!statement_start || t[i].kind != Tok::ident) continue;
+    if (word(i) == "precision" && word(i + 3) == ";") {
+      blank(i, i + 3);
+      i += 3;
+    } else if (word(i) == "layout" && word(i + 1) == "(") {
+      size_t k = i + 2;
+      for (int depth = 1; k < t.size() && depth > 0; ++k) depth += word(k) == "(" ? 1 : word(k) == ")" ? -1 : 0;
+      std::string_view q = word(k);
+      if ((q == "in" || q == "out" || q == "uniform" || q == "buffer") && word(k + 1) == ";") {
+        blank(i, k + 1);
+        i = k + 1;
+      }
+    }
+  }
   mask_bom(result.text);
   return result;
 }

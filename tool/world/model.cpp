@@ -31,7 +31,7 @@ constexpr std::pair<FunctionRole, std::string_view> kRoleNames[] = {
     {FunctionRole::direction, "direction"},
     {FunctionRole::local, "local"},         {FunctionRole::join, "join"},
     {FunctionRole::invert, "invert"},       {FunctionRole::same, "same"},
-    {FunctionRole::demote_marker, "demote-marker"},
+    {FunctionRole::world_value, "world-value"},
     {FunctionRole::add, "add"},             {FunctionRole::subtract, "subtract"},
     {FunctionRole::translated, "translated"},
 };
@@ -60,8 +60,9 @@ Kind join(Kind a, Kind b) { return rank(b) > rank(a) ? b : a; }
 bool small(Kind k) { return k == Kind::direction || k == Kind::local || k == Kind::unknown; }
 
 Kind add(Kind a, Kind b) {
-  if ((a == Kind::absolute && b == Kind::camera_offset) || (a == Kind::camera_offset && b == Kind::absolute))
-    return Kind::translated;
+  // Adding PreViewTranslation to a position (or to what is most likely one) translates it.
+  if ((a == Kind::absolute || a == Kind::unknown) && b == Kind::camera_offset) return Kind::translated;
+  if (a == Kind::camera_offset && (b == Kind::absolute || b == Kind::unknown)) return Kind::translated;
   for (auto [x, y] : {std::pair{a, b}, std::pair{b, a}}) {
     if ((x == Kind::absolute || x == Kind::translated || x == Kind::camera_offset) && small(y)) return x;
   }
@@ -82,8 +83,9 @@ Kind subtract(Kind a, Kind b) {
 // Component-wise multiply or divide by a non-matrix.
 Kind scale(Kind a, Kind b) {
   if (is_matrix(a) || is_matrix(b)) return Kind::unknown;
-  Kind k = join(a, b);
-  return k == Kind::unknown ? Kind::unknown : k;
+  if (holds_absolute(a) || holds_absolute(b)) return join(a, b);
+  if (a == Kind::unknown || b == Kind::unknown) return Kind::unknown;
+  return join(a, b);
 }
 
 Kind negate(Kind k) {
@@ -365,6 +367,8 @@ class Analyzer {
     v.kind = source_kind(Path{{v.name, false}}).value_or(Kind::unknown);
     int var = new_variable(std::move(v));
     globals_[m_.variables_[var].name] = var;
+    // A GLSL varying named as a world position (`in vec3 vWorldPosition`) holds one.
+    if (!uniform) hold(var, m_.variables_[var].kind, -1);
     return var;
   }
 
@@ -620,7 +624,12 @@ class Analyzer {
         return current(var);
       }
     }
-    if (is_swizzle(name)) return is_matrix(base_kind) ? Kind::unknown : base_kind;
+    if (is_swizzle(name)) {
+      if (is_matrix(base_kind)) return Kind::unknown;
+      // `.w` of a position is its homogeneous coordinate or a packed scalar, not a coordinate.
+      if ((name == "w" || name == "a") && base_kind != Kind::unknown) return Kind::local;
+      return base_kind;
+    }
     auto it = field_kinds_.find(owner_of(base) + "." + name);
     if (it == field_kinds_.end()) it = field_kinds_.find("." + name);
     return it != field_kinds_.end() ? it->second : Kind::unknown;
@@ -742,7 +751,7 @@ class Analyzer {
       }
       case FunctionRole::invert: return invert(a);
       case FunctionRole::same: return a;
-      case FunctionRole::demote_marker: return a == Kind::unknown ? Kind::absolute : a;
+      case FunctionRole::world_value: return a == Kind::unknown ? Kind::absolute : a;
       case FunctionRole::add: return add(a, b);
       case FunctionRole::subtract: return subtract(a, b);
       case FunctionRole::translated:

@@ -35,7 +35,7 @@ std::optional<Kind> parse_kind(std::string_view name);
 bool holds_absolute(Kind kind);
 bool is_matrix(Kind kind);
 
-enum class FunctionRole { transform, transform_point, direction, local, join, invert, same, demote_marker, add, subtract, translated };
+enum class FunctionRole { transform, transform_point, direction, local, join, invert, same, world_value, add, subtract, translated };
 
 // World-space knowledge for one language: rules/world-space.json plus the project's additions.
 struct WorldData {

@@ -37,8 +37,9 @@ class FastTwoSumOrder : public Check {
     auto path = ctx.world.path(node);
     if (!path) return Magnitude::unknown;
     std::string_view last = path->back().name;
-    if (matches_any(large_, last)) return Magnitude::large;
+    // "RelativeOrigin" is an offset: a small-value word outweighs a large-value one.
     if (matches_any(small_, last)) return Magnitude::small;
+    if (matches_any(large_, last)) return Magnitude::large;
     return Magnitude::unknown;
   }
 
