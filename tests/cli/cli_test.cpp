@@ -1,0 +1,168 @@
+// End-to-end: the lwcport binary, its formats, exit codes, options, config and suppressions.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "support.h"
+
+namespace lwc {
+namespace {
+
+const char* kBad =
+    "float3 F(float3 L)\n{\n\tfloat3 W = mul(float4(L, 1), Primitive.LocalToWorld).xyz;\n\treturn W - View.WorldCameraOrigin;\n}\n";
+
+test::Run lint(const std::string& dir, const std::string& args) {
+  return test::run("cd " + dir + " && " + test::binary() + " lint " + args + " 2>/dev/null");
+}
+
+TEST(Cli, TextFormatHasPositionSourceLineCaretAndHint) {
+  std::string dir = test::scratch("text");
+  test::write(dir + "/a.usf", kBad);
+  auto r = lint(dir, "a.usf --color never");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.out.find("a.usf:4:13: error: `View.WorldCameraOrigin` is absolute world space"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("[lwc-primary-view]\n    4 | \treturn W - View."), std::string::npos) << r.out;
+  // The caret line keeps the tab so it lines up under the span, and spans its 22 characters.
+  EXPECT_NE(r.out.find("      | \t" + std::string(11, ' ') + "^" + std::string(21, '~') + "\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("= help: use `PrimaryView.WorldCameraOrigin`"), std::string::npos);
+  EXPECT_NE(r.out.find("Found 2 finding(s) in 1 file(s): 1 error(s), 1 warning(s), 0 note(s)."), std::string::npos);
+  EXPECT_EQ(r.out.find("\x1b["), std::string::npos);
+  EXPECT_NE(lint(dir, "a.usf --color always").out.find("\x1b[1;31merror:"), std::string::npos);
+}
+
+TEST(Cli, ExitCodesFollowFailOn) {
+  std::string dir = test::scratch("exit");
+  test::write(dir + "/note.usf", "float3 F(FDFVector3 P) { return DFDemote(DFAdd(P, P)); }\n");
+  test::write(dir + "/clean.glsl", "void main() {}\n");
+  EXPECT_EQ(lint(dir, "clean.glsl").exit_code, 0);
+  EXPECT_EQ(lint(dir, "note.usf").exit_code, 0);  // notes do not fail by default
+  EXPECT_EQ(lint(dir, "note.usf --fail-on note").exit_code, 1);
+  EXPECT_EQ(lint(dir, "note.usf --fail-on none").exit_code, 0);
+  EXPECT_EQ(lint(dir, "note.usf --fail-on bogus").exit_code, 2);
+  EXPECT_EQ(lint(dir, "--select no-such-rule note.usf").exit_code, 2);
+  EXPECT_EQ(test::run(test::binary() + " frobnicate 2>/dev/null").exit_code, 2);
+}
+
+TEST(Cli, SelectIgnoreAndLangOverride) {
+  std::string dir = test::scratch("select");
+  test::write(dir + "/a.txt", kBad);
+  auto all = nlohmann::json::parse(lint(dir, "a.txt --lang hlsl --format json").out);
+  EXPECT_EQ(all["findings"].size(), 2u);  // W, and View.WorldCameraOrigin
+  auto only = nlohmann::json::parse(lint(dir, "a.txt --lang hlsl --format json --select lwc-primary-view").out);
+  ASSERT_EQ(only["findings"].size(), 1u);
+  EXPECT_EQ(only["findings"][0]["rule"], "lwc-primary-view");
+  auto ignored = nlohmann::json::parse(lint(dir, "a.txt --lang=hlsl --format=json --ignore lwc-primary-view").out);
+  ASSERT_EQ(ignored["findings"].size(), 1u);
+  EXPECT_EQ(ignored["findings"][0]["rule"], "lwc-float-world-position");
+  // Without --lang, an unknown extension is a clear per-file error.
+  auto unknown = nlohmann::json::parse(lint(dir, "a.txt --format json").out);
+  EXPECT_EQ(unknown["findings"][0]["rule"], "lwc-input");
+}
+
+TEST(Cli, JsonFormatIsDocumented) {
+  std::string dir = test::scratch("json");
+  test::write(dir + "/a.usf", kBad);
+  auto doc = nlohmann::json::parse(lint(dir, "a.usf --format json").out);
+  EXPECT_EQ(doc["version"], 1);
+  EXPECT_EQ(doc["tool"]["name"], "lwcport");
+  EXPECT_EQ(doc["files"], 1);
+  EXPECT_EQ(doc["summary"]["error"], 1);
+  EXPECT_EQ(doc["summary"]["warning"], 1);
+  const auto& f = doc["findings"][1];
+  EXPECT_EQ(f["path"], "a.usf");
+  EXPECT_EQ(f["rule"], "lwc-primary-view");
+  EXPECT_EQ(f["start"], (nlohmann::json{{"line", 4}, {"column", 13}}));
+  EXPECT_EQ(f["end"], (nlohmann::json{{"line", 4}, {"column", 35}}));
+  EXPECT_TRUE(f["message"].is_string() && f["hint"].is_string());
+}
+
+TEST(Cli, GithubAnnotations) {
+  std::string dir = test::scratch("github");
+  test::write(dir + "/a,b.usf", kBad);
+  auto r = lint(dir, "a,b.usf --format github");
+  EXPECT_NE(r.out.find("::error file=a%2Cb.usf,line=4,col=13,endLine=4,endColumn=35,title=lwc-primary-view::`View.WorldCameraOrigin`"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("::warning file=a%2Cb.usf,line=3,col=9,"), std::string::npos) << r.out;
+}
+
+TEST(Cli, ConfigFoundUpwardSetsSeverityExcludesAndWorldSources) {
+  std::string dir = test::scratch("config");
+  test::write(dir + "/.lwcport.json", R"({
+    "severity": {"lwc-float-world-position": "error"},
+    "exclude": ["generated/", "*.skip.usf"],
+    "world-sources": [{"match": "MyObjectToWorld", "kind": "world-matrix", "languages": ["hlsl"]}]
+  })");
+  test::write(dir + "/src/a.usf", "float3 F(float3 L) { float3 P = mul(float4(L, 1), MyObjectToWorld).xyz; return 0; }\n");
+  test::write(dir + "/src/generated/b.usf", kBad);
+  test::write(dir + "/src/c.skip.usf", kBad);
+  auto doc = nlohmann::json::parse(lint(dir, "src --format json").out);
+  EXPECT_EQ(doc["files"], 1);
+  ASSERT_EQ(doc["findings"].size(), 1u);
+  EXPECT_EQ(doc["findings"][0]["path"], "src/a.usf");
+  EXPECT_EQ(doc["findings"][0]["severity"], "error");
+
+  test::write(dir + "/.lwcport.json", R"({"severity": {"lwc-nope": "error"}})");
+  auto r = test::run("cd " + dir + " && " + test::binary() + " lint src 2>&1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.out.find(".lwcport.json: unknown rule id \"lwc-nope\""), std::string::npos) << r.out;
+  test::write(dir + "/.lwcport.json", "{ \"exclude\": [1, }");
+  r = test::run("cd " + dir + " && " + test::binary() + " lint src 2>&1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.out.find(".lwcport.json: invalid JSON at byte"), std::string::npos) << r.out;
+}
+
+TEST(Cli, IncludesTeachDeclarationsAndMissingOnesAreFine) {
+  std::string dir = test::scratch("includes");
+  test::write(dir + "/.lwcport.json", R"({"virtual-roots": {"/Engine/": "engine"}, "include-dirs": ["shared"]})");
+  test::write(dir + "/engine/Private/Scene.ush", "float3 GetPivot() { return mul(float4(0, 0, 0, 1), Primitive.LocalToWorld).xyz; }\n");
+  test::write(dir + "/shared/Helpers.ush", "float3 GetAnchor() { return EyePosW; }\n");
+  test::write(dir + "/a.usf",
+              "#include \"/Engine/Private/Scene.ush\"\n#include \"Helpers.ush\"\n#include \"/Engine/Missing.ush\"\n"
+              "float F() { float3 P = GetPivot(); float3 Q = GetAnchor(); return 0; }\n");
+  auto doc = nlohmann::json::parse(lint(dir, "a.usf --format json").out);
+  ASSERT_EQ(doc["findings"].size(), 2u) << doc.dump(2);
+  EXPECT_EQ(doc["findings"][0]["start"]["column"], 20);
+  EXPECT_EQ(doc["findings"][1]["start"]["column"], 43);
+}
+
+TEST(Cli, SuppressionsOnTheLineAboveAndForTheFileAndUnusedOnes) {
+  std::string dir = test::scratch("suppress");
+  test::write(dir + "/a.usf",
+              "// lwcport-ignore-file: lwc-hack-marker\n"
+              "float3 F(float3 L)\n{\n"
+              "\t// lwcport-ignore: lwc-primary-view\n"
+              "\tfloat3 C = View.WorldCameraOrigin; // lwcport-ignore: lwc-float-world-position\n"
+              "\tfloat3 D = View.PreViewTranslation; /* lwcport-ignore: lwc-tile-offset, lwc-primary-view */\n"
+              "\treturn LWCHackToFloat(C + D); // lwcport-ignore: no-such-rule\n}\n");
+  auto doc = nlohmann::json::parse(lint(dir, "a.usf --format json").out);
+  std::vector<std::string> got;
+  for (const auto& f : doc["findings"])
+    got.push_back(std::to_string(f["start"]["line"].get<int>()) + " " + f["rule"].get<std::string>() + " " +
+                  f["message"].get<std::string>().substr(0, 30));
+  EXPECT_EQ(got, (std::vector<std::string>{
+                     "6 lwc-float-world-position variable `D` (float3) holds th",
+                     "6 lwc-unused-suppression unused suppression of `lwc-til",
+                     "7 lwc-unused-suppression unused suppression of `no-such",
+                 }));
+}
+
+TEST(Cli, OutputIsIdenticalForAnyJobCount) {
+  std::string corpus = test::source_dir() + "/corpus";
+  auto one = test::run("cd " + test::source_dir() + " && " + test::binary() + " lint corpus --format json --jobs 1 --fail-on none");
+  auto many = test::run("cd " + test::source_dir() + " && " + test::binary() + " lint corpus --format json --jobs 8 --fail-on none");
+  EXPECT_EQ(one.exit_code, 0);
+  EXPECT_EQ(one.out, many.out);
+}
+
+TEST(Cli, RulesListsEveryRule) {
+  auto r = test::run(test::binary() + " rules");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* id : {"lwc-primary-view", "lwc-float-world-position", "lwc-uniform-world-float", "lwc-hack-marker",
+                         "lwc-tile-offset", "lwc-fast-twosum-order", "lwc-missing-precise", "lwc-demote-fusion",
+                         "lwc-translated-world", "lwc-unused-suppression", "lwc-input"})
+    EXPECT_NE(r.out.find(id), std::string::npos) << id;
+}
+
+}  // namespace
+}  // namespace lwc
