@@ -1,0 +1,57 @@
+// SARIF output over the whole corpus passes the OASIS 2.1.0 schema and the SARIF Multitool.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "support.h"
+
+namespace lwc {
+namespace {
+
+std::string corpus_sarif() {
+  std::string out = test::scratch("sarif") + "/corpus.sarif";
+  auto r = test::run("cd " + test::source_dir() + " && " + test::binary() + " lint corpus --format sarif --fail-on none --output " + out);
+  EXPECT_EQ(r.exit_code, 0);
+  return out;
+}
+
+TEST(Sarif, CorpusPassesTheOasisSchema) {
+  std::string schema = test::source_dir() + "/../shared/schemas/sarif-schema-2.1.0.json";
+  auto r = test::run("node " + test::source_dir() + "/tests/tools/validate-sarif.js " + schema + " " + corpus_sarif() + " 2>&1");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("valid"), std::string::npos) << r.out;
+}
+
+TEST(Sarif, CorpusPassesTheMultitoolWithNoErrorsOrWarnings) {
+  std::string tool = test::source_dir() + "/tests/tools/node_modules/@microsoft/sarif-multitool-linux/Sarif.Multitool";
+  std::string log = test::scratch("multitool") + "/validation.sarif";
+  auto r = test::run(tool + " validate " + corpus_sarif() + " --level \"Error;Warning;Note\" --output " + log + " --log ForceOverwrite 2>&1");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("Analysis completed successfully"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find(": error SARIF"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find(": warning SARIF"), std::string::npos) << r.out;
+  // Its own log proves it ran its rules: notes (advice) are allowed, nothing stronger.
+  auto results = nlohmann::json::parse(test::read(log))["runs"][0]["results"];
+  EXPECT_FALSE(results.empty());
+  for (const auto& res : results) EXPECT_EQ(res.value("level", "warning"), "note") << res.dump();
+}
+
+TEST(Sarif, CarriesRuleMetadataAndEveryFinding) {
+  auto sarif = nlohmann::json::parse(test::read(corpus_sarif()));
+  auto json = nlohmann::json::parse(
+      test::run("cd " + test::source_dir() + " && " + test::binary() + " lint corpus --format json --fail-on none").out);
+  const auto& run = sarif["runs"][0];
+  EXPECT_EQ(run["results"].size(), json["findings"].size());
+  EXPECT_EQ(run["tool"]["driver"]["rules"].size(), 11u);
+  for (const auto& rule : run["tool"]["driver"]["rules"]) {
+    std::string id = rule["id"];
+    EXPECT_NE(rule["helpUri"].get<std::string>().find("docs/rules/" + id + ".md"), std::string::npos);
+    EXPECT_TRUE(rule["fullDescription"]["text"].is_string());
+  }
+  const auto& first = run["results"][0];
+  EXPECT_EQ(first["locations"][0]["physicalLocation"]["artifactLocation"]["uriBaseId"], "SRCROOT");
+  EXPECT_EQ(run["columnKind"], "unicodeCodePoints");
+}
+
+}  // namespace
+}  // namespace lwc
