@@ -4,6 +4,8 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <condition_variable>
+#include <mutex>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -184,30 +186,51 @@ int lint(const Options& o, std::ostream& out, std::ostream& err) {
   ConfigFinder configs;
   std::vector<std::string> paths = o.paths.empty() ? std::vector<std::string>{"."} : o.paths;
   std::vector<InputFile> files = discover(paths, configs, o.lang.has_value());
-  std::vector<FileReport> reports(files.size());
-  IncludeSummaries includes;
-  unsigned jobs = o.jobs ? o.jobs : std::max(1u, std::thread::hardware_concurrency());
-  parallel_for(files.size(), jobs, [&](size_t i) { reports[i] = lint_file(files[i], o, includes); });
 
   ReportOptions ro = o.report;
-  bool tty = ::isatty(o.output.empty() ? STDOUT_FILENO : -1) && !std::getenv("NO_COLOR");
+  bool tty = o.output.empty() && ::isatty(STDOUT_FILENO) && !std::getenv("NO_COLOR");
   ro.color = o.color == "always" || (o.color == "auto" && tty);
   ro.working_dir = fs::current_path().string();
-  if (o.output.empty()) {
-    write_report(out, reports, ro);
-  } else {
-    std::ofstream file(o.output, std::ios::binary);
-    if (!file) {
+  std::ofstream file_out;
+  if (!o.output.empty()) {
+    file_out.open(o.output, std::ios::binary);
+    if (!file_out) {
       err << fmt::format("lwcport: error: cannot write {}\n", o.output);
       return 2;
     }
-    write_report(file, reports, ro);
   }
-  if (!o.fail_on) return 0;
-  for (const auto& r : reports)
-    for (const auto& f : r.findings)
-      if (f.severity >= *o.fail_on) return 1;
-  return 0;
+  ReportWriter writer(o.output.empty() ? out : file_out, ro);
+
+  // Workers fill slots; this thread writes them in path order as soon as each is ready and
+  // frees it, so memory holds only the files in flight, not the whole run's findings.
+  std::vector<std::optional<FileReport>> slots(files.size());
+  std::mutex mutex;
+  std::condition_variable ready;
+  std::atomic<size_t> next{0};
+  IncludeSummaries includes;
+  unsigned jobs = o.jobs ? o.jobs : std::max(1u, std::thread::hardware_concurrency());
+  std::vector<std::thread> workers;
+  for (unsigned t = 0; t < std::min<size_t>(jobs, files.size()); ++t) {
+    workers.emplace_back([&]() {
+      for (size_t i; (i = next.fetch_add(1)) < files.size();) {
+        FileReport report = lint_file(files[i], o, includes);
+        std::lock_guard lock(mutex);
+        slots[i] = std::move(report);
+        ready.notify_all();
+      }
+    });
+  }
+  for (size_t i = 0; i < files.size(); ++i) {
+    std::unique_lock lock(mutex);
+    ready.wait(lock, [&] { return slots[i].has_value(); });
+    FileReport report = std::move(*slots[i]);
+    slots[i].reset();
+    lock.unlock();
+    writer.file(report);
+  }
+  for (auto& w : workers) w.join();
+  writer.finish();
+  return o.fail_on && writer.failed(*o.fail_on) ? 1 : 0;
 }
 
 int parse_only(const Options& o, std::ostream& out) {

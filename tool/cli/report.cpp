@@ -25,19 +25,6 @@ nlohmann::json finding_json(const ReportedFinding& f) {
 
 namespace {
 
-struct Counts {
-  size_t error = 0, warning = 0, note = 0;
-  size_t total() const { return error + warning + note; }
-};
-
-Counts count(const std::vector<FileReport>& files) {
-  Counts c;
-  for (const auto& file : files)
-    for (const auto& f : file.findings)
-      (f.severity == Severity::error ? c.error : f.severity == Severity::warning ? c.warning : c.note)++;
-  return c;
-}
-
 const char* severity_color(Severity s) {
   return s == Severity::error ? "\x1b[1;31m" : s == Severity::warning ? "\x1b[1;33m" : "\x1b[1;36m";
 }
@@ -61,45 +48,18 @@ std::string caret_line(const ReportedFinding& f) {
   return out;
 }
 
-void write_text(std::ostream& out, const std::vector<FileReport>& files, const ReportOptions& o) {
-  auto paint = [&](const char* code, const std::string& s) { return o.color ? code + s + "\x1b[0m" : s; };
-  for (const auto& file : files) {
-    for (const auto& f : file.findings) {
-      out << paint("\x1b[1m", fmt::format("{}:{}:{}:", file.path, f.start.line, f.start.column)) << ' '
-          << paint(severity_color(f.severity), std::string(severity_name(f.severity)) + ":") << ' ' << f.message << ' '
-          << paint("\x1b[2m", "[" + f.rule + "]") << '\n';
-      if (!f.line_text.empty()) {
-        std::string gutter = fmt::format("{:>5} | ", f.start.line);
-        out << paint("\x1b[34m", gutter) << f.line_text << '\n';
-        out << paint("\x1b[34m", std::string(6, ' ') + "| ") << paint("\x1b[1;32m", caret_line(f)) << '\n';
-      }
-      if (!f.hint.empty()) out << std::string(6, ' ') << paint("\x1b[1;36m", "= help:") << ' ' << f.hint << '\n';
+void write_text_file(std::ostream& out, const FileReport& file, bool color) {
+  auto paint = [&](const char* code, const std::string& s) { return color ? code + s + "\x1b[0m" : s; };
+  for (const auto& f : file.findings) {
+    out << paint("\x1b[1m", fmt::format("{}:{}:{}:", file.path, f.start.line, f.start.column)) << ' '
+        << paint(severity_color(f.severity), std::string(severity_name(f.severity)) + ":") << ' ' << f.message << ' '
+        << paint("\x1b[2m", "[" + f.rule + "]") << '\n';
+    if (!f.line_text.empty()) {
+      out << paint("\x1b[34m", fmt::format("{:>5} | ", f.start.line)) << f.line_text << '\n';
+      out << paint("\x1b[34m", std::string(6, ' ') + "| ") << paint("\x1b[1;32m", caret_line(f)) << '\n';
     }
+    if (!f.hint.empty()) out << std::string(6, ' ') << paint("\x1b[1;36m", "= help:") << ' ' << f.hint << '\n';
   }
-  Counts c = count(files);
-  if (c.total() == 0) {
-    out << fmt::format("No findings in {} file(s).\n", files.size());
-  } else {
-    out << fmt::format("Found {} finding(s) in {} file(s): {} error(s), {} warning(s), {} note(s).\n", c.total(),
-                       files.size(), c.error, c.warning, c.note);
-  }
-}
-
-void write_json(std::ostream& out, const std::vector<FileReport>& files) {
-  nlohmann::json findings = nlohmann::json::array();
-  for (const auto& file : files)
-    for (const auto& f : file.findings) {
-      nlohmann::json j = finding_json(f);
-      j["path"] = file.path;
-      findings.push_back(std::move(j));
-    }
-  Counts c = count(files);
-  nlohmann::json doc = {{"version", 1},
-                        {"tool", {{"name", "lwcport"}, {"version", LWCPORT_VERSION}}},
-                        {"files", files.size()},
-                        {"summary", {{"error", c.error}, {"warning", c.warning}, {"note", c.note}}},
-                        {"findings", std::move(findings)}};
-  out << doc.dump(2) << '\n';
 }
 
 std::string sarif_level(Severity s) { return s == Severity::error ? "error" : s == Severity::warning ? "warning" : "note"; }
@@ -126,38 +86,43 @@ nlohmann::json artifact_location(const std::string& path) {
   return {{"uri", uri_encode(rel)}, {"uriBaseId", "SRCROOT"}};
 }
 
-void write_sarif(std::ostream& out, const std::vector<FileReport>& files, const ReportOptions& o) {
-  const std::string docs = "https://github.com/lwcport/lwcport/blob/main/docs/rules/";
+const std::string kDocs = "https://github.com/lwcport/lwcport/blob/main/docs/rules/";
+
+nlohmann::json sarif_rules() {
   nlohmann::json rules = nlohmann::json::array();
-  std::map<std::string, size_t> index;
   for (const RuleInfo& r : all_rules()) {
-    index[r.id] = rules.size();
     rules.push_back({{"id", r.id},
                      {"name", r.name},
                      {"shortDescription", {{"text", sentence(r.summary)}}},
                      {"fullDescription", {{"text", sentence(r.rationale)}}},
-                     {"help", {{"text", sentence(r.hint)}, {"markdown", fmt::format("{} See [{}]({}{}.md).", sentence(r.rationale), r.id, docs, r.id)}}},
-                     {"helpUri", docs + r.id + ".md"},
+                     {"help", {{"text", sentence(r.hint)}, {"markdown", fmt::format("{} See [{}]({}{}.md).", sentence(r.rationale), r.id, kDocs, r.id)}}},
+                     {"helpUri", kDocs + r.id + ".md"},
                      {"defaultConfiguration", {{"level", sarif_level(r.severity)}}},
                      {"properties", {{"tags", {"large-world-coordinates", "precision"}}}}});
   }
-  nlohmann::json results = nlohmann::json::array();
-  for (const auto& file : files) {
-    for (const auto& f : file.findings) {
-      nlohmann::json region = {{"startLine", f.start.line}, {"startColumn", f.start.column},
-                               {"endLine", f.end.line}, {"endColumn", f.end.column}};
-      if (!f.line_text.empty()) region["snippet"] = {{"text", f.line_text}};
-      nlohmann::json result = {
-          {"ruleId", f.rule},
-          {"ruleIndex", index.count(f.rule) ? index[f.rule] : 0},
+  return rules;
+}
+
+size_t rule_index(const std::string& id) {
+  const auto& rules = all_rules();
+  for (size_t i = 0; i < rules.size(); ++i)
+    if (rules[i].id == id) return i;
+  return 0;
+}
+
+nlohmann::json sarif_result(const std::string& path, const ReportedFinding& f) {
+  nlohmann::json region = {{"startLine", f.start.line}, {"startColumn", f.start.column},
+                           {"endLine", f.end.line}, {"endColumn", f.end.column}};
+  if (!f.line_text.empty()) region["snippet"] = {{"text", f.line_text}};
+  return {{"ruleId", f.rule},
+          {"ruleIndex", rule_index(f.rule)},
           {"level", sarif_level(f.severity)},
           {"message", {{"text", sentence(f.message) + (f.hint.empty() ? "" : " Fix: " + sentence(f.hint))}}},
-          {"locations",
-           {{{"physicalLocation",
-              {{"artifactLocation", artifact_location(file.path)}, {"region", region}}}}}}};
-      results.push_back(std::move(result));
-    }
-  }
+          {"locations", {{{"physicalLocation", {{"artifactLocation", artifact_location(path)}, {"region", region}}}}}}};
+}
+
+// The SARIF log with an empty results array, split where results go.
+std::pair<std::string, std::string> sarif_frame(const ReportOptions& o) {
   std::string root = o.working_dir;
   if (root.empty() || root.back() != '/') root += '/';
   nlohmann::json doc = {
@@ -170,11 +135,14 @@ void write_sarif(std::ostream& out, const std::vector<FileReport>& files, const 
              {"version", LWCPORT_VERSION},
              {"semanticVersion", LWCPORT_VERSION},
              {"informationUri", "https://github.com/lwcport/lwcport"},
-             {"rules", std::move(rules)}}}}},
+             {"rules", sarif_rules()}}}}},
          {"originalUriBaseIds", {{"SRCROOT", {{"uri", "file://" + uri_encode(root)}}}}},
          {"columnKind", "unicodeCodePoints"},
-         {"results", std::move(results)}}}}};
-  out << doc.dump(2) << '\n';
+         {"results", nlohmann::json::array()}}}}};
+  std::string text = doc.dump(1);
+  size_t at = text.find("\"results\": []");
+  at += std::string("\"results\": [").size();
+  return {text.substr(0, at) + "\n", text.substr(at)};
 }
 
 // GitHub workflow commands: properties escape %, CR, LF, ':' and ','; messages %, CR, LF.
@@ -191,25 +159,74 @@ std::string gh_escape(std::string_view s, bool property) {
   return out;
 }
 
-void write_github(std::ostream& out, const std::vector<FileReport>& files) {
-  for (const auto& file : files)
-    for (const auto& f : file.findings) {
-      const char* command = f.severity == Severity::error ? "error" : f.severity == Severity::warning ? "warning" : "notice";
-      out << fmt::format("::{} file={},line={},col={},endLine={},endColumn={},title={}::{}\n", command,
-                         gh_escape(file.path, true), f.start.line, f.start.column, f.end.line, f.end.column,
-                         gh_escape(f.rule, true), gh_escape(f.message + (f.hint.empty() ? "" : ". Fix: " + f.hint), false));
-    }
+void write_github_file(std::ostream& out, const FileReport& file) {
+  for (const auto& f : file.findings) {
+    const char* command = f.severity == Severity::error ? "error" : f.severity == Severity::warning ? "warning" : "notice";
+    out << fmt::format("::{} file={},line={},col={},endLine={},endColumn={},title={}::{}\n", command,
+                       gh_escape(file.path, true), f.start.line, f.start.column, f.end.line, f.end.column,
+                       gh_escape(f.rule, true), gh_escape(f.message + (f.hint.empty() ? "" : ". Fix: " + f.hint), false));
+  }
 }
 
 }  // namespace
 
-void write_report(std::ostream& out, const std::vector<FileReport>& files, const ReportOptions& options) {
-  switch (options.format) {
-    case Format::text: write_text(out, files, options); break;
-    case Format::json: write_json(out, files); break;
-    case Format::sarif: write_sarif(out, files, options); break;
-    case Format::github: write_github(out, files); break;
+ReportWriter::ReportWriter(std::ostream& out, ReportOptions options) : out_(out), options_(std::move(options)) { begin(); }
+
+void ReportWriter::begin() {
+  if (options_.format == Format::json) {
+    out_ << "{\n \"version\": 1,\n \"tool\": " << nlohmann::json({{"name", "lwcport"}, {"version", LWCPORT_VERSION}}).dump()
+         << ",\n \"findings\": [";
+  } else if (options_.format == Format::sarif) {
+    out_ << sarif_frame(options_).first;
   }
+}
+
+void ReportWriter::file(const FileReport& report) {
+  ++files_;
+  for (const auto& f : report.findings)
+    (f.severity == Severity::error ? errors_ : f.severity == Severity::warning ? warnings_ : notes_)++;
+  switch (options_.format) {
+    case Format::text: write_text_file(out_, report, options_.color); break;
+    case Format::github: write_github_file(out_, report); break;
+    case Format::json:
+    case Format::sarif:
+      for (const auto& f : report.findings) {
+        nlohmann::json j;
+        if (options_.format == Format::json) {
+          j = finding_json(f);
+          j["path"] = report.path;
+        } else {
+          j = sarif_result(report.path, f);
+        }
+        out_ << (first_ ? "\n  " : ",\n  ") << j.dump();
+        first_ = false;
+      }
+      break;
+  }
+}
+
+void ReportWriter::finish() {
+  size_t total = errors_ + warnings_ + notes_;
+  switch (options_.format) {
+    case Format::text:
+      if (total == 0) out_ << fmt::format("No findings in {} file(s).\n", files_);
+      else
+        out_ << fmt::format("Found {} finding(s) in {} file(s): {} error(s), {} warning(s), {} note(s).\n", total, files_,
+                            errors_, warnings_, notes_);
+      break;
+    case Format::json:
+      out_ << (first_ ? "]" : "\n ]") << ",\n \"files\": " << files_ << ",\n \"summary\": "
+           << nlohmann::json({{"error", errors_}, {"warning", warnings_}, {"note", notes_}}).dump() << "\n}\n";
+      break;
+    case Format::sarif: out_ << (first_ ? "" : "\n") << sarif_frame(options_).second << '\n'; break;
+    case Format::github: break;
+  }
+  out_.flush();
+}
+
+bool ReportWriter::failed(Severity threshold) const {
+  return (errors_ && Severity::error >= threshold) || (warnings_ && Severity::warning >= threshold) ||
+         (notes_ && Severity::note >= threshold);
 }
 
 }  // namespace lwc

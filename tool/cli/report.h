@@ -37,6 +37,20 @@ struct ReportOptions {
   std::string working_dir;  // absolute, for SARIF's base URI
 };
 
-void write_report(std::ostream& out, const std::vector<FileReport>& files, const ReportOptions& options);
+// Writes a report file by file, in the order given, so no run holds every finding at once.
+class ReportWriter {
+ public:
+  ReportWriter(std::ostream& out, ReportOptions options);
+  void file(const FileReport& report);
+  void finish();
+  bool failed(Severity threshold) const;  // a finding at or above the threshold was written
+
+ private:
+  void begin();
+  std::ostream& out_;
+  ReportOptions options_;
+  size_t files_ = 0, errors_ = 0, warnings_ = 0, notes_ = 0;
+  bool first_ = true;
+};
 
 }  // namespace lwc
