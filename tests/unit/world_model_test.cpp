@@ -97,3 +97,30 @@ TEST(WorldModel, ProjectSourcesExtendTheBuiltInOnes) {
 
 }  // namespace
 }  // namespace lwc
+
+namespace lwc {
+namespace {
+
+TEST(WorldModel, EveryPreprocessorBranchIsAnalysed) {
+  std::string code =
+      "float3 F(float3 L)\n{\n"
+      "#if USE_DOUBLE\n"
+      "\tFDFVector3 P = DFMultiply(L, Primitive.LocalToWorld);\n"
+      "\treturn DFFastToTranslatedWorld(P, PrimaryView.PreViewTranslation);\n"
+      "#elif USE_LEGACY\n"
+      "\tfloat3 Q = mul(float4(L, 1), Primitive.LocalToWorld).xyz;\n"
+      "\treturn Q + View.PreViewTranslation;\n"
+      "#else\n"
+      "\tfloat3 R = mul(float4(L, 1), Primitive.LocalToWorld).xyz;\n"
+      "\treturn R;\n"
+      "#endif\n}\n";
+  std::vector<std::string> got;
+  Source src("t", code);
+  for (const Finding& f : test::lint_text(code, Lang::hlsl))
+    got.push_back(std::to_string(src.position(f.span.begin).line) + " " + f.rule);
+  EXPECT_EQ(got, (std::vector<std::string>{"1 lwc-float-world-position", "4 lwc-translated-world", "7 lwc-float-world-position",
+                                           "8 lwc-primary-view", "10 lwc-float-world-position"}));
+}
+
+}  // namespace
+}  // namespace lwc
