@@ -185,7 +185,7 @@ FileReport lint_file(const InputFile& file, const Options& o, IncludeSummaries& 
 int lint(const Options& o, std::ostream& out, std::ostream& err) {
   ConfigFinder configs;
   std::vector<std::string> paths = o.paths.empty() ? std::vector<std::string>{"."} : o.paths;
-  std::vector<InputFile> files = discover(paths, configs, o.lang.has_value());
+  std::vector<InputFile> files = discover(paths, configs);
 
   ReportOptions ro = o.report;
   bool tty = o.output.empty() && ::isatty(STDOUT_FILENO) && !std::getenv("NO_COLOR");
@@ -236,7 +236,7 @@ int lint(const Options& o, std::ostream& out, std::ostream& err) {
 int parse_only(const Options& o, std::ostream& out) {
   ConfigFinder configs;
   std::vector<std::string> paths = o.paths.empty() ? std::vector<std::string>{"."} : o.paths;
-  std::vector<InputFile> files = discover(paths, configs, o.lang.has_value());
+  std::vector<InputFile> files = discover(paths, configs);
   std::vector<int> errors(files.size());
   std::atomic<size_t> bytes{0};
   unsigned jobs = o.jobs ? o.jobs : std::max(1u, std::thread::hardware_concurrency());

@@ -17,7 +17,6 @@ namespace {
 
 struct Walker {
   ConfigFinder& configs;
-  bool any_extension;
   std::vector<InputFile> out;
   std::vector<std::pair<dev_t, ino_t>> walking;  // folders on the current path
 
@@ -69,8 +68,8 @@ struct Walker {
 
 }  // namespace
 
-std::vector<InputFile> discover(const std::vector<std::string>& args, ConfigFinder& configs, bool any_extension) {
-  Walker w{configs, any_extension, {}, {}};
+std::vector<InputFile> discover(const std::vector<std::string>& args, ConfigFinder& configs) {
+  Walker w{configs, {}, {}};
   for (const std::string& arg : args) {
     fs::path p(arg);
     std::error_code ec;

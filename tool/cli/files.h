@@ -21,7 +21,7 @@ struct InputFile {
 // Expands the command-line paths: folders recurse (sorted, following symlinks but never into a
 // folder already being walked), shader extensions only, config excludes applied. Files named
 // explicitly are always linted. The result is sorted by display path.
-std::vector<InputFile> discover(const std::vector<std::string>& args, ConfigFinder& configs, bool any_extension);
+std::vector<InputFile> discover(const std::vector<std::string>& args, ConfigFinder& configs);
 
 struct ReadResult {
   std::string text;
