@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include "rules/analyze.h"
 
@@ -35,7 +36,9 @@ void write(const std::string& path, const std::string& text) {
 }
 
 std::string scratch(const std::string& name) {
-  std::filesystem::path p = std::filesystem::temp_directory_path() / ("lwcport-test-" + name);
+  // Per process: ctest runs tests in parallel, and two runs may share a machine.
+  std::filesystem::path p =
+      std::filesystem::temp_directory_path() / ("lwcport-test-" + std::to_string(::getpid()) + "-" + name);
   std::filesystem::remove_all(p);
   std::filesystem::create_directories(p);
   return p.string();

@@ -15,7 +15,7 @@ struct Run {
 Run run(const std::string& command);
 std::string read(const std::string& path);
 void write(const std::string& path, const std::string& text);
-// A fresh, empty scratch folder under the build tree.
+// A fresh, empty scratch folder of this test process.
 std::string scratch(const std::string& name);
 // Findings for a code string in a language, optionally only one rule's.
 std::vector<Finding> lint_text(const std::string& code, Lang lang, const std::string& rule = "");
