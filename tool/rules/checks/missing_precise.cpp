@@ -1,6 +1,7 @@
 // lwc-missing-precise: error-free transformations (TwoSum, Fast2Sum, Dekker split, TwoProduct,
 // high/low differences) whose temporaries are not `precise`: drivers that reassociate floats
 // (lavapipe does) fold them away and the low word becomes 0.
+#include <map>
 #include <set>
 
 #include "rules/checks/util.h"
@@ -19,14 +20,15 @@ class MissingPrecise : public Check {
 
   void run(const CheckContext& ctx) const override {
     const SyntaxTree& t = ctx.tree;
+    Assignments assignments = collect_assignments(ctx);
     std::set<int> reported_results;
     for (int id = 0; id < static_cast<int>(t.nodes.size()); ++id) {
       std::string eft;
       std::vector<int> operands;  // identifiers whose definitions are part of the transformation
       if (t.is(id, "binary_expression")) {
-        eft = binary_eft(ctx, id, operands);
+        eft = binary_eft(ctx, assignments, id, operands);
       } else if (t.is(id, "call_expression") && matches_any(fma_, call_name(t, id))) {
-        eft = fma_eft(ctx, id, operands);
+        eft = fma_eft(ctx, assignments, id, operands);
       }
       if (eft.empty() || wrapped(t, id)) continue;
       int result = result_variable(ctx, id);
@@ -58,20 +60,34 @@ class MissingPrecise : public Check {
     int o = t.child_by_field(n, "operator");
     return o >= 0 ? t.text(o) : std::string_view();
   }
-  // The expression a name was last given before `at`: its initialiser or an earlier assignment.
-  static int value_of(const CheckContext& ctx, int n, int at) {
+  // Per variable, its plain assignments (`x = ...`) as (assignment node, right side), in order.
+  using Assignments = std::map<int, std::vector<std::pair<int, int>>>;
+  static Assignments collect_assignments(const CheckContext& ctx) {
+    const SyntaxTree& t = ctx.tree;
+    Assignments out;
+    for (int a = 0; a < static_cast<int>(t.nodes.size()); ++a) {
+      if (!t.is(a, "assignment_expression") || op(t, a) != "=") continue;
+      int left = t.child_by_field(a, "left");
+      int var = left >= 0 ? ctx.world.variable_at(left) : -1;
+      if (var >= 0) out[var].emplace_back(a, t.child_by_field(a, "right"));
+    }
+    return out;
+  }
+  // The expression a name was last given before `at` in the same function: its initialiser or
+  // the latest earlier assignment.
+  static int value_of(const CheckContext& ctx, const Assignments& assignments, int n, int at) {
     const SyntaxTree& t = ctx.tree;
     n = strip(t, n);
     if (n < 0 || !t.is(n, "identifier")) return n;
     int var = ctx.world.variable_at(n);
     if (var < 0) return n;
-    const Variable& v = ctx.world.variables()[var];
-    int value = v.init;
+    int value = ctx.world.variables()[var].init;
     int fn = t.ancestor(at, "function_definition");
-    for (int a = fn >= 0 ? fn : 0; a < at && a < static_cast<int>(t.nodes.size()); ++a) {
-      if (!t.is(a, "assignment_expression") || op(t, a) != "=") continue;
-      int left = t.child_by_field(a, "left");
-      if (left >= 0 && ctx.world.variable_at(left) == var) value = t.child_by_field(a, "right");
+    if (auto it = assignments.find(var); it != assignments.end()) {
+      for (auto [a, right] : it->second) {
+        if (a >= at) break;
+        if (a > fn) value = right;
+      }
     }
     return strip(t, value);
   }
@@ -83,7 +99,7 @@ class MissingPrecise : public Check {
     return c >= 0 ? t.text(c) : std::string_view();
   }
 
-  std::string binary_eft(const CheckContext& ctx, int id, std::vector<int>& operands) const {
+  std::string binary_eft(const CheckContext& ctx, const Assignments& assignments, int id, std::vector<int>& operands) const {
     const SyntaxTree& t = ctx.tree;
     int left = strip(t, t.child_by_field(id, "left"));
     int right = strip(t, t.child_by_field(id, "right"));
@@ -92,14 +108,14 @@ class MissingPrecise : public Check {
       // x - (x - y): TwoSum's recovery step, or Dekker's split when x = C * y.
       if (is_op(t, right, "-") && side(t, right, "left") == t.text(left)) {
         operands = {left};
-        int def = value_of(ctx, left, id);
+        int def = value_of(ctx, assignments, left, id);
         if (is_op(t, def, "*") && (matches_any(split_constants_, side(t, def, "left")) ||
                                    matches_any(split_constants_, side(t, def, "right"))))
           return "Dekker split";
         return "TwoSum";
       }
       // s - a where s = a + b: the rounding error of a sum (Fast2Sum / TwoSum).
-      int def = value_of(ctx, left, id);
+      int def = value_of(ctx, assignments, left, id);
       if (is_op(t, def, "+") && (side(t, def, "left") == t.text(right) || side(t, def, "right") == t.text(right))) {
         operands = {left};
         return "Fast2Sum/TwoSum error term";
@@ -108,7 +124,7 @@ class MissingPrecise : public Check {
     }
     if (op(t, id) == "+") {
       // (xHigh - yHigh) + (xLow - yLow): a camera-relative subtract of two high/low pairs.
-      int a = value_of(ctx, left, id), b = value_of(ctx, right, id);
+      int a = value_of(ctx, assignments, left, id), b = value_of(ctx, assignments, right, id);
       if (is_op(t, a, "-") && is_op(t, b, "-") && named(t, a, high_) && named(t, b, low_)) {
         operands = {left, right};
         return "high/low difference";
@@ -127,14 +143,14 @@ class MissingPrecise : public Check {
     return matches_any(globs, last("left")) && matches_any(globs, last("right"));
   }
 
-  std::string fma_eft(const CheckContext& ctx, int call, std::vector<int>& operands) const {
+  std::string fma_eft(const CheckContext& ctx, const Assignments& assignments, int call, std::vector<int>& operands) const {
     const SyntaxTree& t = ctx.tree;
     auto args = call_arguments(t, call);
     if (args.size() != 3) return {};
     int c = strip(t, args[2]);
     if (c < 0 || !t.is(c, "unary_expression")) return {};
     int p = strip(t, t.child_by_field(c, "argument"));
-    int def = value_of(ctx, p, call);
+    int def = value_of(ctx, assignments, p, call);
     if (!is_op(t, def, "*")) return {};
     std::string_view x = t.text(strip(t, args[0])), y = t.text(strip(t, args[1]));
     bool same = (side(t, def, "left") == x && side(t, def, "right") == y) ||
