@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include <nlohmann/json.hpp>
@@ -38,6 +39,14 @@ nlohmann::json finding_for(const nlohmann::json& doc, const std::string& path) {
   return {};
 }
 
+// The rule ids reported for one file, in report order.
+std::vector<std::string> rules_for(const nlohmann::json& doc, const std::string& path) {
+  std::vector<std::string> out;
+  for (const auto& f : doc["findings"])
+    if (f["path"] == path) out.push_back(f["rule"]);
+  return out;
+}
+
 TEST(BadInput, BinaryFile) {
   std::string dir = test::scratch("binary");
   test::write(dir + "/blob.usf", std::string("float a;\n\0\x01\x02\xff", 13));
@@ -56,10 +65,8 @@ TEST(BadInput, InvalidUtf8IsReportedAndTheFileStillAnalysed) {
   EXPECT_EQ(f["severity"], "warning");
   EXPECT_EQ(f["start"], (nlohmann::json{{"line", 1}, {"column", 7}}));
   EXPECT_NE(f["message"].get<std::string>().find("invalid UTF-8 (byte 0xE9)"), std::string::npos);
-  int world = 0;
-  for (const auto& g : doc["findings"])
-    if (g["path"] == "latin1.usf" && g["rule"] == "lwc-float-world-position") ++world;
-  EXPECT_EQ(world, 1);
+  auto rules = rules_for(doc, "latin1.usf");
+  EXPECT_EQ(std::count(rules.begin(), rules.end(), "lwc-float-world-position"), 1);
 }
 
 TEST(BadInput, FiftyMegabyteFileIsSkippedWithBoundedMemory) {
@@ -93,10 +100,7 @@ TEST(BadInput, ByteOrderMarkIsNotAColumnOrASyntaxError) {
   std::string dir = test::scratch("bom");
   test::write(dir + "/bom.usf", "\xEF\xBB\xBF" "float3 Eye() { float3 C = View.WorldCameraOrigin; return 0; }\n");
   auto doc = lint_dir(dir);
-  std::vector<std::string> rules;
-  for (const auto& f : doc["findings"])
-    if (f["path"] == "bom.usf") rules.push_back(f["rule"]);
-  EXPECT_EQ(rules, (std::vector<std::string>{"lwc-float-world-position", "lwc-primary-view"}));
+  EXPECT_EQ(rules_for(doc, "bom.usf"), (std::vector<std::string>{"lwc-float-world-position", "lwc-primary-view"}));
   EXPECT_EQ(finding_for(doc, "bom.usf")["start"]["column"], 23);
 }
 
@@ -105,10 +109,8 @@ TEST(BadInput, TenThousandNestedParentheses) {
   std::string expr = std::string(10000, '(') + "View.WorldCameraOrigin" + std::string(10000, ')');
   test::write(dir + "/deep.usf", "float3 F() { float3 P = " + expr + "; return P; }\n");
   auto doc = lint_dir(dir);
-  bool noted = false;
-  for (const auto& f : doc["findings"])
-    if (f["path"] == "deep.usf" && f["rule"] == "lwc-input") noted = true;
-  EXPECT_TRUE(noted) << "the cut analysis is reported, not hidden";
+  auto rules = rules_for(doc, "deep.usf");
+  EXPECT_NE(std::find(rules.begin(), rules.end(), "lwc-input"), rules.end()) << "the cut analysis is reported, not hidden";
   EXPECT_EQ(finding_for(doc, "deep.usf")["start"]["line"], 1);
 }
 
