@@ -2,6 +2,7 @@
 
 #include <tree_sitter/api.h>
 
+#include <cstring>
 #include <memory>
 
 #include "lang/hlsl_mask.h"
@@ -79,19 +80,29 @@ TSParser* thread_parser(Lang lang) {
   return p.get();
 }
 
+// Punctuation tokens carry nothing the analyses read (their parent's span and fields say it all)
+// and are a third of all nodes, so they are not copied; a MISSING one is, as an error.
+bool is_punctuation(const char* type) {
+  for (const char* c = type; *c; ++c)
+    if (!std::strchr("(){}[];,", *c)) return false;
+  return *type != 0;
+}
+
 void flatten(TSTree* tree, SyntaxTree& out) {
   TSTreeCursor cursor = ts_tree_cursor_new(ts_tree_root_node(tree));
   std::vector<int32_t> parents;        // ids of the open ancestors
   std::vector<int32_t> last_child;     // per node id, its last child so far
-  auto add = [&]() {
+  auto add = [&]() -> int32_t {
     TSNode n = ts_tree_cursor_current_node(&cursor);
     Node node;
     node.type = ts_node_type(n);
+    node.named = ts_node_is_named(n);
+    bool missing = ts_node_is_missing(n);
+    if (!node.named && !missing && is_punctuation(node.type)) return -1;
     node.field = ts_tree_cursor_current_field_name(&cursor);
     node.begin = ts_node_start_byte(n);
     node.end = ts_node_end_byte(n);
-    node.named = ts_node_is_named(n);
-    node.error = ts_node_is_missing(n) || (ts_node_symbol(n) == static_cast<TSSymbol>(-1));
+    node.error = missing || (ts_node_symbol(n) == static_cast<TSSymbol>(-1));
     node.parent = parents.empty() ? -1 : parents.back();
     node.depth = static_cast<uint32_t>(parents.size());
     int32_t id = static_cast<int32_t>(out.nodes.size());
