@@ -19,6 +19,9 @@
 #include "cli/files.h"
 #include "cli/includes.h"
 #include "cli/report.h"
+#include "fix/apply.h"
+#include "fix/diff.h"
+#include "fix/scene.h"
 #include "rules/analyze.h"
 #include "rules/rule.h"
 
@@ -31,11 +34,12 @@ namespace {
 constexpr const char* kUsage = R"(usage: lwcport <command> [options] [PATHS...]
 
 commands:
-  lint [PATHS...]     report world-space hazards (folders recurse; default: .)
+  lint [PATHS...]     report world-space hazards and their fixes (folders recurse; default: .)
+  fix [PATHS...]      apply the safe fixes in place, then report what remains
   parse [PATHS...]    parse only and count syntax errors (the benchmark's baseline)
   rules               list the rules
 
-lint options:
+lint and fix options:
   --format text|json|sarif|github   output format (default: text)
   --color auto|always|never         colour text output (default: auto)
   --fail-on error|warning|note|none exit 1 when a finding is at least this severe (default: warning)
@@ -44,6 +48,15 @@ lint options:
   --lang hlsl|glsl                  analyse every file as this language
   --jobs N                          worker threads (default: all cores)
   --output FILE                     write the report to FILE instead of standard output
+  --scene FILE                      the scene profile: world extent, view distance, precision
+                                    (default: Unreal's full world, 2^43 cm, to 1/16 cm)
+  --strategy auto|translated|df     rewrite to translated world, DoubleFloat, or per site from
+                                    the scene profile (default: auto)
+  --explain                         print each scene decision with its numbers
+
+fix options:
+  --diff                            print a unified diff of the fixes and write nothing
+  --unsafe-fixes                    apply the unsafe fixes too
   --version, --help
 )";
 
@@ -61,6 +74,9 @@ struct Options {
   std::optional<Lang> lang;
   unsigned jobs = 0;
   std::string output;
+  std::optional<Scene> scene;
+  Strategy strategy = Strategy::automatic;
+  bool diff = false, unsafe_fixes = false;
 };
 
 std::set<std::string> rule_list(const std::string& value, const char* flag) {
@@ -120,6 +136,14 @@ Options parse_options(const std::vector<std::string>& args) {
       if (*end || v < 1 || v > 1024) throw UsageError("--jobs must be a number from 1 to 1024");
       o.jobs = static_cast<unsigned>(v);
     } else if (a == "--output" || a == "-o") o.output = get();
+    else if (a == "--scene") o.scene = load_scene(get());
+    else if (a == "--strategy") {
+      auto s = parse_strategy(get());
+      if (!s) throw UsageError("--strategy must be auto, translated or df");
+      o.strategy = *s;
+    } else if (a == "--explain") o.report.explain = true;
+    else if (a == "--diff") o.diff = true;
+    else if (a == "--unsafe-fixes") o.unsafe_fixes = true;
     else if (a.size() > 1 && a[0] == '-') throw UsageError("unknown option " + a);
     else if (o.command.empty()) o.command = a;
     else o.paths.push_back(a);
@@ -143,27 +167,62 @@ void parallel_for(size_t count, unsigned jobs, Work work) {
   for (auto& t : threads) t.join();
 }
 
-FileReport lint_file(const InputFile& file, const Options& o, IncludeSummaries& includes) {
-  FileReport report{file.display, {}};
+// Runs `work(i)` for every index on `jobs` threads and hands each result to `emit` on this
+// thread, in index order, as soon as it is ready; a result is freed once emitted, so memory holds
+// only the files in flight.
+template <typename Result, typename Work, typename Emit>
+void run_in_order(size_t count, unsigned jobs, Work work, Emit emit) {
+  std::vector<std::optional<Result>> slots(count);
+  std::mutex mutex;
+  std::condition_variable ready;
+  std::atomic<size_t> next{0};
+  std::vector<std::thread> workers;
+  for (unsigned t = 0; t < std::min<size_t>(jobs, count); ++t) {
+    workers.emplace_back([&]() {
+      for (size_t i; (i = next.fetch_add(1)) < count;) {
+        Result r = work(i);
+        std::lock_guard lock(mutex);
+        slots[i] = std::move(r);
+        ready.notify_all();
+      }
+    });
+  }
+  for (size_t i = 0; i < count; ++i) {
+    std::unique_lock lock(mutex);
+    ready.wait(lock, [&] { return slots[i].has_value(); });
+    Result r = std::move(*slots[i]);
+    slots[i].reset();
+    lock.unlock();
+    emit(r);
+  }
+  for (auto& w : workers) w.join();
+}
+
+unsigned job_count(const Options& o) { return o.jobs ? o.jobs : std::max(1u, std::thread::hardware_concurrency()); }
+
+// A file read and ready to analyse, or the report of why it is not.
+struct LoadedFile {
+  std::optional<Source> source;
+  AnalyzeOptions options;
+  std::unique_ptr<FileSummary> includes;  // options.includes points here: kept at a stable address
+  std::optional<FileReport> problem;
+};
+
+LoadedFile load(const InputFile& file, const Options& o, IncludeSummaries& includes) {
+  LoadedFile out;
   const ProjectConfig& config = *file.config;
-  auto input_problem = [&](Finding f) {
+  auto problem = [&](Finding f) {
     Source empty(file.display, "");
-    report.findings.push_back(locate(empty, f));
+    out.problem = FileReport{file.display, {locate(empty, f)}};
+    return std::move(out);
   };
-  if (!file.error.empty()) {
-    input_problem(input_finding(Severity::error, 0, "cannot read: " + file.error, "check the path and its permissions"));
-    return report;
-  }
+  if (!file.error.empty())
+    return problem(input_finding(Severity::error, 0, "cannot read: " + file.error, "check the path and its permissions"));
   ReadResult r = read_file(file.path, config.max_file_bytes);
-  if (!r.error.empty()) {
-    input_problem(input_finding(Severity::error, 0, "cannot read: " + r.error, "check the path and its permissions"));
-    return report;
-  }
-  if (r.too_large) {
-    input_problem(too_large_finding(r.size, config.max_file_bytes));
-    return report;
-  }
-  AnalyzeOptions a;
+  if (!r.error.empty())
+    return problem(input_finding(Severity::error, 0, "cannot read: " + r.error, "check the path and its permissions"));
+  if (r.too_large) return problem(too_large_finding(r.size, config.max_file_bytes));
+  AnalyzeOptions& a = out.options;
   a.lang = o.lang;
   a.select = o.select;
   a.ignore = o.ignore;
@@ -172,75 +231,146 @@ FileReport lint_file(const InputFile& file, const Options& o, IncludeSummaries& 
   a.severity = config.severity;
   a.world_sources = config.world_sources;
   a.max_bytes = config.max_file_bytes;
-  Source source(file.display, std::move(r.text));
-  FileSummary summary;
-  if (source.text().find("include") != std::string::npos) {
-    summary = includes.for_file(file.path, source.text(), config);
-    a.includes = &summary;
+  a.strategy = o.strategy;
+  if (o.scene) a.scene = o.scene->for_path(file.display);
+  out.source.emplace(file.display, std::move(r.text));
+  if (out.source->text().find("include") != std::string::npos) {
+    out.includes = std::make_unique<FileSummary>(includes.for_file(file.path, out.source->text(), config));
+    a.includes = out.includes.get();
   }
-  for (const Finding& f : analyze(source, a)) report.findings.push_back(locate(source, f));
+  return out;
+}
+
+FileReport lint_file(const InputFile& file, const Options& o, IncludeSummaries& includes) {
+  LoadedFile f = load(file, o, includes);
+  if (f.problem) return std::move(*f.problem);
+  FileReport report{file.display, {}};
+  for (const Finding& finding : analyze(*f.source, f.options)) report.findings.push_back(locate(*f.source, finding));
   return report;
 }
 
-int lint(const Options& o, std::ostream& out, std::ostream& err) {
-  ConfigFinder configs;
-  std::vector<std::string> paths = o.paths.empty() ? std::vector<std::string>{"."} : o.paths;
-  std::vector<InputFile> files = discover(paths, configs);
-
-  ReportOptions ro = o.report;
+// The report goes to standard output or --output; nullopt (after an error message) if that
+// file cannot be opened.
+struct ReportTarget {
+  std::ofstream file;
+  std::ostream* stream = nullptr;
+};
+bool open_target(const Options& o, std::ostream& out, std::ostream& err, ReportTarget& target, ReportOptions& ro) {
+  ro = o.report;
   bool tty = o.output.empty() && ::isatty(STDOUT_FILENO) && !std::getenv("NO_COLOR");
   ro.color = o.color == "always" || (o.color == "auto" && tty);
   ro.working_dir = fs::current_path().string();
-  std::ofstream file_out;
-  if (!o.output.empty()) {
-    file_out.open(o.output, std::ios::binary);
-    if (!file_out) {
-      err << fmt::format("lwcport: error: cannot write {}\n", o.output);
-      return 2;
-    }
+  target.stream = &out;
+  if (o.output.empty()) return true;
+  target.file.open(o.output, std::ios::binary);
+  if (!target.file) {
+    err << fmt::format("lwcport: error: cannot write {}\n", o.output);
+    return false;
   }
-  ReportWriter writer(o.output.empty() ? out : file_out, ro);
+  target.stream = &target.file;
+  return true;
+}
 
-  // Workers fill slots; this thread writes them in path order as soon as each is ready and
-  // frees it, so memory holds only the files in flight, not the whole run's findings.
-  std::vector<std::optional<FileReport>> slots(files.size());
-  std::mutex mutex;
-  std::condition_variable ready;
-  std::atomic<size_t> next{0};
+std::vector<InputFile> input_files(const Options& o) {
+  ConfigFinder configs;
+  return discover(o.paths.empty() ? std::vector<std::string>{"."} : o.paths, configs);
+}
+
+int lint(const Options& o, std::ostream& out, std::ostream& err) {
+  std::vector<InputFile> files = input_files(o);
+  ReportTarget target;
+  ReportOptions ro;
+  if (!open_target(o, out, err, target, ro)) return 2;
+  ReportWriter writer(*target.stream, ro);
   IncludeSummaries includes;
-  unsigned jobs = o.jobs ? o.jobs : std::max(1u, std::thread::hardware_concurrency());
-  std::vector<std::thread> workers;
-  for (unsigned t = 0; t < std::min<size_t>(jobs, files.size()); ++t) {
-    workers.emplace_back([&]() {
-      for (size_t i; (i = next.fetch_add(1)) < files.size();) {
-        FileReport report = lint_file(files[i], o, includes);
-        std::lock_guard lock(mutex);
-        slots[i] = std::move(report);
-        ready.notify_all();
-      }
-    });
-  }
-  for (size_t i = 0; i < files.size(); ++i) {
-    std::unique_lock lock(mutex);
-    ready.wait(lock, [&] { return slots[i].has_value(); });
-    FileReport report = std::move(*slots[i]);
-    slots[i].reset();
-    lock.unlock();
-    writer.file(report);
-  }
-  for (auto& w : workers) w.join();
+  run_in_order<FileReport>(
+      files.size(), job_count(o), [&](size_t i) { return lint_file(files[i], o, includes); },
+      [&](const FileReport& r) { writer.file(r); });
   writer.finish();
   return o.fail_on && writer.failed(*o.fail_on) ? 1 : 0;
 }
 
+struct FixedFile {
+  FileReport report;   // what remains, plus any write problem
+  std::string diff;    // --diff
+  int applied = 0;
+  int unsafe_left = 0;  // remaining findings whose fix is unsafe
+  bool changed = false;
+};
+
+FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& includes) {
+  FixedFile out;
+  LoadedFile f = load(file, o, includes);
+  if (f.problem) {
+    out.report = std::move(*f.problem);
+    return out;
+  }
+  const Source& source = *f.source;
+  FixOutcome fixed = fix_source(source, f.options, o.unsafe_fixes);
+  out.report.path = file.display;
+  out.applied = fixed.applied;
+  out.changed = fixed.text != source.text();
+  Source result(file.display, fixed.text);
+  for (const Finding& finding : fixed.remaining) {
+    out.report.findings.push_back(locate(result, finding));
+    if (!finding.fixes.empty() && finding.fixes.front().applicability == Applicability::unsafe) ++out.unsafe_left;
+  }
+  if (!fixed.converged) {
+    out.report.findings.push_back(locate(result, input_finding(Severity::warning, 0, "fixes kept changing the file; stopped after 10 rounds",
+                                                                "please report this file: a fix should apply once")));
+  }
+  if (!out.changed) return out;
+  if (o.diff) {
+    out.diff = unified_diff(file.display, source.text(), fixed.text);
+    return out;
+  }
+  std::string why = replace_file(file.path, source.text(), fixed.text);
+  if (!why.empty()) {
+    // Nothing was written: report the original file's findings, not the unwritten result's.
+    out.changed = false;
+    out.applied = 0;
+    out.report.findings.clear();
+    for (const Finding& finding : analyze(source, f.options)) out.report.findings.push_back(locate(source, finding));
+    out.report.findings.insert(out.report.findings.begin(),
+                               locate(source, input_finding(Severity::error, 0, "cannot write the fixes: " + why, "the other files were still fixed")));
+  }
+  return out;
+}
+
+int fix(const Options& o, std::ostream& out, std::ostream& err) {
+  std::vector<InputFile> files = input_files(o);
+  ReportTarget target;
+  ReportOptions ro;
+  if (!open_target(o, out, err, target, ro)) return 2;
+  // With --diff the diff is the output; the remaining findings are not repeated.
+  std::optional<ReportWriter> writer;
+  if (!o.diff) writer.emplace(*target.stream, ro);
+  IncludeSummaries includes;
+  int applied = 0, changed_files = 0, unsafe_left = 0;
+  run_in_order<FixedFile>(
+      files.size(), job_count(o), [&](size_t i) { return fix_file(files[i], o, includes); },
+      [&](const FixedFile& r) {
+        applied += r.applied;
+        changed_files += r.changed;
+        unsafe_left += r.unsafe_left;
+        if (o.diff) *target.stream << r.diff;
+        else writer->file(r.report);
+      });
+  std::string unsafe = unsafe_left ? fmt::format(" {} more fix(es) are unsafe: rerun with --unsafe-fixes.", unsafe_left) : "";
+  if (o.diff) {
+    err << fmt::format("Would fix {} finding(s) in {} file(s).{}\n", applied, changed_files, unsafe);
+    return changed_files ? 1 : 0;
+  }
+  writer->finish();
+  err << fmt::format("Fixed {} finding(s) in {} file(s).{}\n", applied, changed_files, unsafe);
+  return o.fail_on && writer->failed(*o.fail_on) ? 1 : 0;
+}
+
 int parse_only(const Options& o, std::ostream& out) {
-  ConfigFinder configs;
-  std::vector<std::string> paths = o.paths.empty() ? std::vector<std::string>{"."} : o.paths;
-  std::vector<InputFile> files = discover(paths, configs);
+  std::vector<InputFile> files = input_files(o);
   std::vector<int> errors(files.size());
   std::atomic<size_t> bytes{0};
-  unsigned jobs = o.jobs ? o.jobs : std::max(1u, std::thread::hardware_concurrency());
-  parallel_for(files.size(), jobs, [&](size_t i) {
+  parallel_for(files.size(), job_count(o), [&](size_t i) {
     ReadResult r = read_file(files[i].path, files[i].config->max_file_bytes);
     auto lang = o.lang ? o.lang : lang_from_path(files[i].display);
     if (!r.error.empty() || r.too_large || !lang) return;
@@ -261,7 +391,10 @@ int parse_only(const Options& o, std::ostream& out) {
 void list_rules(std::ostream& out) {
   for (const RuleInfo& r : all_rules()) {
     std::string langs;
-    for (Lang l : r.languages) langs += (langs.empty() ? "" : ",") + std::string(lang_name(l));
+    for (Lang l : r.languages) {
+      if (!langs.empty()) langs += ',';
+      langs += lang_name(l);
+    }
     out << fmt::format("{:<26} {:<8} {:<10} {}\n", r.id, severity_name(r.severity), langs, r.summary);
   }
 }
@@ -280,6 +413,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       return 0;
     }
     if (o.command == "lint") return lint(o, out, err);
+    if (o.command == "fix") return fix(o, out, err);
     if (o.command == "parse") return parse_only(o, out);
     if (o.command == "rules") {
       list_rules(out);

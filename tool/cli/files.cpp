@@ -4,6 +4,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
@@ -117,6 +119,61 @@ ReadResult read_file(const fs::path& path, size_t max_bytes) {
   r.text.resize(done);
   ::close(fd);
   return r;
+}
+
+}  // namespace lwc
+
+namespace lwc {
+
+namespace {
+
+bool write_all(int fd, std::string_view text) {
+  size_t done = 0;
+  while (done < text.size()) {
+    ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    done += static_cast<size_t>(n);
+  }
+  return true;
+}
+
+}  // namespace
+
+std::string replace_file(const fs::path& path, std::string_view expected, std::string_view text) {
+  std::error_code ec;
+  fs::path target = fs::canonical(path, ec);
+  if (ec) return ec.message();
+  struct stat st;
+  if (::stat(target.c_str(), &st) != 0) return std::strerror(errno);
+  // Read-only is the user's (or the version control's: Perforce) word that the file must not change.
+  if (!(st.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) || ::access(target.c_str(), W_OK) != 0)
+    return fmt::format("read-only file (mode {:04o}); not changed", st.st_mode & 07777);
+  ReadResult now = read_file(target, SIZE_MAX);
+  if (!now.error.empty()) return now.error;
+  if (now.text != expected) return "changed since it was read; not written (run lwcport fix again)";
+  std::string temp = (target.parent_path() / ("." + target.filename().string() + ".lwcport-XXXXXX")).string();
+  int fd = ::mkstemp(temp.data());
+  if (fd < 0) return fmt::format("cannot create a temporary file beside it: {}", std::strerror(errno));
+  auto fail = [&](std::string why) {
+    ::close(fd);
+    ::unlink(temp.c_str());
+    return why;
+  };
+  if (!write_all(fd, text)) return fail(fmt::format("cannot write: {}", std::strerror(errno)));
+  if (::fchmod(fd, st.st_mode & 07777) != 0) return fail(fmt::format("cannot keep the file mode: {}", std::strerror(errno)));
+  if (::geteuid() == 0 && ::fchown(fd, st.st_uid, st.st_gid) != 0) return fail(fmt::format("cannot keep the owner: {}", std::strerror(errno)));
+  if (::fsync(fd) != 0) return fail(fmt::format("cannot write: {}", std::strerror(errno)));
+  if (::close(fd) != 0) {
+    ::unlink(temp.c_str());
+    return fmt::format("cannot write: {}", std::strerror(errno));
+  }
+  if (::rename(temp.c_str(), target.c_str()) != 0) {
+    std::string why = std::strerror(errno);
+    ::unlink(temp.c_str());
+    return "cannot replace the file: " + why;
+  }
+  return "";
 }
 
 }  // namespace lwc

@@ -32,3 +32,13 @@ struct ReadResult {
 ReadResult read_file(const std::filesystem::path& path, size_t max_bytes);
 
 }  // namespace lwc
+
+namespace lwc {
+
+// Replaces a file's content atomically: a temporary file beside it, given the file's mode (and
+// owner, where permitted), then renamed over it; a symlink is followed and the target replaced.
+// Refuses, with a reason and nothing written, a file marked read-only or one whose content is no
+// longer `expected` (changed since it was read). Returns "" on success, else the reason.
+std::string replace_file(const std::filesystem::path& path, std::string_view expected, std::string_view text);
+
+}  // namespace lwc

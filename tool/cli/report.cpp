@@ -9,18 +9,51 @@
 namespace lwc {
 
 ReportedFinding locate(const Source& source, const Finding& f) {
-  ReportedFinding r{f.rule, f.severity, f.message, f.hint, source.position(f.span.begin), source.position(f.span.end), {}};
+  ReportedFinding r{f.rule, f.severity, f.message, f.hint, source.position(f.span.begin), source.position(f.span.end), {}, {}, f.decision, f.not_needed};
   r.line_text = std::string(source.line_text(r.start.line));
+  if (!f.fixes.empty()) {
+    const Fix& fix = f.fixes.front();
+    ReportedFix rf{fix.title, fix.applicability, fix.reason, fix.strategy, {}, fix.library, fix.notes};
+    for (const Edit& e : fix.edits) {
+      std::string text;
+      for (char c : e.text) {
+        if (c == '\n' && source.uses_crlf()) text += '\r';
+        text += c;
+      }
+      rf.edits.push_back({source.position(e.span.begin), source.position(e.span.end), std::move(text)});
+    }
+    r.fix = std::move(rf);
+  }
   return r;
 }
 
+namespace {
+
+nlohmann::json position_json(Position p) { return {{"line", p.line}, {"column", p.column}}; }
+
+}  // namespace
+
 nlohmann::json finding_json(const ReportedFinding& f) {
-  return {{"rule", f.rule},
-          {"severity", severity_name(f.severity)},
-          {"message", f.message},
-          {"hint", f.hint},
-          {"start", {{"line", f.start.line}, {"column", f.start.column}}},
-          {"end", {{"line", f.end.line}, {"column", f.end.column}}}};
+  nlohmann::json j = {{"rule", f.rule},
+                      {"severity", severity_name(f.severity)},
+                      {"message", f.message},
+                      {"hint", f.hint},
+                      {"start", position_json(f.start)},
+                      {"end", position_json(f.end)}};
+  if (f.fix) {
+    nlohmann::json edits = nlohmann::json::array();
+    for (const ReportedEdit& e : f.fix->edits) edits.push_back({{"start", position_json(e.start)}, {"end", position_json(e.end)}, {"text", e.text}});
+    j["fix"] = {{"title", f.fix->title},
+                {"applicability", applicability_name(f.fix->applicability)},
+                {"reason", f.fix->reason},
+                {"edits", edits}};
+    if (!f.fix->strategy.empty()) j["fix"]["strategy"] = f.fix->strategy;
+    if (!f.fix->library.empty()) j["fix"]["library"] = f.fix->library;
+    if (!f.fix->notes.empty()) j["fix"]["notes"] = f.fix->notes;
+  }
+  if (!f.decision.empty()) j["decision"] = f.decision;
+  if (f.not_needed) j["not-needed"] = true;
+  return j;
 }
 
 namespace {
@@ -48,7 +81,7 @@ std::string caret_line(const ReportedFinding& f) {
   return out;
 }
 
-void write_text_file(std::ostream& out, const FileReport& file, bool color) {
+void write_text_file(std::ostream& out, const FileReport& file, bool color, bool explain) {
   auto paint = [&](const char* code, const std::string& s) { return color ? code + s + "\x1b[0m" : s; };
   for (const auto& f : file.findings) {
     out << paint("\x1b[1m", fmt::format("{}:{}:{}:", file.path, f.start.line, f.start.column)) << ' '
@@ -59,6 +92,12 @@ void write_text_file(std::ostream& out, const FileReport& file, bool color) {
       out << paint("\x1b[34m", std::string(6, ' ') + "| ") << paint("\x1b[1;32m", caret_line(f)) << '\n';
     }
     if (!f.hint.empty()) out << std::string(6, ' ') << paint("\x1b[1;36m", "= help:") << ' ' << f.hint << '\n';
+    if (f.fix) {
+      out << std::string(6, ' ') << paint("\x1b[1;32m", fmt::format("= fix ({}):", applicability_name(f.fix->applicability))) << ' '
+          << f.fix->title << " (" << f.fix->reason << ")\n";
+      for (const std::string& note : f.fix->notes) out << std::string(8, ' ') << "- " << note << '\n';
+    }
+    if (explain && !f.decision.empty()) out << std::string(6, ' ') << paint("\x1b[1;35m", "= scene:") << ' ' << f.decision << '\n';
   }
 }
 
@@ -110,15 +149,32 @@ size_t rule_index(const std::string& id) {
   return 0;
 }
 
+nlohmann::json sarif_region(Position start, Position end) {
+  return {{"startLine", start.line}, {"startColumn", start.column}, {"endLine", end.line}, {"endColumn", end.column}};
+}
+
 nlohmann::json sarif_result(const std::string& path, const ReportedFinding& f) {
-  nlohmann::json region = {{"startLine", f.start.line}, {"startColumn", f.start.column},
-                           {"endLine", f.end.line}, {"endColumn", f.end.column}};
+  nlohmann::json region = sarif_region(f.start, f.end);
   if (!f.line_text.empty()) region["snippet"] = {{"text", f.line_text}};
-  return {{"ruleId", f.rule},
-          {"ruleIndex", rule_index(f.rule)},
-          {"level", sarif_level(f.severity)},
-          {"message", {{"text", sentence(f.message) + (f.hint.empty() ? "" : " Fix: " + sentence(f.hint))}}},
-          {"locations", {{{"physicalLocation", {{"artifactLocation", artifact_location(path)}, {"region", region}}}}}}};
+  nlohmann::json result = {{"ruleId", f.rule},
+                           {"ruleIndex", rule_index(f.rule)},
+                           {"level", sarif_level(f.severity)},
+                           {"message", {{"text", sentence(f.message) + (f.hint.empty() ? "" : " Fix: " + sentence(f.hint))}}},
+                           {"locations", {{{"physicalLocation", {{"artifactLocation", artifact_location(path)}, {"region", region}}}}}}};
+  if (f.fix) {
+    nlohmann::json replacements = nlohmann::json::array();
+    for (const ReportedEdit& e : f.fix->edits)
+      replacements.push_back({{"deletedRegion", sarif_region(e.start, e.end)}, {"insertedContent", {{"text", e.text}}}});
+    nlohmann::json change = {{"artifactLocation", artifact_location(path)}, {"replacements", replacements}};
+    nlohmann::json fix = {
+        {"description", {{"text", fmt::format("{} ({}: {}).", f.fix->title, applicability_name(f.fix->applicability), f.fix->reason)}}},
+        {"artifactChanges", nlohmann::json::array({change})}};
+    result["fixes"] = nlohmann::json::array({fix});
+    result["properties"] = {{"fixApplicability", applicability_name(f.fix->applicability)}};
+  }
+  if (!f.decision.empty()) result["properties"]["sceneDecision"] = f.decision;
+  if (f.not_needed) result["properties"]["notNeeded"] = true;
+  return result;
 }
 
 // The SARIF log with an empty results array, split where results go.
@@ -183,10 +239,12 @@ void ReportWriter::begin() {
 
 void ReportWriter::file(const FileReport& report) {
   ++files_;
-  for (const auto& f : report.findings)
+  for (const auto& f : report.findings) {
     (f.severity == Severity::error ? errors_ : f.severity == Severity::warning ? warnings_ : notes_)++;
+    if (!f.not_needed) worst_ = std::max(worst_, static_cast<int>(f.severity));
+  }
   switch (options_.format) {
-    case Format::text: write_text_file(out_, report, options_.color); break;
+    case Format::text: write_text_file(out_, report, options_.color, options_.explain); break;
     case Format::github: write_github_file(out_, report); break;
     case Format::json:
     case Format::sarif:
@@ -224,9 +282,6 @@ void ReportWriter::finish() {
   out_.flush();
 }
 
-bool ReportWriter::failed(Severity threshold) const {
-  return (errors_ && Severity::error >= threshold) || (warnings_ && Severity::warning >= threshold) ||
-         (notes_ && Severity::note >= threshold);
-}
+bool ReportWriter::failed(Severity threshold) const { return worst_ >= static_cast<int>(threshold); }
 
 }  // namespace lwc

@@ -1,4 +1,5 @@
 #pragma once
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -10,6 +11,20 @@
 
 namespace lwc {
 
+struct ReportedEdit {
+  Position start, end;
+  std::string text;  // with the file's line endings
+};
+
+struct ReportedFix {
+  std::string title;
+  Applicability applicability;
+  std::string reason;
+  std::string strategy;
+  std::vector<ReportedEdit> edits;
+  std::vector<std::string> library, notes;
+};
+
 // A finding with its positions resolved, so the source can be dropped before output.
 struct ReportedFinding {
   std::string rule;
@@ -18,6 +33,9 @@ struct ReportedFinding {
   std::string hint;
   Position start, end;
   std::string line_text;  // the start line, for carets and snippets
+  std::optional<ReportedFix> fix;
+  std::string decision;
+  bool not_needed = false;
 };
 
 struct FileReport {
@@ -34,6 +52,7 @@ enum class Format { text, json, sarif, github };
 struct ReportOptions {
   Format format = Format::text;
   bool color = false;
+  bool explain = false;     // text: print each scene decision with its numbers
   std::string working_dir;  // absolute, for SARIF's base URI
 };
 
@@ -50,6 +69,7 @@ class ReportWriter {
   std::ostream& out_;
   ReportOptions options_;
   size_t files_ = 0, errors_ = 0, warnings_ = 0, notes_ = 0;
+  int worst_ = -1;  // the most severe finding that counts towards failing (not-needed ones do not)
   bool first_ = true;
 };
 

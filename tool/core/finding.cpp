@@ -14,6 +14,8 @@ std::string_view severity_name(Severity s) {
   return "warning";
 }
 
+std::string_view applicability_name(Applicability a) { return a == Applicability::safe ? "safe" : "unsafe"; }
+
 bool parse_severity(std::string_view text, Severity& out) {
   for (Severity s : {Severity::note, Severity::warning, Severity::error}) {
     if (text == severity_name(s)) {

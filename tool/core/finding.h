@@ -12,6 +12,29 @@ std::string_view severity_name(Severity s);
 // Parses "note", "warning" or "error"; false for anything else.
 bool parse_severity(std::string_view text, Severity& out);
 
+// Replace the bytes of a span (empty for an insertion) with new text. Line breaks in the text are
+// written as "\n"; applying an edit converts them to the file's line ending.
+struct Edit {
+  Span span;
+  std::string text;
+  bool operator==(const Edit&) const = default;
+};
+
+// Safe fixes keep the program's meaning except for the precision gained, and are applied by
+// `lwcport fix`; unsafe ones may change behaviour (the reason says how) and need --unsafe-fixes.
+enum class Applicability { safe, unsafe };
+std::string_view applicability_name(Applicability a);
+
+struct Fix {
+  std::string title;      // what the edits do, e.g. "use `PrimaryView.WorldCameraOrigin`"
+  Applicability applicability = Applicability::safe;
+  std::string reason;     // why it is safe, or what may change
+  std::string strategy;   // "translated", "df", or "" where the rule has one rewrite
+  std::vector<Edit> edits;  // non-overlapping
+  std::vector<std::string> library;  // shader-library functions the new code calls
+  std::vector<std::string> notes;    // changes outside the shader (new uniforms, host code)
+};
+
 // One diagnosis at a span of one file.
 struct Finding {
   std::string rule;       // stable id, e.g. "lwc-primary-view"
@@ -19,6 +42,9 @@ struct Finding {
   Span span;
   std::string message;    // what is wrong and why it matters at large coordinates
   std::string hint;       // what to do about it
+  std::vector<Fix> fixes;  // candidate rewrites; after planning, at most one
+  std::string decision;    // the scene planner's choice and its numbers, where the rule is scene-dependent
+  bool not_needed = false;  // the scene does not need this fixed: never fails a run
 };
 
 // Sorted by span, then rule id: the order every output uses.

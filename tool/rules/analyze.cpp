@@ -47,7 +47,13 @@ std::vector<std::string> include_paths(std::string_view text) {
 }
 
 Finding input_finding(Severity severity, uint32_t offset, std::string message, std::string hint) {
-  return {std::string(kInputRule), severity, {offset, offset}, std::move(message), std::move(hint)};
+  Finding f;
+  f.rule = kInputRule;
+  f.severity = severity;
+  f.span = {offset, offset};
+  f.message = std::move(message);
+  f.hint = std::move(hint);
+  return f;
 }
 
 Finding too_large_finding(size_t bytes, size_t limit) {
@@ -133,8 +139,11 @@ void apply_suppressions(const SyntaxTree& tree, const AnalyzeOptions& options, s
     if (target && (!options.enabled(target->id) || !target->applies_to(tree.lang))) continue;
     std::string why = target ? fmt::format("no `{}` finding here to suppress", s.rule)
                              : fmt::format("`{}` is not a lwcport rule", s.rule);
-    findings.push_back({unused->id, unused->severity, s.span,
-                        expand(unused->message, {{"rule", s.rule}, {"why", why}}), expand(unused->hint, {{"rule", s.rule}})});
+    Finding f = input_finding(unused->severity, s.span.begin, expand(unused->message, {{"rule", s.rule}, {"why", why}}),
+                              expand(unused->hint, {{"rule", s.rule}}));
+    f.rule = unused->id;
+    f.span = s.span;
+    findings.push_back(std::move(f));
   }
 }
 
@@ -150,6 +159,7 @@ std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options
       kept.push_back(std::move(f));
     }
     sort_findings(kept);
+    plan_fixes(kept, options.scene, options.strategy);
     return kept;
   };
   std::optional<Lang> lang = language_for(source, options);
@@ -182,16 +192,20 @@ std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options
   if (tree.unterminated_comment) {
     findings.push_back(input_finding(Severity::error, *tree.unterminated_comment,
                                      "unterminated block comment: everything after it is a comment",
-                                     "close the comment with */"));
+                                     "close the comment with */ (no fixes are offered in this file until then)"));
   } else if (tree.error_count > 0) {
     findings.push_back(input_finding(Severity::note, tree.first_error,
                                      fmt::format("{} syntax error(s) the parser could not place; findings next to them may be missed",
                                                  tree.error_count),
-                                     "lwcport does not expand macros: a macro used as syntax can cause this"));
+                                     "lwcport does not expand macros: a macro used as syntax can cause this; no fixes are offered in this file until it parses"));
   }
   WorldModel world(tree, world_data(*lang, options.world_sources), options.includes);
   for (const auto& [rule, check] : checks()) {
     if (rule->applies_to(*lang) && options.enabled(rule->id)) check->run(CheckContext{tree, world, *rule, findings});
+  }
+  // Where the parser lost its way, a rewrite may land in the wrong place: none is offered.
+  if (tree.unterminated_comment || tree.error_count > 0) {
+    for (Finding& f : findings) f.fixes.clear();
   }
   if (!world.too_deep().empty()) {
     findings.push_back(input_finding(Severity::note, tree.at(world.too_deep().front()).begin,

@@ -9,6 +9,7 @@
 
 #include "core/finding.h"
 #include "core/source.h"
+#include "fix/scene.h"
 #include "lang/syntax.h"
 #include "world/model.h"
 
@@ -22,6 +23,8 @@ struct AnalyzeOptions {
   nlohmann::json world_sources = nlohmann::json::array();  // the project's extra sources
   const FileSummary* includes = nullptr;  // what the file's #includes declare
   size_t max_bytes = 16u << 20;          // larger files are skipped with a diagnostic
+  SceneNumbers scene;                    // what the scene needs (the default: Unreal's full world)
+  Strategy strategy = Strategy::automatic;
 
   bool enabled(const std::string& rule) const;
 };

@@ -38,6 +38,15 @@ RuleInfo parse_rule(std::string_view file, const nlohmann::json& j) {
   r.rationale = j.at("rationale").get<std::string>();
   r.data = j.value("data", nlohmann::json::object());
   r.examples = j.at("examples");
+  r.scene_dependent = j.value("scene-dependent", false);
+  const nlohmann::json fixes = j.value("fixes", nlohmann::json::object());
+  for (const auto& [kind, fix] : fixes.items()) {
+    for (const char* key : {"title", "applicability", "reason"})
+      if (!fix.contains(key)) fail("fix \"" + kind + "\" misses \"" + key + "\"");
+    std::string a = fix.at("applicability").get<std::string>();
+    if (a != "safe" && a != "unsafe") fail("fix \"" + kind + "\": applicability must be safe or unsafe");
+    r.fixes.emplace(kind, fix);
+  }
   return r;
 }
 
@@ -85,8 +94,27 @@ std::string expand(std::string_view tmpl, const Vars& vars) {
   return out;
 }
 
-void CheckContext::report(Span span, const Vars& vars) const {
-  out.push_back({rule.id, rule.severity, span, expand(rule.message, vars), expand(rule.hint, vars)});
+Finding& CheckContext::report(Span span, const Vars& vars) const {
+  Finding f;
+  f.rule = rule.id;
+  f.severity = rule.severity;
+  f.span = span;
+  f.message = expand(rule.message, vars);
+  f.hint = expand(rule.hint, vars);
+  return out.emplace_back(std::move(f));
+}
+
+Fix& CheckContext::fix(Finding& finding, std::string_view kind, const Vars& vars, std::vector<Edit> edits) const {
+  auto it = rule.fixes.find(kind);
+  if (it == rule.fixes.end()) throw std::logic_error(rule.id + ": no fix of kind " + std::string(kind));
+  const nlohmann::json& j = it->second;
+  Fix f;
+  f.title = expand(j.at("title").get<std::string>(), vars);
+  f.applicability = j.at("applicability") == "safe" ? Applicability::safe : Applicability::unsafe;
+  f.reason = expand(j.at("reason").get<std::string>(), vars);
+  f.strategy = j.value("strategy", "");
+  f.edits = std::move(edits);
+  return finding.fixes.emplace_back(std::move(f));
 }
 
 }  // namespace lwc

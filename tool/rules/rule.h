@@ -25,6 +25,10 @@ struct RuleInfo {
   std::string rationale;
   nlohmann::json data;
   nlohmann::json examples;
+  // The rule's rewrites by kind: {"title", "applicability", "reason"} templates.
+  std::map<std::string, nlohmann::json, std::less<>> fixes;
+  // The hazard depends on the scene's size: the planner may find it not needed (docs/scenes.md).
+  bool scene_dependent = false;
 
   bool applies_to(Lang lang) const;
 };
@@ -46,7 +50,9 @@ struct CheckContext {
   std::vector<Finding>& out;
 
   // Reports the rule at a span, its message and hint filled from vars.
-  void report(Span span, const Vars& vars) const;
+  Finding& report(Span span, const Vars& vars) const;
+  // Adds a candidate rewrite of the rule's kind (rules/<id>.json "fixes") to a finding.
+  Fix& fix(Finding& finding, std::string_view kind, const Vars& vars, std::vector<Edit> edits) const;
 };
 
 // A check: the code half of a rule (its data half is rules/<id>.json).

@@ -18,7 +18,12 @@ class DemoteFusion : public Check {
       if (args.size() != 1 || !t.is(args[0], "call_expression")) continue;
       std::string inner(call_name(t, args[0]));
       if (!fused_.contains(inner)) continue;
-      ctx.report(t.span(call), {{"demote", std::string(outer)}, {"op", inner}, {"fused", fused_.at(inner).get<std::string>()}});
+      std::string fused = fused_.at(inner).get<std::string>();
+      Vars vars{{"demote", std::string(outer)}, {"op", inner}, {"fused", fused}};
+      Finding& f = ctx.report(t.span(call), vars);
+      // The inner call's argument list is kept as written, comments and all.
+      int inner_args = t.child_by_field(args[0], "arguments");
+      if (inner_args >= 0) ctx.fix(f, "fuse", vars, {{t.span(call), fused + std::string(t.text(inner_args))}});
     }
   }
 

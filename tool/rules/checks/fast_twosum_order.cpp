@@ -22,10 +22,15 @@ class FastTwoSumOrder : public Check {
       if (args.size() != 2) continue;
       Magnitude a = magnitude(ctx, args[0]), b = magnitude(ctx, args[1]);
       if (b != Magnitude::large || a == Magnitude::large) continue;
-      ctx.report(t.span(call), {{"a", std::string(t.text(args[0]))},
-                                {"b", std::string(t.text(args[1]))},
-                                {"why", a == Magnitude::small ? "is a small (relative or local) value"
-                                                              : "is not known to be the larger"}});
+      Vars vars{{"a", std::string(t.text(args[0]))},
+                {"b", std::string(t.text(args[1]))},
+                {"why", a == Magnitude::small ? "is a small (relative or local) value" : "is not known to be the larger"}};
+      Finding& f = ctx.report(t.span(call), vars);
+      // A known-small first operand: the swapped order is guaranteed. Otherwise only TwoSum is.
+      if (a == Magnitude::small)
+        ctx.fix(f, "swap", vars, {{t.span(args[0]), vars["b"]}, {t.span(args[1]), vars["a"]}});
+      else
+        ctx.fix(f, "two-sum", vars, {{t.span(t.child_by_field(call, "function")), "DFTwoSum"}});
     }
   }
 

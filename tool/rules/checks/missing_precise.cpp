@@ -1,6 +1,7 @@
 // lwc-missing-precise: error-free transformations (TwoSum, Fast2Sum, Dekker split, TwoProduct,
 // high/low differences) whose temporaries are not `precise`: drivers that reassociate floats
 // (lavapipe does) fold them away and the low word becomes 0.
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -34,20 +35,35 @@ class MissingPrecise : public Check {
       int result = result_variable(ctx, id);
       if (result >= 0 && !reported_results.insert(result).second) continue;
       std::vector<std::string> missing;
+      std::vector<Edit> edits;  // `precise ` before each declaration that lacks it
       std::set<int> seen;
       if (result >= 0) operands.push_back(-1 - result);
+      auto need_precise = [&](int var) {
+        const Variable& v = ctx.world.variables()[var];
+        if (v.role != Variable::Role::local || v.precise) return;
+        missing.push_back("`" + v.name + "`");
+        if (v.declaration < 0) return;
+        Edit e{{t.at(v.declaration).begin, t.at(v.declaration).begin}, "precise "};
+        if (std::find(edits.begin(), edits.end(), e) == edits.end()) edits.push_back(e);
+      };
       for (int o : operands) {
         int var = o < 0 ? -1 - o : ctx.world.variable_at(o);
-        if (var < 0 || !seen.insert(var).second) continue;
-        const Variable& v = ctx.world.variables()[var];
-        if (v.role == Variable::Role::local && !v.precise) missing.push_back("`" + v.name + "`");
+        if (var >= 0 && seen.insert(var).second) need_precise(var);
       }
+      // After a sum's or a split's middle step, the locals computed from its temporaries finish it
+      // (TwoSum's error term, the split's low half): they need `precise` as much, or the last step
+      // can still be folded. A high/low difference or a product ends at its result.
+      if (eft != "high/low difference" && eft != "TwoProduct")
+        for (int var : consumers_of(ctx, assignments, seen, t.ancestor(id, "function_definition")))
+          if (seen.insert(var).second) need_precise(var);
       std::string where;
       if (result < 0 && t.ancestor(id, "return_statement") >= 0) where = "it is computed in a return expression, with no precise temporary";
       if (missing.empty() && where.empty()) continue;
       std::string names;
       for (size_t i = 0; i < missing.size(); ++i) names += (i ? ", " : "") + missing[i];
-      ctx.report(t.span(id), {{"eft", eft}, {"names", names.empty() ? where : "not precise: " + names}});
+      Finding& f = ctx.report(t.span(id), {{"eft", eft}, {"names", names.empty() ? where : "not precise: " + names}});
+      // A transformation inside a return expression has no temporary to qualify: no fix.
+      if (where.empty()) ctx.fix(f, "precise", {{"names", names}}, std::move(edits));
     }
   }
 
@@ -158,6 +174,29 @@ class MissingPrecise : public Check {
     if (!same) return {};
     if (t.is(p, "identifier")) operands = {p};
     return "TwoProduct";
+  }
+
+  // Local variables of a function whose initialiser or an assignment reads one of `vars`.
+  static std::vector<int> consumers_of(const CheckContext& ctx, const Assignments& assignments, const std::set<int>& vars, int fn) {
+    const SyntaxTree& t = ctx.tree;
+    auto reads = [&](int expr) {
+      if (expr < 0) return false;
+      uint32_t end = t.at(expr).end;
+      for (int n = expr; n < static_cast<int>(t.nodes.size()) && t.at(n).begin < end; ++n)
+        if (t.is(n, "identifier") && vars.count(ctx.world.variable_at(n))) return true;
+      return false;
+    };
+    std::vector<int> out;
+    const auto& all = ctx.world.variables();
+    for (int var = 0; var < static_cast<int>(all.size()); ++var) {
+      const Variable& v = all[var];
+      if (v.role != Variable::Role::local || v.function != fn || vars.count(var)) continue;
+      bool consumer = reads(v.init);
+      if (auto it = assignments.find(var); !consumer && it != assignments.end())
+        for (auto [a, right] : it->second) consumer = consumer || reads(right);
+      if (consumer) out.push_back(var);
+    }
+    return out;
   }
 
   bool wrapped(const SyntaxTree& t, int id) const {

@@ -21,8 +21,9 @@ class PrimaryView : public Check {
       std::string member(t.text(field));
       if (!matches_any(members_, member)) continue;
       std::string twin = twins_.value(member, "");
-      ctx.report(t.span(id), {{"member", member},
-                              {"twin", twin.empty() ? "" : " (or, better, its translated twin `" + twin + "`)"}});
+      Vars vars{{"member", member}, {"twin", twin.empty() ? "" : " (or, better, its translated twin `" + twin + "`)"}};
+      Finding& f = ctx.report(t.span(id), vars);
+      ctx.fix(f, "primary-view", vars, {{t.span(base), "PrimaryView"}});
     }
   }
 

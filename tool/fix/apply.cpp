@@ -1,0 +1,88 @@
+#include "fix/apply.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace lwc {
+
+namespace {
+
+// Two edits conflict when their spans intersect, or when both insert at the same offset (their
+// order would be arbitrary).
+bool conflict(const Edit& a, const Edit& b) {
+  if (a.span.begin == a.span.end && b.span.begin == b.span.end) return a.span.begin == b.span.begin;
+  return a.span.begin < b.span.end && b.span.begin < a.span.end;
+}
+
+bool allowed(const Fix& fix, bool unsafe) { return fix.applicability == Applicability::safe || unsafe; }
+
+}  // namespace
+
+std::vector<const Fix*> choose_fixes(const std::vector<Finding>& findings, bool unsafe) {
+  std::vector<const Fix*> chosen;
+  std::vector<const Edit*> taken;
+  for (const Finding& f : findings) {
+    if (f.fixes.empty() || !allowed(f.fixes.front(), unsafe)) continue;
+    const Fix& fix = f.fixes.front();
+    bool clash = false;
+    for (const Edit& e : fix.edits)
+      for (const Edit* t : taken) clash = clash || conflict(e, *t);
+    if (clash) continue;
+    // Two findings may propose the very same fix (one declaration, two findings): apply it once.
+    if (std::any_of(chosen.begin(), chosen.end(), [&](const Fix* c) { return c->edits == fix.edits; })) continue;
+    chosen.push_back(&fix);
+    for (const Edit& e : fix.edits) taken.push_back(&e);
+  }
+  return chosen;
+}
+
+std::string apply_edits(const Source& source, std::vector<Edit> edits) {
+  const std::string& text = source.text();
+  std::sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) {
+    return a.span.begin != b.span.begin ? a.span.begin < b.span.begin : a.span.end < b.span.end;
+  });
+  std::string out;
+  out.reserve(text.size());
+  uint32_t at = 0;
+  for (const Edit& e : edits) {
+    if (e.span.begin < at || e.span.end < e.span.begin || e.span.end > text.size())
+      throw std::invalid_argument("overlapping or out-of-range edit at byte " + std::to_string(e.span.begin));
+    out.append(text, at, e.span.begin - at);
+    for (char c : e.text) {
+      if (c == '\n' && source.uses_crlf()) out += '\r';
+      out += c;
+    }
+    at = e.span.end;
+  }
+  out.append(text, at, std::string::npos);
+  return out;
+}
+
+FixOutcome fix_source(const Source& source, const AnalyzeOptions& options, bool unsafe, int max_rounds) {
+  FixOutcome outcome;
+  Source current(source.path(), source.text());
+  for (int round = 0;; ++round) {
+    std::vector<Finding> findings = analyze(current, options);
+    std::vector<const Fix*> chosen = choose_fixes(findings, unsafe);
+    if (chosen.empty()) {
+      outcome.remaining = std::move(findings);
+      break;
+    }
+    if (round == max_rounds) {
+      outcome.converged = false;
+      outcome.remaining = std::move(findings);
+      break;
+    }
+    std::vector<Edit> edits;
+    for (const Fix* fix : chosen) {
+      edits.insert(edits.end(), fix->edits.begin(), fix->edits.end());
+      outcome.library.insert(fix->library.begin(), fix->library.end());
+    }
+    outcome.applied += static_cast<int>(chosen.size());
+    current = Source(source.path(), apply_edits(current, std::move(edits)));
+  }
+  outcome.text = current.text();
+  return outcome;
+}
+
+}  // namespace lwc
