@@ -3,6 +3,7 @@
 
 #include <filesystem>
 
+#include "fix/apply.h"
 #include "rules/rule.h"
 #include "support.h"
 
@@ -35,6 +36,30 @@ TEST_P(RuleExamples, BadExamplesFindExactlyTheExpectedSpotsAndGoodOnesNothing) {
   }
   EXPECT_TRUE(has_bad) << rule->id << " needs a bad example";
   EXPECT_TRUE(has_good) << rule->id << " needs a good example";
+}
+
+// A bad example with "fixed" shows the rule's rewrite: `fix` must produce exactly that text, and
+// the fixed text must be clean of the rule.
+TEST_P(RuleExamples, FixedExamplesAreWhatFixWritesAndLintClean) {
+  const RuleInfo* rule = find_rule(GetParam());
+  ASSERT_NE(rule, nullptr);
+  size_t fixed_examples = 0;
+  for (const auto& ex : rule->examples) {
+    if (!ex.contains("fixed")) continue;
+    ++fixed_examples;
+    AnalyzeOptions options;
+    options.lang = *parse_lang(ex.at("language").get<std::string>());
+    options.select = {rule->id};
+    bool unsafe = ex.value("unsafe", false);
+    Source src("example", ex.at("bad").get<std::string>());
+    FixOutcome out = fix_source(src, options, unsafe);
+    EXPECT_EQ(out.text, ex.at("fixed").get<std::string>()) << rule->id;
+    EXPECT_TRUE(out.remaining.empty()) << rule->id << ": the fixed example still has " << out.remaining.size()
+                                       << " finding(s), first: " << (out.remaining.empty() ? "" : out.remaining[0].message);
+    // And fixing it again changes nothing.
+    EXPECT_EQ(fix_source(Source("example", out.text), options, unsafe).text, out.text) << rule->id;
+  }
+  if (!rule->fixes.empty()) EXPECT_GT(fixed_examples, 0u) << rule->id << " has fixes but no example of one";
 }
 
 std::vector<std::string> rule_ids() {
