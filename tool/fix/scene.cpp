@@ -191,25 +191,27 @@ void plan_fixes(std::vector<Finding>& findings, const SceneNumbers& scene, Strat
     const Fix* df = candidate(f, "df");
     const Fix* plain = candidate(f, "");
     bool translated_enough = view_error <= scene.precision;
-    std::string view = fmt::format("translated-world float32 error at the view distance {} is {}",
-                                   format_distance(scene.view_distance), format_distance(view_error));
+    std::string need = translated_enough
+                           ? fmt::format("translated world is enough (its float32 error at the view distance {} is {})",
+                                         format_distance(scene.view_distance), format_distance(view_error))
+                           : fmt::format("DoubleFloat is needed (translated world's float32 error at the view distance {} is {})",
+                                         format_distance(scene.view_distance), format_distance(view_error));
     const Fix* chosen = nullptr;
     std::string why;
     if (strategy == Strategy::translated) {
-      chosen = translated, why = "translated world (--strategy translated)";
+      chosen = translated, why = "translated world, as --strategy translated asks";
     } else if (strategy == Strategy::df) {
-      chosen = df, why = "DoubleFloat (--strategy df)";
+      chosen = df, why = "DoubleFloat, as --strategy df asks";
     } else if (translated && translated_enough) {
-      chosen = translated, why = "translated world: enough at the view distance, and cheaper than DoubleFloat";
+      chosen = translated, why = "translated world, the cheaper rewrite";
     } else if (df) {
-      chosen = df, why = translated ? "DoubleFloat: translated world is not enough at the view distance"
-                                    : "DoubleFloat: this value cannot be made camera-relative";
+      chosen = df, why = translated ? "DoubleFloat" : "DoubleFloat: this value cannot be made camera-relative";
     } else if (translated) {
-      chosen = translated, why = "translated world, although not enough at the view distance: no DoubleFloat rewrite exists here";
+      chosen = translated, why = "translated world, the only rewrite here, although short of the target";
     }
     if (!chosen && plain) chosen = plain, why = "the rule's rewrite";
-    f.decision = fmt::format("needed: {} > precision target {}; {} ({} the target); {}", numbers, format_distance(scene.precision),
-                             view, translated_enough ? "within" : "above", chosen ? why : "no rewrite for this site");
+    f.decision = fmt::format("needed: {} > precision target {}; {}; {}", numbers, format_distance(scene.precision), need,
+                             chosen ? "fix: " + why : "no automatic rewrite for this site");
     if (chosen) {
       Fix keep = *chosen;
       f.fixes = {std::move(keep)};

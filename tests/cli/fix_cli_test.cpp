@@ -1,0 +1,143 @@
+// `lwcport fix` end to end: in-place writes that keep the file's form, refusals, --diff, and the
+// guarantees over the whole corpus (idempotent; nothing a safe fix could remove is left).
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/files.h"
+#include "support.h"
+
+namespace fs = std::filesystem;
+
+namespace lwc {
+namespace {
+
+const std::string kBom = "\xEF\xBB\xBF";
+
+TEST(FixCli, RewritesInPlaceKeepingBomLineEndingsModeAndEverythingOutsideTheEdits) {
+  std::string dir = test::scratch("fix-form");
+  std::string original = kBom + "// A comment stays.\r\nfloat3 F(float3 P)\r\n{\r\n\treturn P - View.WorldCameraOrigin;  // and this\r\n}\r\n";
+  test::write(dir + "/a.usf", original);
+  ::chmod((dir + "/a.usf").c_str(), 0640);
+  auto r = test::run("cd " + dir + " && " + test::binary() + " fix a.usf --color never --select lwc-primary-view");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_EQ(test::read(dir + "/a.usf"),
+            kBom + "// A comment stays.\r\nfloat3 F(float3 P)\r\n{\r\n\treturn P - PrimaryView.WorldCameraOrigin;  // and this\r\n}\r\n");
+  struct stat st;
+  ASSERT_EQ(::stat((dir + "/a.usf").c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 07777, 0640u);
+  // No temporary file is left behind.
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+}
+
+TEST(FixCli, ReadOnlyFileGetsAClearErrorAndTheOtherFilesAreStillFixed) {
+  std::string dir = test::scratch("fix-readonly");
+  std::string code = "float3 F(float3 P) { return P - View.WorldCameraOrigin; }\n";
+  test::write(dir + "/a_locked.usf", code);
+  test::write(dir + "/b_open.usf", code);
+  ::chmod((dir + "/a_locked.usf").c_str(), 0444);
+  auto r = test::run("cd " + dir + " && " + test::binary() + " fix . --color never --select lwc-primary-view");
+  EXPECT_EQ(r.exit_code, 1) << r.out;
+  EXPECT_NE(r.out.find("a_locked.usf:1:1: error: cannot write the fixes: read-only file (mode 0444); not changed"), std::string::npos) << r.out;
+  EXPECT_EQ(test::read(dir + "/a_locked.usf"), code);
+  EXPECT_NE(test::read(dir + "/b_open.usf").find("PrimaryView.WorldCameraOrigin"), std::string::npos);
+}
+
+TEST(FixCli, ReplaceFileRefusesAFileThatChangedSinceItWasRead) {
+  std::string dir = test::scratch("fix-changed");
+  test::write(dir + "/a.usf", "edited by someone else\n");
+  EXPECT_EQ(replace_file(dir + "/a.usf", "what lwcport read\n", "fixed\n"), "changed since it was read; not written (run lwcport fix again)");
+  EXPECT_EQ(test::read(dir + "/a.usf"), "edited by someone else\n");
+  EXPECT_EQ(replace_file(dir + "/a.usf", "edited by someone else\n", "fixed\n"), "");
+  EXPECT_EQ(test::read(dir + "/a.usf"), "fixed\n");
+}
+
+TEST(FixCli, ASymlinkStaysALinkAndItsTargetIsFixed) {
+  std::string dir = test::scratch("fix-symlink");
+  fs::create_directories(dir + "/real");
+  test::write(dir + "/real/a.usf", "float3 F(float3 P) { return P - View.WorldCameraOrigin; }\n");
+  fs::create_symlink("real/a.usf", dir + "/link.usf");
+  auto r = test::run("cd " + dir + " && " + test::binary() + " fix link.usf --select lwc-primary-view");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_TRUE(fs::is_symlink(dir + "/link.usf"));
+  EXPECT_NE(test::read(dir + "/real/a.usf").find("PrimaryView."), std::string::npos);
+}
+
+TEST(FixCli, DiffPrintsTheChangeAndWritesNothing) {
+  std::string dir = test::scratch("fix-diff");
+  std::string code = "float3 F(float3 P)\n{\n\treturn P - View.WorldCameraOrigin;\n}\n";
+  test::write(dir + "/a.usf", code);
+  auto r = test::run("cd " + dir + " && " + test::binary() + " fix a.usf --diff --select lwc-primary-view");
+  EXPECT_EQ(r.exit_code, 1);  // there is something to fix
+  EXPECT_EQ(r.out, "--- a/a.usf\n+++ b/a.usf\n@@ -1,4 +1,4 @@\n float3 F(float3 P)\n {\n-\treturn P - View.WorldCameraOrigin;\n+\treturn P - PrimaryView.WorldCameraOrigin;\n }\n");
+  EXPECT_EQ(test::read(dir + "/a.usf"), code);
+}
+
+TEST(FixCli, UnsafeFixesWaitForTheFlag) {
+  std::string dir = test::scratch("fix-unsafe");
+  std::string code = "float3 TileOf(FLWCVector3 P)\n{\n\treturn P.Tile;\n}\n";
+  test::write(dir + "/a.usf", code);
+  auto r = test::run("cd " + dir + " && " + test::binary() + " fix a.usf --select lwc-tile-offset --color never 2>&1");
+  EXPECT_NE(r.out.find("Fixed 0 finding(s) in 0 file(s). 1 more fix(es) are unsafe: rerun with --unsafe-fixes."), std::string::npos) << r.out;
+  EXPECT_EQ(test::read(dir + "/a.usf"), code);
+  r = test::run("cd " + dir + " && " + test::binary() + " fix a.usf --select lwc-tile-offset --unsafe-fixes");
+  EXPECT_EQ(test::read(dir + "/a.usf"), "float3 TileOf(FDFVector3 P)\n{\n\treturn P.Tile;\n}\n");
+}
+
+TEST(FixCli, FixesAreLabelledInJsonAndSarif) {
+  std::string code = "float3 F(float3 P) { return P - View.WorldCameraOrigin; }\n";
+  std::string dir = test::scratch("fix-formats");
+  test::write(dir + "/a.usf", code);
+  auto json = nlohmann::json::parse(test::run("cd " + dir + " && " + test::binary() + " lint a.usf --format json --select lwc-primary-view").out);
+  const auto& fix = json["findings"][0]["fix"];
+  EXPECT_EQ(fix["applicability"], "safe");
+  EXPECT_EQ(fix["title"], "use `PrimaryView.WorldCameraOrigin`");
+  EXPECT_EQ(fix["edits"][0], nlohmann::json::parse(R"({"start": {"line": 1, "column": 33}, "end": {"line": 1, "column": 37}, "text": "PrimaryView"})"));
+  auto sarif = nlohmann::json::parse(test::run("cd " + dir + " && " + test::binary() + " lint a.usf --format sarif --select lwc-primary-view").out);
+  const auto& result = sarif["runs"][0]["results"][0];
+  const auto& replacement = result["fixes"][0]["artifactChanges"][0]["replacements"][0];
+  EXPECT_EQ(replacement["deletedRegion"]["startColumn"], 33);
+  EXPECT_EQ(replacement["insertedContent"]["text"], "PrimaryView");
+  EXPECT_NE(result["fixes"][0]["description"]["text"].get<std::string>().find("(safe:"), std::string::npos);
+}
+
+TEST(FixCli, FindingsTheSceneDoesNotNeedNeverFailTheRun) {
+  std::string root = test::source_dir();
+  auto r = test::run("cd " + root + " && " + test::binary() +
+                     " lint corpus/ue4/LocalVertexFactory.ush --select lwc-float-world-position --fail-on note --color never"
+                     " --explain --scene corpus/scenes/arena-2km.json");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("note: not needed in this scene:"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("= scene: not needed: float32 error at the world extent 1 km is 0.00391 cm"), std::string::npos) << r.out;
+  r = test::run("cd " + root + " && " + test::binary() +
+                " lint corpus/ue4/LocalVertexFactory.ush --select lwc-float-world-position --fail-on note --scene corpus/scenes/planet.json");
+  EXPECT_EQ(r.exit_code, 1);
+}
+
+TEST(FixCli, ABadSceneProfileIsAUsageErrorNamingTheFile) {
+  std::string dir = test::scratch("fix-scene");
+  test::write(dir + "/s.json", "{\"world-extent\": 5}");
+  auto r = test::run("cd " + dir + " && " + test::binary() + " lint . --scene s.json 2>&1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.out.find("s.json: \"world-extent\" must be a positive distance with a unit"), std::string::npos) << r.out;
+}
+
+// The guarantees of issue 3 §5, over a copy of the whole corpus, safe and unsafe fixes applied.
+TEST(FixCorpus, FixingIsIdempotentAndLeavesNothingASafeFixCouldRemove) {
+  std::string dir = test::scratch("fix-corpus");
+  fs::copy(test::source_dir() + "/corpus", dir + "/corpus", fs::copy_options::recursive);
+  auto first = test::run("cd " + dir + " && " + test::binary() + " fix corpus --unsafe-fixes --fail-on none --format json");
+  EXPECT_EQ(first.exit_code, 0);
+  for (const auto& f : nlohmann::json::parse(first.out)["findings"])
+    EXPECT_FALSE(f.contains("fix") && f["fix"]["applicability"] == "safe") << f.dump(2);
+  auto again = test::run("cd " + dir + " && " + test::binary() + " fix corpus --unsafe-fixes --diff");
+  EXPECT_EQ(again.exit_code, 0) << again.out;
+  EXPECT_EQ(again.out, "");
+}
+
+}  // namespace
+}  // namespace lwc
