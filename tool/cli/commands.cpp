@@ -55,7 +55,8 @@ lint and fix options:
   --explain                         print each scene decision with its numbers
 
 fix options:
-  --diff                            print a unified diff of the fixes and write nothing
+  --diff                            print a unified diff of the fixes and write nothing (exit 1
+                                    when there is something to fix, unless --fail-on none)
   --unsafe-fixes                    apply the unsafe fixes too
   --version, --help
 )";
@@ -359,7 +360,7 @@ int fix(const Options& o, std::ostream& out, std::ostream& err) {
   std::string unsafe = unsafe_left ? fmt::format(" {} more fix(es) are unsafe: rerun with --unsafe-fixes.", unsafe_left) : "";
   if (o.diff) {
     err << fmt::format("Would fix {} finding(s) in {} file(s).{}\n", applied, changed_files, unsafe);
-    return changed_files ? 1 : 0;
+    return changed_files && o.fail_on ? 1 : 0;  // like a linter: changes to make fail the run
   }
   writer->finish();
   err << fmt::format("Fixed {} finding(s) in {} file(s).{}\n", applied, changed_files, unsafe);
