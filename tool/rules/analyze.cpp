@@ -65,10 +65,13 @@ namespace {
 
 // One `lwcport-ignore` comment and the rule ids it names.
 struct Suppression {
-  Span span;
+  Span span;       // the whole comment
   int line;        // the line it covers
   bool whole_file;
   std::string rule;
+  Span rule_span;  // the rule id inside the comment
+  int ids = 1;     // how many ids the comment names
+  bool alone = false;  // the comment is alone on its line
   bool used = false;
 };
 
@@ -89,14 +92,19 @@ std::vector<Suppression> find_suppressions(const SyntaxTree& tree) {
       // A comment alone on its line covers the next line; a trailing one covers its own.
       std::string_view before = src.line_text(pos.line).substr(0, src.offset(pos) - src.offset({pos.line, 1}));
       bool alone = before.find_first_not_of(" \t") == std::string_view::npos;
-      size_t i = 0;
+      size_t i = 0, first = out.size();
+      uint32_t rest_begin = tree.at(id).begin + static_cast<uint32_t>(at + marker.size());
       while (i < rest.size()) {
         while (i < rest.size() && (rest[i] == ' ' || rest[i] == ',' || rest[i] == '\t')) ++i;
         size_t b = i;
         while (i < rest.size() && (std::isalnum(static_cast<unsigned char>(rest[i])) || rest[i] == '-' || rest[i] == '_')) ++i;
         if (i == b) break;
-        out.push_back({tree.span(id), alone ? pos.line + 1 : pos.line, whole_file, std::string(rest.substr(b, i - b))});
+        Suppression sup{tree.span(id), alone ? pos.line + 1 : pos.line, whole_file, std::string(rest.substr(b, i - b)),
+                        {rest_begin + static_cast<uint32_t>(b), rest_begin + static_cast<uint32_t>(i)}};
+        sup.alone = alone;
+        out.push_back(sup);
       }
+      for (size_t k = first; k < out.size(); ++k) out[k].ids = static_cast<int>(out.size() - first);
       break;
     }
   }
@@ -114,6 +122,38 @@ const std::vector<std::pair<const RuleInfo*, std::unique_ptr<Check>>>& checks() 
     return out;
   }();
   return all;
+}
+
+// The fix for a stale suppression: the id and its separator when the comment names others, else
+// the whole comment (and its line, when the comment is alone on it).
+Fix remove_suppression(const RuleInfo& rule, const Suppression& s, const SyntaxTree& tree) {
+  const std::string& text = tree.source->text();
+  Fix fix;
+  fix.applicability = Applicability::safe;
+  fix.reason = rule.fixes.at("remove").at("reason").get<std::string>();
+  Span cut = s.rule_span;
+  if (s.ids > 1) {
+    fix.title = expand(rule.fixes.at("remove").at("title").get<std::string>(), {{"what", "`" + s.rule + "` from the comment"}});
+    // Take the separator after the id, or, for the last id, the one before it.
+    uint32_t e = cut.end;
+    while (e < s.span.end && (text[e] == ',' || text[e] == ' ' || text[e] == '\t')) ++e;
+    bool last = e >= s.span.end || text.compare(e, 2, "*/") == 0 || !(std::isalnum(static_cast<unsigned char>(text[e])) || text[e] == '-');
+    if (!last) cut.end = e;
+    else
+      while (cut.begin > s.span.begin && (text[cut.begin - 1] == ',' || text[cut.begin - 1] == ' ' || text[cut.begin - 1] == '\t')) --cut.begin;
+    fix.edits = {{cut, ""}};
+    return fix;
+  }
+  fix.title = expand(rule.fixes.at("remove").at("title").get<std::string>(), {{"what", "the comment"}});
+  cut = s.span;
+  // Trailing blanks before the comment go with it; a comment alone on its line takes the line.
+  while (cut.begin > 0 && (text[cut.begin - 1] == ' ' || text[cut.begin - 1] == '\t')) --cut.begin;
+  if (s.alone) {
+    if (cut.end < text.size() && text[cut.end] == '\r') ++cut.end;
+    if (cut.end < text.size() && text[cut.end] == '\n') ++cut.end;
+  }
+  fix.edits = {{cut, ""}};
+  return fix;
 }
 
 void apply_suppressions(const SyntaxTree& tree, const AnalyzeOptions& options, std::vector<Finding>& findings) {
@@ -143,6 +183,7 @@ void apply_suppressions(const SyntaxTree& tree, const AnalyzeOptions& options, s
                               expand(unused->hint, {{"rule", s.rule}}));
     f.rule = unused->id;
     f.span = s.span;
+    f.fixes.push_back(remove_suppression(*unused, s, tree));
     findings.push_back(std::move(f));
   }
 }
