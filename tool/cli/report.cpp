@@ -4,6 +4,7 @@
 
 #include <map>
 
+#include "fix/apply.h"
 #include "rules/rule.h"
 
 namespace lwc {
@@ -14,14 +15,8 @@ ReportedFinding locate(const Source& source, const Finding& f) {
   if (!f.fixes.empty()) {
     const Fix& fix = f.fixes.front();
     ReportedFix rf{fix.title, fix.applicability, fix.reason, fix.strategy, {}, fix.library, fix.notes};
-    for (const Edit& e : fix.edits) {
-      std::string text;
-      for (char c : e.text) {
-        if (c == '\n' && source.uses_crlf()) text += '\r';
-        text += c;
-      }
-      rf.edits.push_back({source.position(e.span.begin), source.position(e.span.end), std::move(text)});
-    }
+    for (const Edit& e : fix.edits)
+      rf.edits.push_back({source.position(e.span.begin), source.position(e.span.end), in_line_endings(source, e.text)});
     r.fix = std::move(rf);
   }
   return r;

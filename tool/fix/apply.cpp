@@ -36,6 +36,15 @@ std::vector<const Fix*> choose_fixes(const std::vector<Finding>& findings, bool 
   return chosen;
 }
 
+std::string in_line_endings(const Source& source, std::string_view text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '\n' && source.uses_crlf()) out += '\r';
+    out += c;
+  }
+  return out;
+}
+
 std::string apply_edits(const Source& source, std::vector<Edit> edits) {
   const std::string& text = source.text();
   std::sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) {
@@ -48,10 +57,7 @@ std::string apply_edits(const Source& source, std::vector<Edit> edits) {
     if (e.span.begin < at || e.span.end < e.span.begin || e.span.end > text.size())
       throw std::invalid_argument("overlapping or out-of-range edit at byte " + std::to_string(e.span.begin));
     out.append(text, at, e.span.begin - at);
-    for (char c : e.text) {
-      if (c == '\n' && source.uses_crlf()) out += '\r';
-      out += c;
-    }
+    out += in_line_endings(source, e.text);
     at = e.span.end;
   }
   out.append(text, at, std::string::npos);

@@ -1,6 +1,7 @@
 #pragma once
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/finding.h"
@@ -13,6 +14,9 @@ namespace lwc {
 // unsafe too when asked) and whose edits overlap no edit already chosen. Overlapping ones wait
 // for the next round, after the file is analysed again.
 std::vector<const Fix*> choose_fixes(const std::vector<Finding>& findings, bool unsafe);
+
+// Edit text ("\n" line breaks) as the file writes it: CRLF files get "\r\n".
+std::string in_line_endings(const Source& source, std::string_view text);
 
 // The source with the edits applied; "\n" in edit text becomes the file's line ending.
 // Throws std::invalid_argument if edits overlap or fall outside the text.

@@ -3,12 +3,11 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <stdexcept>
 
 #include "cli/config.h"
+#include "cli/files.h"
 #include "rules/rule.h"
 
 namespace lwc {
@@ -151,11 +150,10 @@ Scene parse_scene(std::string_view text, const std::string& path) {
 }
 
 Scene load_scene(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot read the scene profile");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_scene(ss.str(), path);
+  ReadResult r = read_file(path, 1u << 20);
+  if (!r.error.empty() || r.too_large)
+    throw std::runtime_error(path + ": cannot read the scene profile: " + (r.too_large ? "over 1 MB" : r.error));
+  return parse_scene(r.text, path);
 }
 
 namespace {

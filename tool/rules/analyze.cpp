@@ -128,12 +128,8 @@ const std::vector<std::pair<const RuleInfo*, std::unique_ptr<Check>>>& checks() 
 // the whole comment (and its line, when the comment is alone on it).
 Fix remove_suppression(const RuleInfo& rule, const Suppression& s, const SyntaxTree& tree) {
   const std::string& text = tree.source->text();
-  Fix fix;
-  fix.applicability = Applicability::safe;
-  fix.reason = rule.fixes.at("remove").at("reason").get<std::string>();
   Span cut = s.rule_span;
   if (s.ids > 1) {
-    fix.title = expand(rule.fixes.at("remove").at("title").get<std::string>(), {{"what", "`" + s.rule + "` from the comment"}});
     // Take the separator after the id, or, for the last id, the one before it.
     uint32_t e = cut.end;
     while (e < s.span.end && (text[e] == ',' || text[e] == ' ' || text[e] == '\t')) ++e;
@@ -141,10 +137,8 @@ Fix remove_suppression(const RuleInfo& rule, const Suppression& s, const SyntaxT
     if (!last) cut.end = e;
     else
       while (cut.begin > s.span.begin && (text[cut.begin - 1] == ',' || text[cut.begin - 1] == ' ' || text[cut.begin - 1] == '\t')) --cut.begin;
-    fix.edits = {{cut, ""}};
-    return fix;
+    return make_fix(rule, "remove", {{"what", "`" + s.rule + "` from the comment"}}, {{cut, ""}});
   }
-  fix.title = expand(rule.fixes.at("remove").at("title").get<std::string>(), {{"what", "the comment"}});
   cut = s.span;
   // Trailing blanks before the comment go with it; a comment alone on its line takes the line.
   while (cut.begin > 0 && (text[cut.begin - 1] == ' ' || text[cut.begin - 1] == '\t')) --cut.begin;
@@ -152,8 +146,7 @@ Fix remove_suppression(const RuleInfo& rule, const Suppression& s, const SyntaxT
     if (cut.end < text.size() && text[cut.end] == '\r') ++cut.end;
     if (cut.end < text.size() && text[cut.end] == '\n') ++cut.end;
   }
-  fix.edits = {{cut, ""}};
-  return fix;
+  return make_fix(rule, "remove", {{"what", "the comment"}}, {{cut, ""}});
 }
 
 void apply_suppressions(const SyntaxTree& tree, const AnalyzeOptions& options, std::vector<Finding>& findings) {
@@ -179,10 +172,7 @@ void apply_suppressions(const SyntaxTree& tree, const AnalyzeOptions& options, s
     if (target && (!options.enabled(target->id) || !target->applies_to(tree.lang))) continue;
     std::string why = target ? fmt::format("no `{}` finding here to suppress", s.rule)
                              : fmt::format("`{}` is not a lwcport rule", s.rule);
-    Finding f = input_finding(unused->severity, s.span.begin, expand(unused->message, {{"rule", s.rule}, {"why", why}}),
-                              expand(unused->hint, {{"rule", s.rule}}));
-    f.rule = unused->id;
-    f.span = s.span;
+    Finding f = make_finding(*unused, s.span, {{"rule", s.rule}, {"why", why}});
     f.fixes.push_back(remove_suppression(*unused, s, tree));
     findings.push_back(std::move(f));
   }

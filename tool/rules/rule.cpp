@@ -94,17 +94,17 @@ std::string expand(std::string_view tmpl, const Vars& vars) {
   return out;
 }
 
-Finding& CheckContext::report(Span span, const Vars& vars) const {
+Finding make_finding(const RuleInfo& rule, Span span, const Vars& vars) {
   Finding f;
   f.rule = rule.id;
   f.severity = rule.severity;
   f.span = span;
   f.message = expand(rule.message, vars);
   f.hint = expand(rule.hint, vars);
-  return out.emplace_back(std::move(f));
+  return f;
 }
 
-Fix& CheckContext::fix(Finding& finding, std::string_view kind, const Vars& vars, std::vector<Edit> edits) const {
+Fix make_fix(const RuleInfo& rule, std::string_view kind, const Vars& vars, std::vector<Edit> edits) {
   auto it = rule.fixes.find(kind);
   if (it == rule.fixes.end()) throw std::logic_error(rule.id + ": no fix of kind " + std::string(kind));
   const nlohmann::json& j = it->second;
@@ -114,7 +114,13 @@ Fix& CheckContext::fix(Finding& finding, std::string_view kind, const Vars& vars
   f.reason = expand(j.at("reason").get<std::string>(), vars);
   f.strategy = j.value("strategy", "");
   f.edits = std::move(edits);
-  return finding.fixes.emplace_back(std::move(f));
+  return f;
+}
+
+Finding& CheckContext::report(Span span, const Vars& vars) const { return out.emplace_back(make_finding(rule, span, vars)); }
+
+Fix& CheckContext::fix(Finding& finding, std::string_view kind, const Vars& vars, std::vector<Edit> edits) const {
+  return finding.fixes.emplace_back(make_fix(rule, kind, vars, std::move(edits)));
 }
 
 }  // namespace lwc

@@ -43,6 +43,11 @@ using Vars = std::map<std::string, std::string>;
 // Replaces each {key} in a template with its value; unknown keys stay as written.
 std::string expand(std::string_view tmpl, const Vars& vars);
 
+// A finding of a rule at a span, its message and hint filled from vars.
+Finding make_finding(const RuleInfo& rule, Span span, const Vars& vars);
+// A fix of one of the rule's kinds (rules/<id>.json "fixes"), its texts filled from vars.
+Fix make_fix(const RuleInfo& rule, std::string_view kind, const Vars& vars, std::vector<Edit> edits);
+
 struct CheckContext {
   const SyntaxTree& tree;
   const WorldModel& world;

@@ -7,6 +7,12 @@ namespace lwc::checks {
 namespace {
 
 class TileOffset : public Check {
+  struct Site {  // one tile/offset type or operation in the file
+    int id;
+    bool type;
+    std::string name;
+  };
+
  public:
   explicit TileOffset(const RuleInfo& rule)
       : types_(string_list(rule.data, "types")),
@@ -18,11 +24,6 @@ class TileOffset : public Check {
 
   void run(const CheckContext& ctx) const override {
     const SyntaxTree& t = ctx.tree;
-    struct Site {
-      int id;
-      bool type;
-      std::string name;
-    };
     std::vector<Site> sites;
     for (int id = 0; id < static_cast<int>(t.nodes.size()); ++id) {
       bool type = t.is(id, "type_identifier");
@@ -65,9 +66,8 @@ class TileOffset : public Check {
   }
 
  private:
-  template <typename Sites>
-  std::string whole_file_blocker(const SyntaxTree& t, const Sites& sites) const {
-    for (const auto& s : sites) {
+  std::string whole_file_blocker(const SyntaxTree& t, const std::vector<Site>& sites) const {
+    for (const Site& s : sites) {
       if (!mapping_.contains(s.name)) return fmt::format("`{}` has no DoubleFloat counterpart: port that code by hand, or the file will not compile after the rename", s.name);
       if (construct_.contains(s.name))
         return fmt::format("`{}` (line {}) builds a tile/offset value and its rewrite is unsafe; the renames compile only together with it", s.name,
