@@ -1,5 +1,5 @@
-// three.js-style forward fragment shader: view vector from absolute world positions.
 #version 300 es
+// three.js-style forward fragment shader: view vector from absolute world positions.
 precision highp float;
 
 uniform vec3 cameraPosition;

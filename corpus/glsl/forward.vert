@@ -1,5 +1,5 @@
-// three.js-style forward vertex shader: world position computed on the GPU in float32.
 #version 300 es
+// three.js-style forward vertex shader: world position computed on the GPU in float32.
 precision highp float;
 
 uniform mat4 modelMatrix;

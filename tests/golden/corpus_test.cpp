@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lang/syntax.h"
+#include "corpus_files.h"
 #include "support.h"
 
 namespace fs = std::filesystem;
@@ -17,18 +18,8 @@ namespace fs = std::filesystem;
 namespace lwc {
 namespace {
 
-std::vector<std::string> corpus_shaders() {
-  std::vector<std::string> out;
-  for (const auto& e : fs::recursive_directory_iterator(test::source_dir() + "/corpus")) {
-    std::string rel = fs::relative(e.path(), test::source_dir()).generic_string();
-    if (e.is_regular_file() && lang_from_path(rel) && rel.find("/scenes/") == std::string::npos) out.push_back(rel);
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
 TEST(Corpus, HasAtLeastTwentyShadersOfEveryEra) {
-  auto files = corpus_shaders();
+  auto files = test::corpus_shaders();
   EXPECT_GE(files.size(), 20u);
   for (const char* dir : {"corpus/ue4/", "corpus/ue5.0/", "corpus/ue5.4/", "corpus/d3d/", "corpus/glsl/", "corpus/negative/"})
     EXPECT_TRUE(std::any_of(files.begin(), files.end(), [&](auto& f) { return f.rfind(dir, 0) == 0; })) << dir;
@@ -45,7 +36,7 @@ TEST(Corpus, FindingsMatchTheGoldensExactly) {
   ASSERT_EQ(r.exit_code, 0);
   auto doc = nlohmann::json::parse(r.out);
   std::map<std::string, nlohmann::json> by_file;
-  for (const auto& f : corpus_shaders()) by_file[f] = nlohmann::json::array();
+  for (const auto& f : test::corpus_shaders()) by_file[f] = nlohmann::json::array();
   for (auto f : doc.at("findings")) {
     std::string path = f.at("path");
     f.erase("path");

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "rules/rule_files.h"
+#include "core/embedded.h"
 
 namespace lwc {
 

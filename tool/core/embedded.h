@@ -7,6 +7,8 @@ struct EmbeddedFile {
   std::string_view name;
   std::string_view text;
 };
-// Every rules/*.json file, embedded at build time (see embed_rules.cmake).
+// Files embedded at build time (see embed_files.cmake): every rules/*.json file, and the shader
+// library sources of tool/shaderlib.
 const std::vector<EmbeddedFile>& embedded_rule_files();
+const std::vector<EmbeddedFile>& embedded_shaderlib_files();
 }  // namespace lwc

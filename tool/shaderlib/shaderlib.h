@@ -1,0 +1,26 @@
+#pragma once
+#include <set>
+#include <string>
+#include <string_view>
+
+#include "lang/syntax.h"
+
+namespace lwc {
+
+// lwcport's DoubleFloat shader library (tool/shaderlib/src/doublefloat.lwclib), emitted for one
+// language. `names` are the types and functions the caller's code uses; the text holds those and
+// everything they need, in dependency order, and nothing else.
+std::string library_text(Lang lang, const std::set<std::string>& names);
+// Every type and function of the library.
+std::string full_library_text(Lang lang);
+// The names the library defines that occur as identifiers in `code`.
+std::set<std::string> library_names_used(Lang lang, std::string_view code);
+// The file `lwcport fix` writes beside fixed code: lwc_doublefloat.hlsl / lwc_doublefloat.glsl.
+std::string library_file_name(Lang lang);
+
+// An Unreal environment for compiling Unreal-era shaders without the engine: the library plus
+// declarations of the View / PrimaryView / ResolvedView / Primitive members, the LWC tile/offset
+// (FLWC*) types and functions, and the hack markers the rules touch (tool/shaderlib/src/unreal_stub.ush).
+std::string unreal_environment_text();
+
+}  // namespace lwc

@@ -1,0 +1,120 @@
+#include "verify/compile.h"
+
+#include <glslang/Public/ResourceLimits.h>
+#include <glslang/Public/ShaderLang.h>
+#include <glslang/SPIRV/GlslangToSpv.h>
+
+#include <deque>
+#include <mutex>
+#include <regex>
+#include <sstream>
+
+namespace lwc {
+namespace {
+
+void initialize_glslang() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    glslang::InitializeProcess();
+    std::atexit([] { glslang::FinalizeProcess(); });
+  });
+}
+
+EShLanguage to_glslang(Stage stage) {
+  switch (stage) {
+    case Stage::vertex: return EShLangVertex;
+    case Stage::fragment: return EShLangFragment;
+    case Stage::compute: return EShLangCompute;
+  }
+  return EShLangFragment;
+}
+
+// Hands glslang the text the caller's resolver finds; keeps it alive until glslang releases it.
+class Includer : public glslang::TShader::Includer {
+ public:
+  explicit Includer(const CompileInput& input) : input_(input) {}
+  IncludeResult* includeLocal(const char* name, const char* from, size_t) override { return find(name, from); }
+  IncludeResult* includeSystem(const char* name, const char* from, size_t) override { return find(name, from); }
+  void releaseInclude(IncludeResult*) override {}
+
+ private:
+  IncludeResult* find(const char* name, const char* from) {
+    if (!input_.include) return nullptr;
+    std::optional<std::string> text = input_.include(name, from ? from : "");
+    if (!text) return nullptr;
+    texts_.push_back(std::move(*text));
+    results_.emplace_back(name, texts_.back().data(), texts_.back().size(), nullptr);
+    return &results_.back();
+  }
+  const CompileInput& input_;
+  std::deque<std::string> texts_;
+  std::deque<IncludeResult> results_;
+};
+
+// glslang's info log: "ERROR: name:line: message" (or "ERROR: message" without a place).
+void read_log(const char* log, std::vector<CompileMessage>& out) {
+  static const std::regex placed(R"(^(?:ERROR|WARNING): (.*?):(\d+): (.*)$)");
+  std::istringstream in(log ? log : "");
+  std::string line;
+  std::smatch m;
+  while (std::getline(in, line)) {
+    if (line.rfind("ERROR: ", 0) != 0) continue;
+    if (line.find("compilation errors.  No code generated") != std::string::npos) continue;
+    if (std::regex_match(line, m, placed))
+      out.push_back({m[1], std::stoi(m[2]), m[3]});
+    else
+      out.push_back({"", 0, line.substr(7)});
+  }
+}
+
+}  // namespace
+
+CompileResult compile_shader(const CompileInput& input) {
+  initialize_glslang();
+  CompileResult result;
+  EShLanguage stage = to_glslang(input.stage);
+  glslang::TShader shader(stage);
+  const char* text = input.text.c_str();
+  const char* name = input.name.c_str();
+  int length = static_cast<int>(input.text.size());
+  shader.setStringsWithLengthsAndNames(&text, &length, &name, 1);
+  if (!input.preamble.empty()) shader.setPreamble(input.preamble.c_str());
+  bool hlsl = input.lang == Lang::hlsl;
+  shader.setEntryPoint(hlsl ? input.entry.c_str() : "main");
+  shader.setEnvInput(hlsl ? glslang::EShSourceHlsl : glslang::EShSourceGlsl, stage,
+                     input.spirv || hlsl ? glslang::EShClientVulkan : glslang::EShClientNone, 100);
+  if (input.spirv || hlsl) {
+    shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_2);
+    shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_5);
+  }
+  auto messages = static_cast<EShMessages>(EShMsgDefault | (hlsl ? EShMsgReadHlsl : EShMsgDefault) |
+                                           (input.spirv ? EShMsgSpvRules | EShMsgVulkanRules : EShMsgDefault));
+  Includer includer(input);
+  if (!shader.parse(GetDefaultResources(), hlsl ? 500 : 110, false, messages, includer)) {
+    read_log(shader.getInfoLog(), result.messages);
+    return result;
+  }
+  glslang::TProgram program;
+  program.addShader(&shader);
+  if (!program.link(messages)) {
+    read_log(program.getInfoLog(), result.messages);
+    return result;
+  }
+  if (input.spirv) {
+    glslang::SpvOptions options;
+    options.disableOptimizer = true;  // the driver must see every operation as written
+    glslang::GlslangToSpv(*program.getIntermediate(stage), result.spirv, &options);
+  }
+  result.ok = true;
+  return result;
+}
+
+std::optional<Stage> stage_from_extension(const std::string& path) {
+  auto ends = [&](const char* ext) { return path.size() >= 5 && path.compare(path.size() - 5, 5, ext) == 0; };
+  if (ends(".vert")) return Stage::vertex;
+  if (ends(".frag")) return Stage::fragment;
+  if (ends(".comp")) return Stage::compute;
+  return std::nullopt;
+}
+
+}  // namespace lwc

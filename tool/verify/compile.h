@@ -1,0 +1,45 @@
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lang/syntax.h"
+
+namespace lwc {
+
+enum class Stage { vertex, fragment, compute };
+
+// A glslang diagnostic, positioned in the named source it came from.
+struct CompileMessage {
+  std::string source;  // the file name glslang was given, or the included name
+  int line = 0;
+  std::string text;
+};
+
+struct CompileInput {
+  Lang lang = Lang::hlsl;
+  Stage stage = Stage::fragment;
+  std::string name;    // shown in messages
+  std::string text;
+  std::string preamble;  // declarations seen before `text` without shifting its line numbers
+  std::string entry;   // entry point; HLSL needs one, GLSL uses main
+  // Resolves `#include "name"` from the including source's name; nullopt when not found.
+  std::function<std::optional<std::string>(const std::string& name, const std::string& from)> include;
+  bool spirv = false;  // also generate Vulkan SPIR-V (GLSL then needs a Vulkan-legal shader)
+};
+
+struct CompileResult {
+  bool ok = false;
+  std::vector<CompileMessage> messages;
+  std::vector<uint32_t> spirv;
+};
+
+// Parses, checks and links one shader with glslang (the library, no process), optionally to SPIR-V.
+CompileResult compile_shader(const CompileInput& input);
+
+// The stage a GLSL file's extension names (.vert, .frag, .comp), if any.
+std::optional<Stage> stage_from_extension(const std::string& path);
+
+}  // namespace lwc
