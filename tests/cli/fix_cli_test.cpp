@@ -26,7 +26,7 @@ TEST(FixCli, RewritesInPlaceKeepingBomLineEndingsModeAndEverythingOutsideTheEdit
   auto r = test::run("cd " + dir + " && " + test::binary() + " fix a.usf --color never --select lwc-primary-view");
   EXPECT_EQ(r.exit_code, 0) << r.out;
   EXPECT_EQ(test::read(dir + "/a.usf"),
-            kBom + "// A comment stays.\r\nfloat3 F(float3 P)\r\n{\r\n\treturn P - PrimaryView.WorldCameraOrigin;  // and this\r\n}\r\n");
+            kBom + "// A comment stays.\r\nfloat3 F(float3 P)\r\n{\r\n\treturn DFSubtractDemote(P, PrimaryView.WorldCameraOrigin);  // and this\r\n}\r\n");
   struct stat st;
   ASSERT_EQ(::stat((dir + "/a.usf").c_str(), &st), 0);
   EXPECT_EQ(st.st_mode & 07777, 0640u);
@@ -73,7 +73,7 @@ TEST(FixCli, DiffPrintsTheChangeAndWritesNothing) {
   test::write(dir + "/a.usf", code);
   auto r = test::run("cd " + dir + " && " + test::binary() + " fix a.usf --diff --select lwc-primary-view");
   EXPECT_EQ(r.exit_code, 1);  // there is something to fix
-  EXPECT_EQ(r.out, "--- a/a.usf\n+++ b/a.usf\n@@ -1,4 +1,4 @@\n float3 F(float3 P)\n {\n-\treturn P - View.WorldCameraOrigin;\n+\treturn P - PrimaryView.WorldCameraOrigin;\n }\n");
+  EXPECT_EQ(r.out, "--- a/a.usf\n+++ b/a.usf\n@@ -1,4 +1,4 @@\n float3 F(float3 P)\n {\n-\treturn P - View.WorldCameraOrigin;\n+\treturn DFSubtractDemote(P, PrimaryView.WorldCameraOrigin);\n }\n");
   EXPECT_EQ(test::read(dir + "/a.usf"), code);
 }
 
@@ -95,13 +95,13 @@ TEST(FixCli, FixesAreLabelledInJsonAndSarif) {
   auto json = nlohmann::json::parse(test::run("cd " + dir + " && " + test::binary() + " lint a.usf --format json --select lwc-primary-view").out);
   const auto& fix = json["findings"][0]["fix"];
   EXPECT_EQ(fix["applicability"], "safe");
-  EXPECT_EQ(fix["title"], "use `PrimaryView.WorldCameraOrigin`");
-  EXPECT_EQ(fix["edits"][0], nlohmann::json::parse(R"({"start": {"line": 1, "column": 33}, "end": {"line": 1, "column": 37}, "text": "PrimaryView"})"));
+  EXPECT_EQ(fix["title"], "use `DFSubtractDemote(.., PrimaryView.WorldCameraOrigin)`");
+  EXPECT_EQ(fix["edits"][0], nlohmann::json::parse(R"j({"start": {"line": 1, "column": 29}, "end": {"line": 1, "column": 55}, "text": "DFSubtractDemote(P, PrimaryView.WorldCameraOrigin)"})j"));
   auto sarif = nlohmann::json::parse(test::run("cd " + dir + " && " + test::binary() + " lint a.usf --format sarif --select lwc-primary-view").out);
   const auto& result = sarif["runs"][0]["results"][0];
   const auto& replacement = result["fixes"][0]["artifactChanges"][0]["replacements"][0];
-  EXPECT_EQ(replacement["deletedRegion"]["startColumn"], 33);
-  EXPECT_EQ(replacement["insertedContent"]["text"], "PrimaryView");
+  EXPECT_EQ(replacement["deletedRegion"]["startColumn"], 29);
+  EXPECT_EQ(replacement["insertedContent"]["text"], "DFSubtractDemote(P, PrimaryView.WorldCameraOrigin)");
   EXPECT_NE(result["fixes"][0]["description"]["text"].get<std::string>().find("(safe:"), std::string::npos);
 }
 

@@ -3,10 +3,14 @@
 // with the DoubleFloat library that fix writes beside them.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
+#include <map>
+#include <set>
 
 #include "corpus_files.h"
 #include "fix/apply.h"
+#include "fix/scene.h"
 #include "shaderlib/shaderlib.h"
 #include "support.h"
 #include "verify/compile.h"
@@ -67,6 +71,77 @@ TEST(CompileCorpus, EveryShaderCompilesAsWritten) {
   for (const std::string& path : test::corpus_shaders()) {
     CompileResult r = compile_corpus_file(path, test::read(test::source_dir() + "/" + path), engine_version(path));
     EXPECT_TRUE(r.ok) << messages(r);
+  }
+}
+
+// A corpus file fixed with one strategy, all fixes (safe and unsafe) applied.
+FixOutcome fixed(const std::string& path, Strategy strategy) {
+  Source source(path, test::read(test::source_dir() + "/" + path));
+  AnalyzeOptions options;
+  options.lang = *lang_from_path(path);
+  options.strategy = strategy;
+  return fix_source(source, options, true);
+}
+
+// Lines of the functions (or top-level declarations) that still carry a finding after fixing:
+// the code lwcport reported it could not port.
+std::set<int> reported_lines(const std::string& path, const FixOutcome& outcome) {
+  Source source(path, outcome.text);
+  SyntaxTree tree = parse(source, *lang_from_path(path));
+  std::set<int> lines;
+  for (const Finding& f : outcome.remaining) {
+    Span span = f.span;
+    for (const Node& n : tree.nodes)
+      if (n.depth == 1 && n.begin <= f.span.begin && f.span.end <= n.end) span = {n.begin, n.end};
+    for (int l = source.position(span.begin).line; l <= source.position(span.end).line; ++l) lines.insert(l);
+  }
+  return lines;
+}
+
+// Golden fixed output: corpus/<dir>/<name>.fixed.<ext>, or .fixed-translated / .fixed-df where
+// the strategies differ; no golden means fixing leaves the file as it is.
+std::string golden_path(const std::string& path, const char* suffix) {
+  fs::path p(path);
+  return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).generic_string();
+}
+
+TEST(FixCorpusGolden, FixedOutputMatchesTheGoldensAndCompiles) {
+  bool update = std::getenv("LWCPORT_UPDATE_GOLDEN") != nullptr;
+  for (const std::string& path : test::corpus_shaders()) {
+    std::string original = test::read(test::source_dir() + "/" + path);
+    FixOutcome by_translated = fixed(path, Strategy::translated), by_df = fixed(path, Strategy::df);
+    const std::string &translated = by_translated.text, &df = by_df.text;
+    std::map<std::string, std::string> expected;  // golden path -> text
+    if (translated == df && translated != original) expected[golden_path(path, ".fixed")] = translated;
+    if (translated != df) {
+      if (translated != original) expected[golden_path(path, ".fixed-translated")] = translated;
+      if (df != original) expected[golden_path(path, ".fixed-df")] = df;
+    }
+    for (const char* suffix : {".fixed", ".fixed-translated", ".fixed-df"}) {
+      std::string golden = golden_path(path, suffix);
+      std::string file = test::source_dir() + "/" + golden;
+      if (update) {
+        if (expected.count(golden)) test::write(file, expected[golden]);
+        else if (fs::exists(file)) fs::remove(file);
+        continue;
+      }
+      if (!expected.count(golden)) {
+        EXPECT_FALSE(fs::exists(file)) << golden << " exists but fixing " << path << " gives another result";
+        continue;
+      }
+      ASSERT_TRUE(fs::exists(file)) << golden << " is missing";
+      EXPECT_EQ(expected[golden], test::read(file)) << golden;
+    }
+    // Fixed Unreal-era code is UE 5.4 code. A fix never breaks the build: where the fixed file
+    // does not compile, the error is on a line lwcport still reports (a site it could not port).
+    for (const FixOutcome* outcome : {&by_translated, &by_df}) {
+      if (outcome->text == original) continue;
+      CompileResult r = compile_corpus_file(path, outcome->text, 504);
+      std::set<int> reported = reported_lines(path, *outcome);
+      for (const CompileMessage& m : r.messages)
+        EXPECT_TRUE(m.source == path && reported.count(m.line))
+            << path << " after fixing: a compile error where no finding remains\n" << messages(r);
+    }
   }
 }
 

@@ -10,7 +10,8 @@
 namespace lwc {
 
 ReportedFinding locate(const Source& source, const Finding& f) {
-  ReportedFinding r{f.rule, f.severity, f.message, f.hint, source.position(f.span.begin), source.position(f.span.end), {}, {}, f.decision, f.not_needed};
+  ReportedFinding r{f.rule, f.severity, f.message, f.hint, source.position(f.span.begin), source.position(f.span.end), {}, {}, f.decision, f.not_needed,
+                    f.not_needed ? std::vector<std::string>{} : f.withheld};
   r.line_text = std::string(source.line_text(r.start.line));
   if (!f.fixes.empty()) {
     const Fix& fix = f.fixes.front();
@@ -48,6 +49,7 @@ nlohmann::json finding_json(const ReportedFinding& f) {
   }
   if (!f.decision.empty()) j["decision"] = f.decision;
   if (f.not_needed) j["not-needed"] = true;
+  if (!f.withheld.empty()) j["withheld"] = f.withheld;
   return j;
 }
 
@@ -91,6 +93,8 @@ void write_text_file(std::ostream& out, const FileReport& file, bool color, bool
       out << std::string(6, ' ') << paint("\x1b[1;32m", fmt::format("= fix ({}):", applicability_name(f.fix->applicability))) << ' '
           << f.fix->title << " (" << f.fix->reason << ")\n";
       for (const std::string& note : f.fix->notes) out << std::string(8, ' ') << "- " << note << '\n';
+    } else {
+      for (const std::string& why : f.withheld) out << std::string(6, ' ') << paint("\x1b[1;33m", "= no fix:") << ' ' << why << '\n';
     }
     if (explain && !f.decision.empty()) out << std::string(6, ' ') << paint("\x1b[1;35m", "= scene:") << ' ' << f.decision << '\n';
   }
@@ -169,6 +173,7 @@ nlohmann::json sarif_result(const std::string& path, const ReportedFinding& f) {
   }
   if (!f.decision.empty()) result["properties"]["sceneDecision"] = f.decision;
   if (f.not_needed) result["properties"]["notNeeded"] = true;
+  if (!f.withheld.empty()) result["properties"]["withheldFixes"] = f.withheld;
   return result;
 }
 

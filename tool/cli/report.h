@@ -36,6 +36,7 @@ struct ReportedFinding {
   std::optional<ReportedFix> fix;
   std::string decision;
   bool not_needed = false;
+  std::vector<std::string> withheld;  // rewrites not offered, each with why
 };
 
 struct FileReport {

@@ -43,6 +43,7 @@ struct Finding {
   std::string message;    // what is wrong and why it matters at large coordinates
   std::string hint;       // what to do about it
   std::vector<Fix> fixes;  // candidate rewrites; after planning, at most one
+  std::vector<std::string> withheld;  // rewrites considered and not offered, each "strategy: why"
   std::string decision;    // the scene planner's choice and its numbers, where the rule is scene-dependent
   bool not_needed = false;  // the scene does not need this fixed: never fails a run
 };

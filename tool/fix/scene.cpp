@@ -208,8 +208,11 @@ void plan_fixes(std::vector<Finding>& findings, const SceneNumbers& scene, Strat
       chosen = translated, why = "translated world, the only rewrite here, although short of the target";
     }
     if (!chosen && plain) chosen = plain, why = "the rule's rewrite";
+    std::string none = "no automatic rewrite for this site";
+    for (size_t i = 0; i < f.withheld.size(); ++i) none += (i ? "; " : " (") + f.withheld[i];
+    if (!f.withheld.empty()) none += ")";
     f.decision = fmt::format("needed: {} > precision target {}; {}; {}", numbers, format_distance(scene.precision), need,
-                             chosen ? "fix: " + why : "no automatic rewrite for this site");
+                             chosen ? "fix: " + why : none);
     if (chosen) {
       Fix keep = *chosen;
       f.fixes = {std::move(keep)};

@@ -1,12 +1,73 @@
 // lwc-float-world-position: a float variable, field, parameter or return holding absolute world data.
+// For a local initialised by a world transform it offers the rewrites: translated world (the
+// variable becomes camera-relative and every use follows) and, in Unreal code, DoubleFloat.
+#include <algorithm>
+
+#include <fmt/format.h>
+
 #include "rules/checks/util.h"
 
 namespace lwc::checks {
 namespace {
 
+bool unreal_code(const SyntaxTree& t) {
+  const std::string& p = t.source->path();
+  return p.ends_with(".usf") || p.ends_with(".ush");
+}
+
+int line_of(const SyntaxTree& t, int node) { return t.source->position(t.at(node).begin).line; }
+
+// `Object.Member` of a view or primitive, split; empty when the node is anything else.
+struct Member {
+  std::string object, member;
+  bool empty() const { return member.empty(); }
+};
+
+Member member_of(const SyntaxTree& t, int node) {
+  if (!t.is(node, "field_expression")) return {};
+  int object = t.child_by_field(node, "argument"), field = t.child_by_field(node, "field");
+  if (object < 0 || field < 0) return {};
+  std::string_view o = t.text(object);
+  bool call = t.is(object, "call_expression");
+  if (!call && !t.is(object, "identifier")) return {};
+  return {std::string(call ? call_name(t, object) : o) + (call ? "(..)" : ""), std::string(t.text(field))};
+}
+
+// The mul(A, M) call a node is, looking through a trailing swizzle (`mul(..).xyz`).
+int mul_call(const SyntaxTree& t, int node) {
+  if (t.is(node, "field_expression")) node = t.child_by_field(node, "argument");
+  if (!t.is(node, "call_expression") || call_name(t, node) != "mul" || call_arguments(t, node).size() != 2) return -1;
+  return node;
+}
+
+// The position of a `float4(P, 1)` / `float4(x, y, z, 1)` argument as text, or "".
+std::string position_of_homogeneous(const SyntaxTree& t, int node) {
+  if (!t.is(node, "call_expression") || call_name(t, node) != "float4") return {};
+  auto args = call_arguments(t, node);
+  if (args.size() < 2 || args.size() > 4) return {};
+  std::string_view w = t.text(args.back());
+  if (w != "1" && w != "1.0" && w != "1.0f" && w != "1.f") return {};
+  if (args.size() == 2) return std::string(t.text(args[0]));
+  std::string out = "float3(";
+  for (size_t i = 0; i + 1 < args.size(); ++i) out += std::string(i ? ", " : "") + std::string(t.text(args[i]));
+  return out + ")";
+}
+
+// The float4(use, 1) call that wraps a use, or -1.
+int homogeneous_wrapper(const SyntaxTree& t, int use) {
+  int list = t.at(use).parent;
+  int call = t.is(list, "argument_list") ? t.at(list).parent : -1;
+  if (call < 0 || call_name(t, call) != "float4" || call_arguments(t, call).size() != 2 || call_arguments(t, call)[0] != use) return -1;
+  return position_of_homogeneous(t, call).empty() ? -1 : call;
+}
+
 class FloatWorldPosition : public Check {
  public:
-  explicit FloatWorldPosition(const RuleInfo& rule) : descriptions_(rule.data.at("kinds")) {}
+  explicit FloatWorldPosition(const RuleInfo& rule)
+      : descriptions_(rule.data.at("kinds")),
+        twins_(rule.data.at("translated-twins")),
+        view_objects_(string_list(rule.data, "view-objects")),
+        primitive_objects_(string_list(rule.data, "primitive-objects")) {}
 
   void run(const CheckContext& ctx) const override {
     for (const AbsoluteHolder& h : ctx.world.absolute_holders()) {
@@ -15,15 +76,221 @@ class FloatWorldPosition : public Check {
                          : h.what == AbsoluteHolder::What::parameter ? "parameter"
                                                                      : "return value of";
       std::string kind(kind_name(h.kind));
-      ctx.report(ctx.tree.span(h.site), {{"what", what},
-                                         {"name", h.name},
-                                         {"type", h.type.empty() ? "float" : h.type},
-                                         {"holds", descriptions_.value(kind, kind)}});
+      Finding& f = ctx.report(ctx.tree.span(h.site), {{"what", what},
+                                                      {"name", h.name},
+                                                      {"type", h.type.empty() ? "float" : h.type},
+                                                      {"holds", descriptions_.value(kind, kind)}});
+      if (h.what == AbsoluteHolder::What::variable && h.kind == Kind::absolute) offer_rewrites(ctx, f, h);
     }
   }
 
  private:
+  // The rewrites of one local: each strategy's edits, or why it is withheld.
+  struct Plan {
+    std::vector<Edit> edits;
+    std::string blocker;
+    std::vector<std::string> helpers;  // functions of a header that now take translated positions
+  };
+
+  void offer_rewrites(const CheckContext& ctx, Finding& f, const AbsoluteHolder& h) const {
+    const SyntaxTree& t = ctx.tree;
+    const auto& vars = ctx.world.variables();
+    int var = -1;
+    for (size_t i = 0; i < vars.size() && var < 0; ++i)
+      if (vars[i].decl == h.site) var = static_cast<int>(i);
+    if (var < 0) return;
+    const Variable& v = ctx.world.variables()[var];
+    if (v.role != Variable::Role::local || v.init < 0) return;
+    Plan translated = plan_translated(ctx, var);
+    if (translated.blocker.empty()) {
+      std::string helpers;
+      for (const std::string& h : translated.helpers) helpers += (helpers.empty() ? "`" : ", `") + h + "`";
+      Vars vars{{"name", v.name}, {"new-name", translated_name(v.name)}, {"helpers", helpers}};
+      ctx.fix(f, translated.helpers.empty() ? "translated" : "translated-helpers", vars, translated.edits);
+    }
+    else
+      f.withheld.push_back("translated world: " + translated.blocker);
+    if (!unreal_code(t)) return;  // plain code has no DoubleFloat matrices to start from
+    Plan df = plan_double_float(ctx, var);
+    if (df.blocker.empty())
+      ctx.fix(f, "df", {{"name", v.name}}, df.edits);
+    else
+      f.withheld.push_back("DoubleFloat: " + df.blocker);
+  }
+
+  static std::string translated_name(const std::string& name) {
+    if (name.rfind("Absolute", 0) == 0) return "Translated" + name.substr(8);
+    if (name.rfind("World", 0) == 0) return "Translated" + name;
+    if (name.rfind("world", 0) == 0) return "translated" + std::string(1, 'W') + name.substr(1);
+    return "Translated" + name;
+  }
+
+  // `View.WorldCameraOrigin` -> `PrimaryView.TranslatedWorldCameraOrigin`: the twin text, or "".
+  std::string twin(const SyntaxTree& t, int node) const {
+    Member m = member_of(t, node);
+    if (m.empty() || !matches_any(view_objects_, m.object) || !twins_.contains(m.member)) return {};
+    std::string object = m.object == "View" ? "PrimaryView" : m.object;
+    return object + "." + twins_.at(m.member).get<std::string>();
+  }
+
+  bool primitive_to_world(const SyntaxTree& t, int node) const {
+    Member m = member_of(t, node);
+    return !m.empty() && m.member == "LocalToWorld" && matches_any(primitive_objects_, m.object);
+  }
+
+  // A use that is not part of a rewrite: what it is, for the withheld message.
+  static std::string escape(const SyntaxTree& t, int use) {
+    int parent = t.at(use).parent;
+    int line = line_of(t, use);
+    if (t.is(parent, "argument_list")) {
+      int call = t.at(parent).parent;
+      return fmt::format("it is passed to `{}` (line {}), which expects an absolute position", call_name(t, call), line);
+    }
+    if (t.is(parent, "return_statement")) return fmt::format("it is returned (line {}) as an absolute position", line);
+    if (t.is(parent, "assignment_expression") || t.is(parent, "init_declarator"))
+      return fmt::format("it is stored (line {}: `{}`)", line, t.text(parent));
+    if (t.is(parent, "binary_expression")) {
+      int other = t.child_by_field(parent, "left") == use ? t.child_by_field(parent, "right") : t.child_by_field(parent, "left");
+      return fmt::format("it is combined with `{}` (line {}), which has no translated twin", t.text(other), line);
+    }
+    return fmt::format("it is used as `{}` (line {})", t.text(parent), line);
+  }
+
+  // The other operand of `use - X` / `X - use`, or -1.
+  static int subtraction_partner(const SyntaxTree& t, int use) {
+    int parent = t.at(use).parent;
+    while (t.is(parent, "parenthesized_expression")) use = parent, parent = t.at(use).parent;
+    if (!t.is(parent, "binary_expression")) return -1;
+    int op = t.child_by_field(parent, "operator");
+    if (op < 0 || t.text(op) != "-") return -1;
+    int left = t.child_by_field(parent, "left"), right = t.child_by_field(parent, "right");
+    return left == use ? right : left;
+  }
+
+  Plan plan_translated(const CheckContext& ctx, int var) const {
+    const SyntaxTree& t = ctx.tree;
+    const Variable& v = ctx.world.variables()[var];
+    Plan plan;
+    std::string new_name = translated_name(v.name);
+    for (const Variable& other : ctx.world.variables())
+      if (other.name == new_name && (other.function == v.function || other.function < 0))
+        return {{}, fmt::format("the name `{}` is already taken", new_name)};
+    // The initialiser: a transform to absolute world whose matrix has a translated form.
+    int mul = mul_call(t, v.init);
+    if (mul < 0) return {{}, fmt::format("its value (`{}`) has no translated form lwcport knows", t.text(v.init))};
+    auto args = call_arguments(t, mul);
+    if (std::string m = twin(t, args[1]); !m.empty()) {
+      plan.edits.push_back({t.span(args[1]), m});
+    } else if (std::string p = position_of_homogeneous(t, args[0]); !p.empty() && primitive_to_world(t, args[1])) {
+      plan.edits.push_back({t.span(v.init), fmt::format("DFTransformLocalToTranslatedWorld({}, {}, PrimaryView.PreViewTranslation)",
+                                                        p, t.text(args[1]))});
+    } else {
+      return {{}, fmt::format("its matrix `{}` has no translated twin", t.text(args[1]))};
+    }
+    plan.edits.push_back({t.span(v.decl), new_name});
+    follow_translated(ctx, var, new_name, plan, 0);
+    return plan;
+  }
+
+  // Every use must stay meaningful in translated world: a difference with a camera term (whose
+  // twin replaces it), a transform by a from-world matrix with a twin, or the argument of a helper
+  // in this file whose parameter can follow in turn (it is renamed and becomes translated).
+  void follow_translated(const CheckContext& ctx, int var, const std::string& new_name, Plan& plan, int depth) const {
+    const SyntaxTree& t = ctx.tree;
+    for (int use : ctx.world.uses(var)) {
+      if (!plan.blocker.empty()) return;
+      int partner = subtraction_partner(t, use);
+      if (std::string m = partner >= 0 ? twin(t, partner) : ""; !m.empty()) {
+        plan.edits.push_back({t.span(use), new_name});
+        plan.edits.push_back({t.span(partner), m});
+        continue;
+      }
+      int wrapper = homogeneous_wrapper(t, use);
+      int outer = wrapper >= 0 ? t.at(t.at(wrapper).parent).parent : -1;
+      if (outer >= 0 && mul_call(t, outer) == outer && call_arguments(t, outer)[0] == wrapper) {
+        if (std::string m = twin(t, call_arguments(t, outer)[1]); !m.empty()) {
+          plan.edits.push_back({t.span(use), new_name});
+          plan.edits.push_back({t.span(call_arguments(t, outer)[1]), m});
+          continue;
+        }
+      }
+      if (depth < 4 && follow_into_helper(ctx, use, plan, depth)) {
+        plan.edits.push_back({t.span(use), new_name});
+        continue;
+      }
+      if (plan.blocker.empty()) plan.blocker = escape(t, use);
+    }
+  }
+
+  // A use passed whole to a function defined in this file, called only with values being made
+  // translated: its parameter follows. The parameter's own finding is then fixed by this one.
+  bool follow_into_helper(const CheckContext& ctx, int use, Plan& plan, int depth) const {
+    const SyntaxTree& t = ctx.tree;
+    int list = t.at(use).parent;
+    if (!t.is(list, "argument_list")) return false;
+    int call = t.at(list).parent;
+    std::string_view callee = call_name(t, call);
+    auto args = call_arguments(t, call);
+    size_t index = std::find(args.begin(), args.end(), use) - args.begin();
+    const auto& vars = ctx.world.variables();
+    int param = -1;
+    size_t seen = 0;
+    for (size_t i = 0; i < vars.size() && param < 0; ++i) {
+      const Variable& p = vars[i];
+      if (p.role != Variable::Role::parameter || p.function < 0) continue;
+      int declarator = t.child_by_field(p.function, "declarator");
+      int name = declarator >= 0 ? t.child_by_field(declarator, "declarator") : -1;
+      if (name < 0 || t.text(name) != callee) continue;
+      if (seen++ == index) param = static_cast<int>(i);
+    }
+    if (param < 0) return false;
+    // One caller only: another call might pass an absolute position.
+    int calls = 0;
+    for (int c : nodes_of(t, "call_expression")) calls += call_name(t, c) == callee;
+    if (calls != 1) return false;
+    std::string param_name = translated_name(vars[param].name);
+    plan.edits.push_back({t.span(vars[param].decl), param_name});
+    follow_translated(ctx, param, param_name, plan, depth + 1);
+    if (plan.blocker.empty() && unreal_code(t) && !t.source->path().ends_with(".usf"))
+      plan.helpers.push_back(std::string(callee));
+    return plan.blocker.empty();
+  }
+
+  // FDFVector3 X = DFMultiply(P, M); differences become DF*Demote; anything else withholds.
+  Plan plan_double_float(const CheckContext& ctx, int var) const {
+    const SyntaxTree& t = ctx.tree;
+    const Variable& v = ctx.world.variables()[var];
+    Plan plan;
+    if (v.type != "float3") return {{}, fmt::format("its type `{}` is not a float3 position", v.type)};
+    int mul = mul_call(t, v.init);
+    std::string p = mul >= 0 ? position_of_homogeneous(t, call_arguments(t, mul)[0]) : "";
+    if (p.empty()) return {{}, fmt::format("its value (`{}`) is not a transform of a position lwcport can redo in DoubleFloat", t.text(v.init))};
+    int matrix = call_arguments(t, mul)[1];
+    Member m = member_of(t, matrix);
+    if (m.empty()) return {{}, fmt::format("its matrix `{}` is not a view or primitive member", t.text(matrix))};
+    std::string df_matrix = (m.object == "View" ? std::string("PrimaryView") : std::string(t.text(t.child_by_field(matrix, "argument")))) + "." + m.member;
+    int type = t.child_by_field(v.declaration, "type");
+    if (type < 0) return {{}, "its declaration has no type lwcport can rewrite"};
+    plan.edits.push_back({t.span(type), "FDFVector3"});
+    plan.edits.push_back({t.span(v.init), fmt::format("DFMultiply({}, {})", p, df_matrix)});
+    for (int use : ctx.world.uses(var)) {
+      int partner = subtraction_partner(t, use);
+      if (partner < 0) return {{}, escape(t, use)};
+      int parent = t.at(partner).parent;
+      bool use_first = t.child_by_field(parent, "left") != partner;
+      Member pm = member_of(t, partner);
+      std::string other(t.text(partner));
+      if (!pm.empty() && pm.object == "View" && twins_.contains(pm.member)) other = "PrimaryView." + pm.member;
+      std::string call = use_first ? fmt::format("DFSubtractDemote({}, {})", v.name, other)
+                                   : fmt::format("DFSubtractDemote({}, {})", other, v.name);
+      plan.edits.push_back({t.span(parent), call});
+    }
+    return plan;
+  }
+
   nlohmann::json descriptions_;  // kind -> words for the message
+  nlohmann::json twins_;         // world member -> its translated twin member
+  std::vector<std::string> view_objects_, primitive_objects_;
 };
 
 }  // namespace

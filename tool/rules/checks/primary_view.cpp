@@ -1,4 +1,4 @@
-// lwc-primary-view: `View.<member>` for a world-space member that UE5 moved to PrimaryView.
+// lwc-primary-view: `View.<member>` (or ResolvedView's) for a world-space member that UE5 moved to PrimaryView.
 #include "rules/checks/util.h"
 
 namespace lwc::checks {
@@ -7,28 +7,54 @@ namespace {
 class PrimaryView : public Check {
  public:
   explicit PrimaryView(const RuleInfo& rule)
-      : members_(string_list(rule.data, "members")), twins_(rule.data.value("translated-twins", nlohmann::json::object())) {}
+      : objects_(string_list(rule.data, "objects")),
+        members_(string_list(rule.data, "members")),
+        positions_(string_list(rule.data, "position-members")),
+        lwc_calls_(string_list(rule.data, "lwc-calls")),
+        twins_(rule.data.value("translated-twins", nlohmann::json::object())) {}
 
   void run(const CheckContext& ctx) const override {
     const SyntaxTree& t = ctx.tree;
     for (int id : nodes_of(t, "field_expression")) {
       int base = t.child_by_field(id, "argument");
       int field = t.child_by_field(id, "field");
-      if (base < 0 || field < 0 || !t.is(base, "identifier") || t.text(base) != "View") continue;
+      if (base < 0 || field < 0 || !t.is(base, "identifier") || !matches_any(objects_, t.text(base))) continue;
       // A local or parameter that happens to be called View is not Unreal's view.
       int var = ctx.world.variable_at(base);
       if (var >= 0 && ctx.world.variables()[var].role != Variable::Role::global) continue;
       std::string member(t.text(field));
       if (!matches_any(members_, member)) continue;
       std::string twin = twins_.value(member, "");
-      Vars vars{{"member", member}, {"twin", twin.empty() ? "" : " (or, better, its translated twin `" + twin + "`)"}};
+      Vars vars{{"object", std::string(t.text(base))}, {"member", member}, {"twin", twin.empty() ? "" : " (or, better, its translated twin `" + twin + "`)"}};
       Finding& f = ctx.report(t.span(id), vars);
-      ctx.fix(f, "primary-view", vars, {{t.span(base), "PrimaryView"}});
+      offer_fix(ctx, f, id, member, vars);
     }
   }
 
  private:
-  std::vector<std::string> members_;
+  // In UE 5.4 PrimaryView's world members are DoubleFloat values: the rename alone is right only
+  // where LWC code already takes them; a float difference becomes its DF*Demote form.
+  void offer_fix(const CheckContext& ctx, Finding& f, int id, const std::string& member, Vars vars) const {
+    const SyntaxTree& t = ctx.tree;
+    int parent = t.at(id).parent;
+    if (t.is(parent, "argument_list") && matches_any(lwc_calls_, call_name(t, t.at(parent).parent))) {
+      ctx.fix(f, "primary-view", vars, {{t.span(t.child_by_field(id, "argument")), "PrimaryView"}});
+      return;
+    }
+    int op = t.is(parent, "binary_expression") ? t.child_by_field(parent, "operator") : -1;
+    if (op >= 0 && (t.text(op) == "-" || t.text(op) == "+") && matches_any(positions_, member)) {
+      int left = t.child_by_field(parent, "left"), right = t.child_by_field(parent, "right");
+      auto operand = [&](int n) { return n == id ? "PrimaryView." + member : std::string(t.text(n)); };
+      vars["call"] = t.text(op) == "-" ? "DFSubtractDemote" : "DFAddDemote";
+      ctx.fix(f, "demote", vars, {{t.span(parent), vars["call"] + "(" + operand(left) + ", " + operand(right) + ")"}});
+      return;
+    }
+    f.withheld.push_back("in UE 5.4 `PrimaryView." + member + "` is a DoubleFloat value and this use (`" +
+                         std::string(t.text(parent)) + "`) needs a float: the surrounding computation must move " +
+                         "to translated world or DoubleFloat first (lwc-float-world-position)");
+  }
+
+  std::vector<std::string> objects_, members_, positions_, lwc_calls_;
   nlohmann::json twins_;
 };
 
