@@ -1,6 +1,6 @@
-// Every corpus shader compiles with glslang before and after `lwcport fix`: plain HLSL and GLSL
-// as they are, Unreal-era files (.usf/.ush) against the Unreal environment stub, fixed plain files
-// with the DoubleFloat library that fix writes beside them.
+// Every corpus shader compiles with glslang as written (plain HLSL and GLSL as they are, Unreal-era
+// .usf/.ush against the Unreal environment stub of their engine era), and fixing it matches the
+// fixed goldens and never introduces a compile error (fixed Unreal code against UE 5.4).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -29,9 +29,8 @@ int engine_version(const std::string& path) {
   return 504;
 }
 
-// Compiles one corpus file's text; `beside` maps names of files next to it (the library) to text.
-CompileResult compile_corpus_file(const std::string& path, const std::string& text, int version,
-                                  const std::map<std::string, std::string>& beside = {}) {
+// Compiles one corpus file's text against the given engine version's stub.
+CompileResult compile_corpus_file(const std::string& path, const std::string& text, int version) {
   CompileInput in;
   in.lang = *lang_from_path(path);
   in.name = path;
@@ -48,8 +47,7 @@ CompileResult compile_corpus_file(const std::string& path, const std::string& te
     in.stage = stage_from_extension(path).value_or(Stage::fragment);
   }
   std::string dir = fs::path(test::source_dir() + "/" + path).parent_path().string();
-  in.include = [&, dir](const std::string& name, const std::string&) -> std::optional<std::string> {
-    if (auto it = beside.find(name); it != beside.end()) return it->second;
+  in.include = [dir](const std::string& name, const std::string&) -> std::optional<std::string> {
     if (name.rfind("/Engine/", 0) == 0) {
       std::string mapped = test::source_dir() + "/corpus/engine/" + name.substr(8);
       // Engine headers the corpus does not carry are what the stub declares.
@@ -61,16 +59,10 @@ CompileResult compile_corpus_file(const std::string& path, const std::string& te
   return compile_shader(in);
 }
 
-std::string messages(const CompileResult& r) {
-  std::string out;
-  for (const CompileMessage& m : r.messages) out += m.source + ":" + std::to_string(m.line) + ": " + m.text + "\n";
-  return out;
-}
-
 TEST(CompileCorpus, EveryShaderCompilesAsWritten) {
   for (const std::string& path : test::corpus_shaders()) {
     CompileResult r = compile_corpus_file(path, test::read(test::source_dir() + "/" + path), engine_version(path));
-    EXPECT_TRUE(r.ok) << messages(r);
+    EXPECT_TRUE(r.ok) << format_messages(r);
   }
 }
 
@@ -140,7 +132,7 @@ TEST(FixCorpusGolden, FixedOutputMatchesTheGoldensAndCompiles) {
       std::set<int> reported = reported_lines(path, *outcome);
       for (const CompileMessage& m : r.messages)
         EXPECT_TRUE(m.source == path && reported.count(m.line))
-            << path << " after fixing: a compile error where no finding remains\n" << messages(r);
+            << path << " after fixing: a compile error where no finding remains\n" << format_messages(r);
     }
   }
 }

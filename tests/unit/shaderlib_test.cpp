@@ -8,12 +8,6 @@
 namespace lwc {
 namespace {
 
-std::string messages(const CompileResult& r) {
-  std::string out;
-  for (const CompileMessage& m : r.messages) out += m.source + ":" + std::to_string(m.line) + ": " + m.text + "\n";
-  return out;
-}
-
 CompileResult compile_library(Lang lang, const std::string& library, bool spirv) {
   CompileInput in;
   in.lang = lang;
@@ -32,7 +26,7 @@ CompileResult compile_library(Lang lang, const std::string& library, bool spirv)
 TEST(ShaderLibrary, WholeLibraryCompilesInBothLanguagesToSpirv) {
   for (Lang lang : {Lang::hlsl, Lang::glsl}) {
     CompileResult r = compile_library(lang, full_library_text(lang), true);
-    EXPECT_TRUE(r.ok) << lang_name(lang) << "\n" << messages(r);
+    EXPECT_TRUE(r.ok) << lang_name(lang) << "\n" << format_messages(r);
     EXPECT_FALSE(r.spirv.empty());
   }
 }
@@ -45,7 +39,7 @@ TEST(ShaderLibrary, CompilesInGlslEsWithoutPrecise) {
   in.text = "#version 300 es\nprecision highp float;\n" + full_library_text(Lang::glsl) +
             "void main() { gl_Position = vec4(DFDemote(DFTwoSum(1.0, 1e-9)), 0.0, 0.0, 1.0); }\n";
   CompileResult r = compile_shader(in);
-  EXPECT_TRUE(r.ok) << messages(r);
+  EXPECT_TRUE(r.ok) << format_messages(r);
 }
 
 TEST(ShaderLibrary, EmitsOnlyWhatIsUsedWithItsDependencies) {
@@ -78,7 +72,7 @@ TEST(ShaderLibrary, FindsTheNamesCodeUses) {
 
 TEST(ShaderLibrary, UnrealEnvironmentCompiles) {
   CompileResult r = compile_library(Lang::hlsl, unreal_environment_text(), false);
-  EXPECT_TRUE(r.ok) << messages(r);
+  EXPECT_TRUE(r.ok) << format_messages(r);
 }
 
 }  // namespace

@@ -109,6 +109,12 @@ CompileResult compile_shader(const CompileInput& input) {
   return result;
 }
 
+std::string format_messages(const CompileResult& result) {
+  std::string out;
+  for (const CompileMessage& m : result.messages) out += m.source + ":" + std::to_string(m.line) + ": " + m.text + "\n";
+  return out;
+}
+
 std::optional<Stage> stage_from_extension(const std::string& path) {
   auto ends = [&](const char* ext) { return path.size() >= 5 && path.compare(path.size() - 5, 5, ext) == 0; };
   if (ends(".vert")) return Stage::vertex;

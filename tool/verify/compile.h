@@ -36,6 +36,9 @@ struct CompileResult {
   std::vector<uint32_t> spirv;
 };
 
+// The messages as "source:line: text" lines, for logs and test failures.
+std::string format_messages(const CompileResult& result);
+
 // Parses, checks and links one shader with glslang (the library, no process), optionally to SPIR-V.
 CompileResult compile_shader(const CompileInput& input);
 

@@ -91,6 +91,11 @@ class FloatWorldPosition : public Check {
     std::string blocker;
     std::vector<std::string> helpers;  // functions of a header that now take translated positions
   };
+  static Plan withheld(std::string why) {
+    Plan plan;
+    plan.blocker = std::move(why);
+    return plan;
+  }
 
   void offer_rewrites(const CheckContext& ctx, Finding& f, const AbsoluteHolder& h) const {
     const SyntaxTree& t = ctx.tree;
@@ -99,17 +104,17 @@ class FloatWorldPosition : public Check {
     for (size_t i = 0; i < vars.size() && var < 0; ++i)
       if (vars[i].decl == h.site) var = static_cast<int>(i);
     if (var < 0) return;
-    const Variable& v = ctx.world.variables()[var];
+    const Variable& v = vars[var];
     if (v.role != Variable::Role::local || v.init < 0) return;
     Plan translated = plan_translated(ctx, var);
     if (translated.blocker.empty()) {
       std::string helpers;
-      for (const std::string& h : translated.helpers) helpers += (helpers.empty() ? "`" : ", `") + h + "`";
-      Vars vars{{"name", v.name}, {"new-name", translated_name(v.name)}, {"helpers", helpers}};
-      ctx.fix(f, translated.helpers.empty() ? "translated" : "translated-helpers", vars, translated.edits);
-    }
-    else
+      for (const std::string& name : translated.helpers) helpers += (helpers.empty() ? "`" : ", `") + name + "`";
+      Vars fix_vars{{"name", v.name}, {"new-name", translated_name(v.name)}, {"helpers", helpers}};
+      ctx.fix(f, translated.helpers.empty() ? "translated" : "translated-helpers", fix_vars, translated.edits);
+    } else {
       f.withheld.push_back("translated world: " + translated.blocker);
+    }
     if (!unreal_code(t)) return;  // plain code has no DoubleFloat matrices to start from
     Plan df = plan_double_float(ctx, var);
     if (df.blocker.empty())
@@ -174,10 +179,10 @@ class FloatWorldPosition : public Check {
     std::string new_name = translated_name(v.name);
     for (const Variable& other : ctx.world.variables())
       if (other.name == new_name && (other.function == v.function || other.function < 0))
-        return {{}, fmt::format("the name `{}` is already taken", new_name)};
+        return withheld(fmt::format("the name `{}` is already taken", new_name));
     // The initialiser: a transform to absolute world whose matrix has a translated form.
     int mul = mul_call(t, v.init);
-    if (mul < 0) return {{}, fmt::format("its value (`{}`) has no translated form lwcport knows", t.text(v.init))};
+    if (mul < 0) return withheld(fmt::format("its value (`{}`) has no translated form lwcport knows", t.text(v.init)));
     auto args = call_arguments(t, mul);
     if (std::string m = twin(t, args[1]); !m.empty()) {
       plan.edits.push_back({t.span(args[1]), m});
@@ -185,7 +190,7 @@ class FloatWorldPosition : public Check {
       plan.edits.push_back({t.span(v.init), fmt::format("DFTransformLocalToTranslatedWorld({}, {}, PrimaryView.PreViewTranslation)",
                                                         p, t.text(args[1]))});
     } else {
-      return {{}, fmt::format("its matrix `{}` has no translated twin", t.text(args[1]))};
+      return withheld(fmt::format("its matrix `{}` has no translated twin", t.text(args[1])));
     }
     plan.edits.push_back({t.span(v.decl), new_name});
     follow_translated(ctx, var, new_name, plan, 0);
@@ -261,21 +266,21 @@ class FloatWorldPosition : public Check {
     const SyntaxTree& t = ctx.tree;
     const Variable& v = ctx.world.variables()[var];
     Plan plan;
-    if (v.type != "float3") return {{}, fmt::format("its type `{}` is not a float3 position", v.type)};
+    if (v.type != "float3") return withheld(fmt::format("its type `{}` is not a float3 position", v.type));
     int mul = mul_call(t, v.init);
     std::string p = mul >= 0 ? position_of_homogeneous(t, call_arguments(t, mul)[0]) : "";
-    if (p.empty()) return {{}, fmt::format("its value (`{}`) is not a transform of a position lwcport can redo in DoubleFloat", t.text(v.init))};
+    if (p.empty()) return withheld(fmt::format("its value (`{}`) is not a transform of a position lwcport can redo in DoubleFloat", t.text(v.init)));
     int matrix = call_arguments(t, mul)[1];
     Member m = member_of(t, matrix);
-    if (m.empty()) return {{}, fmt::format("its matrix `{}` is not a view or primitive member", t.text(matrix))};
+    if (m.empty()) return withheld(fmt::format("its matrix `{}` is not a view or primitive member", t.text(matrix)));
     std::string df_matrix = (m.object == "View" ? std::string("PrimaryView") : std::string(t.text(t.child_by_field(matrix, "argument")))) + "." + m.member;
     int type = t.child_by_field(v.declaration, "type");
-    if (type < 0) return {{}, "its declaration has no type lwcport can rewrite"};
+    if (type < 0) return withheld("its declaration has no type lwcport can rewrite");
     plan.edits.push_back({t.span(type), "FDFVector3"});
     plan.edits.push_back({t.span(v.init), fmt::format("DFMultiply({}, {})", p, df_matrix)});
     for (int use : ctx.world.uses(var)) {
       int partner = subtraction_partner(t, use);
-      if (partner < 0) return {{}, escape(t, use)};
+      if (partner < 0) return withheld(escape(t, use));
       int parent = t.at(partner).parent;
       bool use_first = t.child_by_field(parent, "left") != partner;
       Member pm = member_of(t, partner);
