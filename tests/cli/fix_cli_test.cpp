@@ -105,6 +105,70 @@ TEST(FixCli, FixesAreLabelledInJsonAndSarif) {
   EXPECT_NE(result["fixes"][0]["description"]["text"].get<std::string>().find("(safe:"), std::string::npos);
 }
 
+// Plain GLSL: the High/Low rewrite includes lwcport's library, which fix writes beside the file
+// with what the fixed code calls and nothing it does not.
+const char* kPlainVertex =
+    "#version 450\n"
+    "uniform mat4 modelMatrix;\n"
+    "uniform vec3 cameraPosition;\n"
+    "in vec3 position;\n"
+    "out float vDistance;\n"
+    "void main() {\n"
+    "  vec4 worldPosition = modelMatrix * vec4(position, 1.0);\n"
+    "  vDistance = distance(worldPosition.xyz, cameraPosition);\n"
+    "}\n";
+
+TEST(FixCli, TheHighLowRewriteWritesTheLibraryBesideTheFixedFile) {
+  std::string dir = test::scratch("fix-library");
+  test::write(dir + "/a.vert", kPlainVertex);
+  std::string fix = "cd " + dir + " && " + test::binary() + " fix . --unsafe-fixes --select lwc-float-world-position --color never";
+  auto r = test::run(fix + " 2>&1");
+  EXPECT_NE(r.out.find("Wrote lwc_doublefloat.glsl"), std::string::npos) << r.out;
+  EXPECT_EQ(test::read(dir + "/a.vert"),
+            "#version 450\n"
+            "#extension GL_GOOGLE_include_directive : require\n"
+            "#include \"lwc_doublefloat.glsl\"\n"
+            "uniform FDFVector3 cameraTranslation;\n"
+            "uniform mat3 modelRotationScale;\n"
+            "uniform FDFVector3 modelTranslation;\n"
+            "uniform vec3 cameraPosition;\n"
+            "in vec3 position;\n"
+            "out float vDistance;\n"
+            "void main() {\n"
+            "  vec4 translatedWorldPosition = vec4(modelRotationScale * position + DFFastLocalSubtractDemote(modelTranslation, cameraTranslation), 1.0);\n"
+            "  vDistance = length(translatedWorldPosition.xyz);\n"
+            "}\n");
+  std::string library = test::read(dir + "/lwc_doublefloat.glsl");
+  EXPECT_NE(library.find("vec3 DFFastLocalSubtractDemote(FDFVector3 A, FDFVector3 B)"), std::string::npos);
+  EXPECT_EQ(library.find("DFMultiply"), std::string::npos) << "only what the fixed code uses";
+  // Fixing again changes nothing, the library included.
+  r = test::run(fix + " --diff --fail-on none");
+  EXPECT_EQ(r.out, "");
+  // A library file lwcport did not write is the user's: never replaced.
+  test::write(dir + "/b.vert", kPlainVertex);
+  test::write(dir + "/lwc_doublefloat.glsl", "// mine\n");
+  r = test::run(fix + " 2>&1");
+  EXPECT_NE(r.out.find("lwc_doublefloat.glsl: exists and was not written by lwcport; not changed"), std::string::npos) << r.out;
+  EXPECT_EQ(test::read(dir + "/lwc_doublefloat.glsl"), "// mine\n");
+}
+
+TEST(FixCli, DiffShowsTheLibraryAsANewFile) {
+  std::string dir = test::scratch("fix-library-diff");
+  test::write(dir + "/a.vert", kPlainVertex);
+  auto r = test::run("cd " + dir + " && " + test::binary() + " fix a.vert --unsafe-fixes --diff --fail-on none");
+  EXPECT_NE(r.out.find("--- /dev/null\n+++ b/lwc_doublefloat.glsl\n@@ -0,0 +1,"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir + "/lwc_doublefloat.glsl"));
+}
+
+TEST(FixCli, CreateFileNeverReplaces) {
+  std::string dir = test::scratch("fix-create");
+  EXPECT_EQ(create_file(dir + "/new.glsl", "one\n"), "");
+  EXPECT_EQ(test::read(dir + "/new.glsl"), "one\n");
+  EXPECT_EQ(create_file(dir + "/new.glsl", "two\n"), "exists already; not changed");
+  EXPECT_EQ(test::read(dir + "/new.glsl"), "one\n");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1) << "no temporary file left";
+}
+
 TEST(FixCli, FindingsTheSceneDoesNotNeedNeverFailTheRun) {
   std::string root = test::source_dir();
   auto r = test::run("cd " + root + " && " + test::binary() +

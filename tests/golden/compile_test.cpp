@@ -47,7 +47,9 @@ CompileResult compile_corpus_file(const std::string& path, const std::string& te
     in.stage = stage_from_extension(path).value_or(Stage::fragment);
   }
   std::string dir = fs::path(test::source_dir() + "/" + path).parent_path().string();
-  in.include = [dir](const std::string& name, const std::string&) -> std::optional<std::string> {
+  in.include = [dir, lang = in.lang](const std::string& name, const std::string&) -> std::optional<std::string> {
+    // The library `lwcport fix` writes beside fixed files (the whole of it: fix writes a subset).
+    if (name == library_file_name(lang)) return full_library_text(lang);
     if (name.rfind("/Engine/", 0) == 0) {
       std::string mapped = test::source_dir() + "/corpus/engine/" + name.substr(8);
       // Engine headers the corpus does not carry are what the stub declares.

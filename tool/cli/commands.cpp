@@ -1,6 +1,7 @@
 #include "cli/commands.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -10,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -24,6 +26,7 @@
 #include "fix/scene.h"
 #include "rules/analyze.h"
 #include "rules/rule.h"
+#include "shaderlib/shaderlib.h"
 
 namespace fs = std::filesystem;
 
@@ -292,11 +295,23 @@ int lint(const Options& o, std::ostream& out, std::ostream& err) {
 }
 
 struct FixedFile {
+  std::filesystem::path path;
   FileReport report;   // what remains, plus any write problem
   std::string diff;    // --diff
   int applied = 0;
   int unsafe_left = 0;  // remaining findings whose fix is unsafe
   bool changed = false;
+  // The fixed text includes lwcport's library, which must then exist beside it with these names.
+  std::optional<Lang> library_lang;
+  std::set<std::string> library_names;
+};
+
+// The library file one folder of fixed files includes (lwc_doublefloat.hlsl / .glsl).
+struct LibraryFile {
+  std::filesystem::path path;
+  std::string display;
+  Lang lang;
+  std::set<std::string> names;
 };
 
 FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& includes) {
@@ -308,6 +323,7 @@ FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& in
   }
   const Source& source = *f.source;
   FixOutcome fixed = fix_source(source, f.options, o.unsafe_fixes);
+  out.path = file.path;
   out.report.path = file.display;
   out.applied = fixed.applied;
   out.changed = fixed.text != source.text();
@@ -321,6 +337,11 @@ FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& in
                                                                 "please report this file: a fix should apply once")));
   }
   if (!out.changed) return out;
+  std::optional<Lang> lang = language_for(source, f.options);
+  if (lang && fixed.text.find("\"" + library_file_name(*lang) + "\"") != std::string::npos) {
+    out.library_lang = lang;
+    out.library_names = library_names_used(*lang, fixed.text);
+  }
   if (o.diff) {
     out.diff = unified_diff(file.display, source.text(), fixed.text);
     return out;
@@ -334,8 +355,43 @@ FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& in
     for (const Finding& finding : analyze(source, f.options)) out.report.findings.push_back(locate(source, finding));
     out.report.findings.insert(out.report.findings.begin(),
                                locate(source, input_finding(Severity::error, 0, "cannot write the fixes: " + why, "the other files were still fixed")));
+    out.library_lang.reset();
   }
   return out;
+}
+
+// Writes (or, with --diff, prints) the library file of one folder: what the fixed files there
+// call, plus what an earlier run's file already holds (files fixed then still include it).
+void write_library(const LibraryFile& lib, const Options& o, std::ostream& out, std::ostream& err) {
+  std::set<std::string> names = lib.names;
+  std::string before;
+  bool exists = std::filesystem::exists(lib.path);
+  if (exists) {
+    ReadResult r = read_file(lib.path, SIZE_MAX);
+    if (!r.error.empty()) {
+      err << fmt::format("{}: cannot read: {}; the fixed files need it\n", lib.display, r.error);
+      return;
+    }
+    if (!is_written_library(r.text)) {
+      err << fmt::format("{}: exists and was not written by lwcport; not changed (the fixed files need: {})\n", lib.display,
+                         fmt::join(lib.names, ", "));
+      return;
+    }
+    before = std::move(r.text);
+    std::set<std::string> kept = library_names_used(lib.lang, before);
+    names.insert(kept.begin(), kept.end());
+  }
+  std::string after = library_text(lib.lang, names);
+  if (after == before) return;
+  if (o.diff) {
+    std::string diff = unified_diff(lib.display, before, after);
+    if (!exists) diff.replace(0, diff.find('\n'), "--- /dev/null");  // a new file, as git shows one
+    out << diff;
+    return;
+  }
+  std::string why = exists ? replace_file(lib.path, before, after) : create_file(lib.path, after);
+  if (!why.empty()) err << fmt::format("{}: cannot write the shader library: {}; the fixed files need it\n", lib.display, why);
+  else err << fmt::format("Wrote {} ({} name(s) and what they use).\n", lib.display, names.size());
 }
 
 int fix(const Options& o, std::ostream& out, std::ostream& err) {
@@ -348,15 +404,24 @@ int fix(const Options& o, std::ostream& out, std::ostream& err) {
   if (!o.diff) writer.emplace(*target.stream, ro);
   IncludeSummaries includes;
   int applied = 0, changed_files = 0, unsafe_left = 0;
+  std::map<std::string, LibraryFile> libraries;  // by path
   run_in_order<FixedFile>(
       files.size(), job_count(o), [&](size_t i) { return fix_file(files[i], o, includes); },
       [&](const FixedFile& r) {
         applied += r.applied;
         changed_files += r.changed;
         unsafe_left += r.unsafe_left;
+        if (r.library_lang) {
+          std::string name = library_file_name(*r.library_lang);
+          std::filesystem::path dir = std::filesystem::path(r.path).parent_path();
+          std::string display = (std::filesystem::path(r.report.path).parent_path() / name).generic_string();
+          LibraryFile& lib = libraries.try_emplace((dir / name).string(), LibraryFile{dir / name, display, *r.library_lang, {}}).first->second;
+          lib.names.insert(r.library_names.begin(), r.library_names.end());
+        }
         if (o.diff) *target.stream << r.diff;
         else writer->file(r.report);
       });
+  for (const auto& [path, lib] : libraries) write_library(lib, o, *target.stream, err);
   std::string unsafe = unsafe_left ? fmt::format(" {} more fix(es) are unsafe: rerun with --unsafe-fixes.", unsafe_left) : "";
   if (o.diff) {
     err << fmt::format("Would fix {} finding(s) in {} file(s).{}\n", applied, changed_files, unsafe);

@@ -138,6 +138,30 @@ bool write_all(int fd, std::string_view text) {
   return true;
 }
 
+
+// Writes text, with the given mode (and owner, when root), to a new temporary file beside
+// `target` and syncs it: "" and its path in `temp`, or the reason nothing was written.
+std::string write_temp_beside(const fs::path& target, std::string_view text, mode_t mode, const struct stat* owner, std::string& temp) {
+  temp = (target.parent_path() / ("." + target.filename().string() + ".lwcport-XXXXXX")).string();
+  int fd = ::mkstemp(temp.data());
+  if (fd < 0) return fmt::format("cannot create a temporary file beside it: {}", std::strerror(errno));
+  auto fail = [&](std::string why) {
+    ::close(fd);
+    ::unlink(temp.c_str());
+    return why;
+  };
+  if (!write_all(fd, text)) return fail(fmt::format("cannot write: {}", std::strerror(errno)));
+  if (::fchmod(fd, mode) != 0) return fail(fmt::format("cannot keep the file mode: {}", std::strerror(errno)));
+  if (owner && ::geteuid() == 0 && ::fchown(fd, owner->st_uid, owner->st_gid) != 0)
+    return fail(fmt::format("cannot keep the owner: {}", std::strerror(errno)));
+  if (::fsync(fd) != 0) return fail(fmt::format("cannot write: {}", std::strerror(errno)));
+  if (::close(fd) != 0) {
+    ::unlink(temp.c_str());
+    return fmt::format("cannot write: {}", std::strerror(errno));
+  }
+  return "";
+}
+
 }  // namespace
 
 std::string replace_file(const fs::path& path, std::string_view expected, std::string_view text) {
@@ -152,27 +176,26 @@ std::string replace_file(const fs::path& path, std::string_view expected, std::s
   ReadResult now = read_file(target, SIZE_MAX);
   if (!now.error.empty()) return now.error;
   if (now.text != expected) return "changed since it was read; not written (run lwcport fix again)";
-  std::string temp = (target.parent_path() / ("." + target.filename().string() + ".lwcport-XXXXXX")).string();
-  int fd = ::mkstemp(temp.data());
-  if (fd < 0) return fmt::format("cannot create a temporary file beside it: {}", std::strerror(errno));
-  auto fail = [&](std::string why) {
-    ::close(fd);
-    ::unlink(temp.c_str());
-    return why;
-  };
-  if (!write_all(fd, text)) return fail(fmt::format("cannot write: {}", std::strerror(errno)));
-  if (::fchmod(fd, st.st_mode & 07777) != 0) return fail(fmt::format("cannot keep the file mode: {}", std::strerror(errno)));
-  if (::geteuid() == 0 && ::fchown(fd, st.st_uid, st.st_gid) != 0) return fail(fmt::format("cannot keep the owner: {}", std::strerror(errno)));
-  if (::fsync(fd) != 0) return fail(fmt::format("cannot write: {}", std::strerror(errno)));
-  if (::close(fd) != 0) {
-    ::unlink(temp.c_str());
-    return fmt::format("cannot write: {}", std::strerror(errno));
-  }
+  std::string temp;
+  if (std::string why = write_temp_beside(target, text, st.st_mode & 07777, &st, temp); !why.empty()) return why;
   if (::rename(temp.c_str(), target.c_str()) != 0) {
     std::string why = std::strerror(errno);
     ::unlink(temp.c_str());
     return "cannot replace the file: " + why;
   }
+  return "";
+}
+
+std::string create_file(const fs::path& path, std::string_view text) {
+  mode_t mask = ::umask(0);
+  ::umask(mask);
+  std::string temp;
+  if (std::string why = write_temp_beside(path, text, 0666 & ~mask, nullptr, temp); !why.empty()) return why;
+  // link() never replaces: a file that appeared meanwhile is kept.
+  int linked = ::link(temp.c_str(), path.c_str());
+  int error = errno;
+  ::unlink(temp.c_str());
+  if (linked != 0) return error == EEXIST ? "exists already; not changed" : fmt::format("cannot create: {}", std::strerror(error));
   return "";
 }
 

@@ -40,5 +40,8 @@ namespace lwc {
 // Refuses, with a reason and nothing written, a file marked read-only or one whose content is no
 // longer `expected` (changed since it was read). Returns "" on success, else the reason.
 std::string replace_file(const std::filesystem::path& path, std::string_view expected, std::string_view text);
+// Creates a file that does not exist yet, atomically (temporary file, then link), with the
+// umask's mode. Refuses, with a reason, if it exists. Returns "" on success, else the reason.
+std::string create_file(const std::filesystem::path& path, std::string_view text);
 
 }  // namespace lwc

@@ -144,11 +144,13 @@ const std::vector<Block>& blocks_for(Lang lang) {
   return lang == Lang::hlsl ? hlsl : glsl;
 }
 
+constexpr std::string_view kWrittenMarker = "Written by lwcport";
+
 std::string header(Lang lang) {
   std::string guard = lang == Lang::hlsl ? "LWC_DOUBLEFLOAT_HLSL" : "LWC_DOUBLEFLOAT_GLSL";
   return "// " + library_file_name(lang) +
          ": DoubleFloat (High + Low float pairs) for Large World Coordinates.\n"
-         "// Written by lwcport for the code that includes it; regenerate with `lwcport fix`\n"
+         "// " + std::string(kWrittenMarker) + " for the code that includes it; regenerate with `lwcport fix`\n"
          "// rather than editing, so the next fix keeps what it needs.\n"
          "#ifndef " + guard + "\n#define " + guard + "\n\n";
 }
@@ -157,6 +159,11 @@ std::string header(Lang lang) {
 
 std::string library_file_name(Lang lang) {
   return lang == Lang::hlsl ? "lwc_doublefloat.hlsl" : "lwc_doublefloat.glsl";
+}
+
+bool is_written_library(std::string_view text) {
+  std::string_view head = text.substr(0, 200);
+  return head.starts_with("// lwc_doublefloat.") && head.find(kWrittenMarker) != std::string_view::npos;
 }
 
 std::string library_text(Lang lang, const std::set<std::string>& names) {

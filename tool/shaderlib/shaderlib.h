@@ -17,6 +17,9 @@ std::string full_library_text(Lang lang);
 std::set<std::string> library_names_used(Lang lang, std::string_view code);
 // The file `lwcport fix` writes beside fixed code: lwc_doublefloat.hlsl / lwc_doublefloat.glsl.
 std::string library_file_name(Lang lang);
+// True for a library file `lwcport fix` wrote (its header says so): lint skips it, and fix may
+// regenerate it; any other file of that name is the user's.
+bool is_written_library(std::string_view text);
 
 // An Unreal environment for compiling Unreal-era shaders without the engine: the library plus
 // declarations of the View / PrimaryView / ResolvedView / Primitive members, the LWC tile/offset

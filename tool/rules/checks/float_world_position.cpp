@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "rules/checks/high_low.h"
 #include "rules/checks/util.h"
 
 namespace lwc::checks {
@@ -14,8 +15,6 @@ bool unreal_code(const SyntaxTree& t) {
   const std::string& p = t.source->path();
   return p.ends_with(".usf") || p.ends_with(".ush");
 }
-
-int line_of(const SyntaxTree& t, int node) { return t.source->position(t.at(node).begin).line; }
 
 // `Object.Member` of a view or primitive, split; empty when the node is anything else.
 struct Member {
@@ -33,26 +32,6 @@ Member member_of(const SyntaxTree& t, int node) {
   return {std::string(call ? call_name(t, object) : o) + (call ? "(..)" : ""), std::string(t.text(field))};
 }
 
-// The mul(A, M) call a node is, looking through a trailing swizzle (`mul(..).xyz`).
-int mul_call(const SyntaxTree& t, int node) {
-  if (t.is(node, "field_expression")) node = t.child_by_field(node, "argument");
-  if (!t.is(node, "call_expression") || call_name(t, node) != "mul" || call_arguments(t, node).size() != 2) return -1;
-  return node;
-}
-
-// The position of a `float4(P, 1)` / `float4(x, y, z, 1)` argument as text, or "".
-std::string position_of_homogeneous(const SyntaxTree& t, int node) {
-  if (!t.is(node, "call_expression") || call_name(t, node) != "float4") return {};
-  auto args = call_arguments(t, node);
-  if (args.size() < 2 || args.size() > 4) return {};
-  std::string_view w = t.text(args.back());
-  if (w != "1" && w != "1.0" && w != "1.0f" && w != "1.f") return {};
-  if (args.size() == 2) return std::string(t.text(args[0]));
-  std::string out = "float3(";
-  for (size_t i = 0; i + 1 < args.size(); ++i) out += std::string(i ? ", " : "") + std::string(t.text(args[i]));
-  return out + ")";
-}
-
 // The float4(use, 1) call that wraps a use, or -1.
 int homogeneous_wrapper(const SyntaxTree& t, int use) {
   int list = t.at(use).parent;
@@ -67,7 +46,8 @@ class FloatWorldPosition : public Check {
       : descriptions_(rule.data.at("kinds")),
         twins_(rule.data.at("translated-twins")),
         view_objects_(string_list(rule.data, "view-objects")),
-        primitive_objects_(string_list(rule.data, "primitive-objects")) {}
+        primitive_objects_(string_list(rule.data, "primitive-objects")),
+        camera_{string_list(rule.data, "camera-words")} {}
 
   void run(const CheckContext& ctx) const override {
     for (const AbsoluteHolder& h : ctx.world.absolute_holders()) {
@@ -85,18 +65,6 @@ class FloatWorldPosition : public Check {
   }
 
  private:
-  // The rewrites of one local: each strategy's edits, or why it is withheld.
-  struct Plan {
-    std::vector<Edit> edits;
-    std::string blocker;
-    std::vector<std::string> helpers;  // functions of a header that now take translated positions
-  };
-  static Plan withheld(std::string why) {
-    Plan plan;
-    plan.blocker = std::move(why);
-    return plan;
-  }
-
   void offer_rewrites(const CheckContext& ctx, Finding& f, const AbsoluteHolder& h) const {
     const SyntaxTree& t = ctx.tree;
     const auto& vars = ctx.world.variables();
@@ -105,29 +73,52 @@ class FloatWorldPosition : public Check {
       if (vars[i].decl == h.site) var = static_cast<int>(i);
     if (var < 0) return;
     const Variable& v = vars[var];
-    if (v.role != Variable::Role::local || v.init < 0) return;
-    Plan translated = plan_translated(ctx, var);
+    bool local = v.role == Variable::Role::local && v.init >= 0;
+    RewritePlan translated = local ? plan_translated(ctx, var) : withheld("not a local with a value");
     if (translated.blocker.empty()) {
       std::string helpers;
       for (const std::string& name : translated.helpers) helpers += (helpers.empty() ? "`" : ", `") + name + "`";
       Vars fix_vars{{"name", v.name}, {"new-name", translated_name(v.name)}, {"helpers", helpers}};
       ctx.fix(f, translated.helpers.empty() ? "translated" : "translated-helpers", fix_vars, translated.edits);
-    } else {
-      f.withheld.push_back("translated world: " + translated.blocker);
     }
-    if (!unreal_code(t)) return;  // plain code has no DoubleFloat matrices to start from
-    Plan df = plan_double_float(ctx, var);
+    // Without Unreal's view and primitive data, plain code gets the High/Low design instead.
+    if (!unreal_code(t)) {
+      if (!translated.blocker.empty()) offer_plain_rewrite(ctx, f, var);
+      return;
+    }
+    if (!local) return;
+    if (!translated.blocker.empty()) f.withheld.push_back("translated world: " + translated.blocker);
+    RewritePlan df = plan_double_float(ctx, var);
     if (df.blocker.empty())
       ctx.fix(f, "df", {{"name", v.name}}, df.edits);
     else
       f.withheld.push_back("DoubleFloat: " + df.blocker);
   }
 
-  static std::string translated_name(const std::string& name) {
-    if (name.rfind("Absolute", 0) == 0) return "Translated" + name.substr(8);
-    if (name.rfind("World", 0) == 0) return "Translated" + name;
-    if (name.rfind("world", 0) == 0) return "translated" + std::string(1, 'W') + name.substr(1);
-    return "Translated" + name;
+  // Code without Unreal's library: a local from a world-matrix uniform gets the High/Low design,
+  // a stage input the translated position its previous stage now writes.
+  void offer_plain_rewrite(const CheckContext& ctx, Finding& f, int var) const {
+    const Variable& v = ctx.world.variables()[var];
+    auto words = leading_words(ctx.tree, v.declaration);
+    bool input = v.role == Variable::Role::global && !v.uniform &&
+                 (std::find(words.begin(), words.end(), "in") != words.end() || std::find(words.begin(), words.end(), "varying") != words.end());
+    if (!input && (v.role != Variable::Role::local || v.init < 0)) return;
+    RewritePlan plan = input ? plan_translated_input(ctx, var, camera_) : plan_high_low(ctx, var, camera_);
+    if (!plan.blocker.empty()) {
+      f.withheld.push_back("translated world: " + plan.blocker);
+    } else {
+      std::string interface;
+      for (const std::string& rename : plan.interface) interface += (interface.empty() ? "" : ", ") + rename;
+      Fix& fix = ctx.fix(f, input ? "translated-input" : "high-low",
+                         {{"name", v.name},
+                          {"new-name", translated_name(v.name)},
+                          {"interface", interface},
+                          {"interface-change", interface.empty() ? "" : "; the stage interface changes too (" + interface + "): the next stage must follow"}},
+                         plan.edits);
+      fix.library = plan.library;
+      fix.notes = plan.notes;
+    }
+    f.withheld.push_back("DoubleFloat: this code has no DoubleFloat matrices to start from (the translated rewrite keeps its translations as High/Low pairs instead)");
   }
 
   // `View.WorldCameraOrigin` -> `PrimaryView.TranslatedWorldCameraOrigin`: the twin text, or "".
@@ -143,39 +134,10 @@ class FloatWorldPosition : public Check {
     return !m.empty() && m.member == "LocalToWorld" && matches_any(primitive_objects_, m.object);
   }
 
-  // A use that is not part of a rewrite: what it is, for the withheld message.
-  static std::string escape(const SyntaxTree& t, int use) {
-    int parent = t.at(use).parent;
-    int line = line_of(t, use);
-    if (t.is(parent, "argument_list")) {
-      int call = t.at(parent).parent;
-      return fmt::format("it is passed to `{}` (line {}), which expects an absolute position", call_name(t, call), line);
-    }
-    if (t.is(parent, "return_statement")) return fmt::format("it is returned (line {}) as an absolute position", line);
-    if (t.is(parent, "assignment_expression") || t.is(parent, "init_declarator"))
-      return fmt::format("it is stored (line {}: `{}`)", line, t.text(parent));
-    if (t.is(parent, "binary_expression")) {
-      int other = t.child_by_field(parent, "left") == use ? t.child_by_field(parent, "right") : t.child_by_field(parent, "left");
-      return fmt::format("it is combined with `{}` (line {}), which has no translated twin", t.text(other), line);
-    }
-    return fmt::format("it is used as `{}` (line {})", t.text(parent), line);
-  }
-
-  // The other operand of `use - X` / `X - use`, or -1.
-  static int subtraction_partner(const SyntaxTree& t, int use) {
-    int parent = t.at(use).parent;
-    while (t.is(parent, "parenthesized_expression")) use = parent, parent = t.at(use).parent;
-    if (!t.is(parent, "binary_expression")) return -1;
-    int op = t.child_by_field(parent, "operator");
-    if (op < 0 || t.text(op) != "-") return -1;
-    int left = t.child_by_field(parent, "left"), right = t.child_by_field(parent, "right");
-    return left == use ? right : left;
-  }
-
-  Plan plan_translated(const CheckContext& ctx, int var) const {
+  RewritePlan plan_translated(const CheckContext& ctx, int var) const {
     const SyntaxTree& t = ctx.tree;
     const Variable& v = ctx.world.variables()[var];
-    Plan plan;
+    RewritePlan plan;
     std::string new_name = translated_name(v.name);
     for (const Variable& other : ctx.world.variables())
       if (other.name == new_name && (other.function == v.function || other.function < 0))
@@ -200,7 +162,7 @@ class FloatWorldPosition : public Check {
   // Every use must stay meaningful in translated world: a difference with a camera term (whose
   // twin replaces it), a transform by a from-world matrix with a twin, or the argument of a helper
   // in this file whose parameter can follow in turn (it is renamed and becomes translated).
-  void follow_translated(const CheckContext& ctx, int var, const std::string& new_name, Plan& plan, int depth) const {
+  void follow_translated(const CheckContext& ctx, int var, const std::string& new_name, RewritePlan& plan, int depth) const {
     const SyntaxTree& t = ctx.tree;
     for (int use : ctx.world.uses(var)) {
       if (!plan.blocker.empty()) return;
@@ -229,7 +191,7 @@ class FloatWorldPosition : public Check {
 
   // A use passed whole to a function defined in this file, called only with values being made
   // translated: its parameter follows. The parameter's own finding is then fixed by this one.
-  bool follow_into_helper(const CheckContext& ctx, int use, Plan& plan, int depth) const {
+  bool follow_into_helper(const CheckContext& ctx, int use, RewritePlan& plan, int depth) const {
     const SyntaxTree& t = ctx.tree;
     int list = t.at(use).parent;
     if (!t.is(list, "argument_list")) return false;
@@ -262,10 +224,10 @@ class FloatWorldPosition : public Check {
   }
 
   // FDFVector3 X = DFMultiply(P, M); differences become DF*Demote; anything else withholds.
-  Plan plan_double_float(const CheckContext& ctx, int var) const {
+  RewritePlan plan_double_float(const CheckContext& ctx, int var) const {
     const SyntaxTree& t = ctx.tree;
     const Variable& v = ctx.world.variables()[var];
-    Plan plan;
+    RewritePlan plan;
     if (v.type != "float3") return withheld(fmt::format("its type `{}` is not a float3 position", v.type));
     int mul = mul_call(t, v.init);
     std::string p = mul >= 0 ? position_of_homogeneous(t, call_arguments(t, mul)[0]) : "";
@@ -296,6 +258,7 @@ class FloatWorldPosition : public Check {
   nlohmann::json descriptions_;  // kind -> words for the message
   nlohmann::json twins_;         // world member -> its translated twin member
   std::vector<std::string> view_objects_, primitive_objects_;
+  CameraNames camera_;  // plain code: which absolute uniforms are the camera
 };
 
 }  // namespace

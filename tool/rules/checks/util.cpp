@@ -1,5 +1,9 @@
 #include "rules/checks/util.h"
 
+#include <cctype>
+
+#include <fmt/format.h>
+
 namespace lwc::checks {
 
 std::vector<int> nodes_of(const SyntaxTree& tree, std::string_view type) {
@@ -38,6 +42,74 @@ bool is_definition_name(const SyntaxTree& tree, int identifier) {
   std::string_view type = tree.at(parent).type;
   if (type == "preproc_def" || type == "preproc_function_def") return tree.child_by_field(parent, "name") == identifier;
   return type == "function_declarator" && tree.child_by_field(parent, "declarator") == identifier;
+}
+
+RewritePlan withheld(std::string why) {
+  RewritePlan plan;
+  plan.blocker = std::move(why);
+  return plan;
+}
+
+std::string translated_name(const std::string& name) {
+  if (name.rfind("Absolute", 0) == 0) return "Translated" + name.substr(8);
+  // Insert before the world (or, failing that, the first) word, in the name's own case.
+  for (const char* world : {"World", "world"}) {
+    size_t at = name.find(world);
+    if (at == std::string::npos) continue;
+    return name.substr(0, at) + (world[0] == 'W' ? "Translated" : "translated") + "World" + name.substr(at + 5);
+  }
+  if (!name.empty() && std::islower(static_cast<unsigned char>(name[0])))
+    return "translated" + std::string(1, static_cast<char>(std::toupper(static_cast<unsigned char>(name[0])))) + name.substr(1);
+  return "Translated" + name;
+}
+
+int line_of(const SyntaxTree& tree, int node) { return tree.source->position(tree.at(node).begin).line; }
+
+int mul_call(const SyntaxTree& tree, int node) {
+  if (tree.is(node, "field_expression")) node = tree.child_by_field(node, "argument");
+  if (!tree.is(node, "call_expression") || call_name(tree, node) != "mul" || call_arguments(tree, node).size() != 2) return -1;
+  return node;
+}
+
+std::string position_of_homogeneous(const SyntaxTree& tree, int node) {
+  if (!tree.is(node, "call_expression")) return {};
+  std::string_view ctor = call_name(tree, node);
+  if (ctor != "float4" && ctor != "vec4") return {};
+  auto args = call_arguments(tree, node);
+  if (args.size() < 2 || args.size() > 4) return {};
+  std::string_view w = tree.text(args.back());
+  if (w != "1" && w != "1.0" && w != "1.0f" && w != "1.f") return {};
+  if (args.size() == 2) return std::string(tree.text(args[0]));
+  std::string out = ctor == "vec4" ? "vec3(" : "float3(";
+  for (size_t i = 0; i + 1 < args.size(); ++i) out += std::string(i ? ", " : "") + std::string(tree.text(args[i]));
+  return out + ")";
+}
+
+int subtraction_partner(const SyntaxTree& tree, int use) {
+  int parent = tree.at(use).parent;
+  while (tree.is(parent, "parenthesized_expression")) use = parent, parent = tree.at(use).parent;
+  if (!tree.is(parent, "binary_expression")) return -1;
+  int op = tree.child_by_field(parent, "operator");
+  if (op < 0 || tree.text(op) != "-") return -1;
+  int left = tree.child_by_field(parent, "left"), right = tree.child_by_field(parent, "right");
+  return left == use ? right : left;
+}
+
+std::string escape(const SyntaxTree& tree, int use) {
+  int parent = tree.at(use).parent;
+  int line = line_of(tree, use);
+  if (tree.is(parent, "argument_list")) {
+    int call = tree.at(parent).parent;
+    return fmt::format("it is passed to `{}` (line {}), which expects an absolute position", call_name(tree, call), line);
+  }
+  if (tree.is(parent, "return_statement")) return fmt::format("it is returned (line {}) as an absolute position", line);
+  if (tree.is(parent, "assignment_expression") || tree.is(parent, "init_declarator"))
+    return fmt::format("it is stored (line {}: `{}`)", line, tree.text(parent));
+  if (tree.is(parent, "binary_expression")) {
+    int other = tree.child_by_field(parent, "left") == use ? tree.child_by_field(parent, "right") : tree.child_by_field(parent, "left");
+    return fmt::format("it is combined with `{}` (line {}), which has no translated twin", tree.text(other), line);
+  }
+  return fmt::format("it is used as `{}` (line {})", tree.text(parent), line);
 }
 
 }  // namespace lwc::checks

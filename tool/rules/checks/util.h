@@ -3,6 +3,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/finding.h"
 #include "rules/rule.h"
 #include "world/pattern.h"
 
@@ -18,5 +19,29 @@ std::vector<std::string> string_list(const nlohmann::json& data, const char* key
 bool matches_any(const std::vector<std::string>& globs, std::string_view text);
 // True when an identifier is the name being declared or defined (a macro, a function), not a use.
 bool is_definition_name(const SyntaxTree& tree, int identifier);
+
+// A world-position rewrite of one variable: its edits, or why it is withheld.
+struct RewritePlan {
+  std::vector<Edit> edits;
+  std::string blocker;                // non-empty: the rewrite is withheld, and this says why
+  std::vector<std::string> helpers;   // functions of a header that now take translated positions
+  std::vector<std::string> notes;     // what must change outside the shader
+  std::vector<std::string> library;   // shader-library names the new code calls
+  std::vector<std::string> interface; // stage inputs/outputs renamed: the other stage must follow
+};
+RewritePlan withheld(std::string why);
+
+// The camera-relative name of a world-position name: WorldPos -> TranslatedWorldPos,
+// vWorldPosition -> vTranslatedWorldPosition, AbsoluteWorldPosition -> TranslatedWorldPosition.
+std::string translated_name(const std::string& name);
+// The mul(A, M) call a node is, looking through a trailing swizzle (`mul(..).xyz`), or -1.
+int mul_call(const SyntaxTree& tree, int node);
+// The position of a `float4(P, 1)` / `vec4(P, 1.0)` / `float4(x, y, z, 1)` call as text, or "".
+std::string position_of_homogeneous(const SyntaxTree& tree, int node);
+// The other operand of `use - X` / `X - use` (looking through parentheses), or -1.
+int subtraction_partner(const SyntaxTree& tree, int use);
+// Why a use of a world position cannot be followed, for the withheld message.
+std::string escape(const SyntaxTree& tree, int use);
+int line_of(const SyntaxTree& tree, int node);
 
 }  // namespace lwc::checks
