@@ -188,6 +188,10 @@ WorldData WorldData::load(const nlohmann::json& ws, const nlohmann::json& extra_
     if (it == std::end(kRoleNames)) throw std::runtime_error("rules/world-space.json: unknown function role " + role);
     d.functions.push_back({PathPattern(f.at("match").get<std::string>()), it->first});
   }
+  const auto& twins = ws.at("translated-twins");
+  d.twins.objects = twins.at("objects").get<std::vector<std::string>>();
+  d.twins.members = twins.at("members").get<std::map<std::string, std::string>>();
+  d.twins.functions = twins.at("functions").get<std::map<std::string, std::string>>();
   return d;
 }
 

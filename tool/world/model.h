@@ -47,9 +47,16 @@ struct WorldData {
     PathPattern pattern;
     FunctionRole role;
   };
+  // Absolute view members and functions with a translated-world twin (`View.WorldCameraOrigin` ->
+  // `TranslatedWorldCameraOrigin`, `GetWorldPosition` -> `GetTranslatedWorldPosition`).
+  struct Twins {
+    std::vector<std::string> objects;  // the view objects whose members have twins
+    std::map<std::string, std::string> members, functions;
+  };
   std::vector<std::string> float_types;
   std::vector<Source> sources;
   std::vector<Function> functions;
+  Twins twins;
 
   // `world_space` is the "world-space" object; `extra_sources` is the config's list of
   // {"match", "kind", "languages"?}. Throws std::runtime_error naming a bad entry.

@@ -16,22 +16,6 @@ bool unreal_code(const SyntaxTree& t) {
   return p.ends_with(".usf") || p.ends_with(".ush");
 }
 
-// `Object.Member` of a view or primitive, split; empty when the node is anything else.
-struct Member {
-  std::string object, member;
-  bool empty() const { return member.empty(); }
-};
-
-Member member_of(const SyntaxTree& t, int node) {
-  if (!t.is(node, "field_expression")) return {};
-  int object = t.child_by_field(node, "argument"), field = t.child_by_field(node, "field");
-  if (object < 0 || field < 0) return {};
-  std::string_view o = t.text(object);
-  bool call = t.is(object, "call_expression");
-  if (!call && !t.is(object, "identifier")) return {};
-  return {std::string(call ? call_name(t, object) : o) + (call ? "(..)" : ""), std::string(t.text(field))};
-}
-
 // The float4(use, 1) call that wraps a use, or -1.
 int homogeneous_wrapper(const SyntaxTree& t, int use) {
   int list = t.at(use).parent;
@@ -44,8 +28,6 @@ class FloatWorldPosition : public Check {
  public:
   explicit FloatWorldPosition(const RuleInfo& rule)
       : descriptions_(rule.data.at("kinds")),
-        twins_(rule.data.at("translated-twins")),
-        view_objects_(string_list(rule.data, "view-objects")),
         primitive_objects_(string_list(rule.data, "primitive-objects")),
         camera_{string_list(rule.data, "camera-words")} {}
 
@@ -121,14 +103,6 @@ class FloatWorldPosition : public Check {
     f.withheld.push_back("DoubleFloat: this code has no DoubleFloat matrices to start from (the translated rewrite keeps its translations as High/Low pairs instead)");
   }
 
-  // `View.WorldCameraOrigin` -> `PrimaryView.TranslatedWorldCameraOrigin`: the twin text, or "".
-  std::string twin(const SyntaxTree& t, int node) const {
-    Member m = member_of(t, node);
-    if (m.empty() || !matches_any(view_objects_, m.object) || !twins_.contains(m.member)) return {};
-    std::string object = m.object == "View" ? "PrimaryView" : m.object;
-    return object + "." + twins_.at(m.member).get<std::string>();
-  }
-
   bool primitive_to_world(const SyntaxTree& t, int node) const {
     Member m = member_of(t, node);
     return !m.empty() && m.member == "LocalToWorld" && matches_any(primitive_objects_, m.object);
@@ -146,7 +120,7 @@ class FloatWorldPosition : public Check {
     int mul = mul_call(t, v.init);
     if (mul < 0) return withheld(fmt::format("its value (`{}`) has no translated form lwcport knows", t.text(v.init)));
     auto args = call_arguments(t, mul);
-    if (std::string m = twin(t, args[1]); !m.empty()) {
+    if (std::string m = translated_twin(ctx, args[1]); !m.empty()) {
       plan.edits.push_back({t.span(args[1]), m});
     } else if (std::string p = position_of_homogeneous(t, args[0]); !p.empty() && primitive_to_world(t, args[1])) {
       plan.edits.push_back({t.span(v.init), fmt::format("DFTransformLocalToTranslatedWorld({}, {}, PrimaryView.PreViewTranslation)",
@@ -167,7 +141,7 @@ class FloatWorldPosition : public Check {
     for (int use : ctx.world.uses(var)) {
       if (!plan.blocker.empty()) return;
       int partner = subtraction_partner(t, use);
-      if (std::string m = partner >= 0 ? twin(t, partner) : ""; !m.empty()) {
+      if (std::string m = partner >= 0 ? translated_twin(ctx, partner) : ""; !m.empty()) {
         plan.edits.push_back({t.span(use), new_name});
         plan.edits.push_back({t.span(partner), m});
         continue;
@@ -175,7 +149,7 @@ class FloatWorldPosition : public Check {
       int wrapper = homogeneous_wrapper(t, use);
       int outer = wrapper >= 0 ? t.at(t.at(wrapper).parent).parent : -1;
       if (outer >= 0 && mul_call(t, outer) == outer && call_arguments(t, outer)[0] == wrapper) {
-        if (std::string m = twin(t, call_arguments(t, outer)[1]); !m.empty()) {
+        if (std::string m = translated_twin(ctx, call_arguments(t, outer)[1]); !m.empty()) {
           plan.edits.push_back({t.span(use), new_name});
           plan.edits.push_back({t.span(call_arguments(t, outer)[1]), m});
           continue;
@@ -247,7 +221,7 @@ class FloatWorldPosition : public Check {
       bool use_first = t.child_by_field(parent, "left") != partner;
       Member pm = member_of(t, partner);
       std::string other(t.text(partner));
-      if (!pm.empty() && pm.object == "View" && twins_.contains(pm.member)) other = "PrimaryView." + pm.member;
+      if (!pm.empty() && pm.object == "View" && ctx.world.data().twins.members.count(pm.member)) other = "PrimaryView." + pm.member;
       std::string call = use_first ? fmt::format("DFSubtractDemote({}, {})", v.name, other)
                                    : fmt::format("DFSubtractDemote({}, {})", other, v.name);
       plan.edits.push_back({t.span(parent), call});
@@ -256,8 +230,7 @@ class FloatWorldPosition : public Check {
   }
 
   nlohmann::json descriptions_;  // kind -> words for the message
-  nlohmann::json twins_;         // world member -> its translated twin member
-  std::vector<std::string> view_objects_, primitive_objects_;
+  std::vector<std::string> primitive_objects_;
   CameraNames camera_;  // plain code: which absolute uniforms are the camera
 };
 

@@ -10,8 +10,7 @@ class PrimaryView : public Check {
       : objects_(string_list(rule.data, "objects")),
         members_(string_list(rule.data, "members")),
         positions_(string_list(rule.data, "position-members")),
-        lwc_calls_(string_list(rule.data, "lwc-calls")),
-        twins_(rule.data.value("translated-twins", nlohmann::json::object())) {}
+        lwc_calls_(string_list(rule.data, "lwc-calls")) {}
 
   void run(const CheckContext& ctx) const override {
     const SyntaxTree& t = ctx.tree;
@@ -24,7 +23,8 @@ class PrimaryView : public Check {
       if (var >= 0 && ctx.world.variables()[var].role != Variable::Role::global) continue;
       std::string member(t.text(field));
       if (!matches_any(members_, member)) continue;
-      std::string twin = twins_.value(member, "");
+      const auto& twins = ctx.world.data().twins.members;
+      std::string twin = twins.count(member) ? std::string(t.text(base)) + "." + twins.at(member) : "";
       Vars vars{{"object", std::string(t.text(base))}, {"member", member}, {"twin", twin.empty() ? "" : " (or, better, its translated twin `" + twin + "`)"}};
       Finding& f = ctx.report(t.span(id), vars);
       offer_fix(ctx, f, id, member, vars);
@@ -55,7 +55,6 @@ class PrimaryView : public Check {
   }
 
   std::vector<std::string> objects_, members_, positions_, lwc_calls_;
-  nlohmann::json twins_;
 };
 
 }  // namespace

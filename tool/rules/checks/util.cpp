@@ -44,6 +44,29 @@ bool is_definition_name(const SyntaxTree& tree, int identifier) {
   return type == "function_declarator" && tree.child_by_field(parent, "declarator") == identifier;
 }
 
+Member member_of(const SyntaxTree& tree, int node) {
+  if (!tree.is(node, "field_expression")) return {};
+  int object = tree.child_by_field(node, "argument"), field = tree.child_by_field(node, "field");
+  if (object < 0 || field < 0) return {};
+  bool call = tree.is(object, "call_expression");
+  if (!call && !tree.is(object, "identifier")) return {};
+  return {call ? std::string(call_name(tree, object)) + "(..)" : std::string(tree.text(object)), std::string(tree.text(field))};
+}
+
+std::string translated_twin(const CheckContext& ctx, int node) {
+  const SyntaxTree& t = ctx.tree;
+  const WorldData::Twins& twins = ctx.world.data().twins;
+  if (t.is(node, "call_expression")) {
+    auto it = twins.functions.find(std::string(call_name(t, node)));
+    if (it == twins.functions.end()) return {};
+    return it->second + std::string(t.text(t.child_by_field(node, "arguments")));
+  }
+  Member m = member_of(t, node);
+  if (m.empty() || !matches_any(twins.objects, m.object) || !twins.members.count(m.member)) return {};
+  // UE5 keeps the view's world members on PrimaryView; the translated ones stay where they were.
+  return (m.object == "View" ? "PrimaryView" : m.object) + "." + twins.members.at(m.member);
+}
+
 RewritePlan withheld(std::string why) {
   RewritePlan plan;
   plan.blocker = std::move(why);

@@ -20,6 +20,17 @@ bool matches_any(const std::vector<std::string>& globs, std::string_view text);
 // True when an identifier is the name being declared or defined (a macro, a function), not a use.
 bool is_definition_name(const SyntaxTree& tree, int identifier);
 
+// `Object.Member` (or `Call(..).Member`) split; empty when the node is anything else.
+struct Member {
+  std::string object, member;
+  bool empty() const { return member.empty(); }
+};
+Member member_of(const SyntaxTree& tree, int node);
+// The translated-world twin of an absolute view member or function call, as text
+// (`View.WorldCameraOrigin` -> `PrimaryView.TranslatedWorldCameraOrigin`,
+// `GetWorldPosition(P)` -> `GetTranslatedWorldPosition(P)`), or "" when it has none.
+std::string translated_twin(const CheckContext& ctx, int node);
+
 // A world-position rewrite of one variable: its edits, or why it is withheld.
 struct RewritePlan {
   std::vector<Edit> edits;
