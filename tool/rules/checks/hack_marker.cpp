@@ -1,4 +1,8 @@
-// lwc-hack-marker: the searchable markers of shortcuts taken while porting to LWC.
+// lwc-hack-marker: the searchable markers of shortcuts taken while porting to LWC. Where the
+// demoted value is only used camera-relative (a difference with the camera, or a sum with the
+// pre-view translation), the translated twins compute the same thing at full precision.
+#include <fmt/format.h>
+
 #include "rules/checks/util.h"
 
 namespace lwc::checks {
@@ -6,7 +10,8 @@ namespace {
 
 class HackMarker : public Check {
  public:
-  explicit HackMarker(const RuleInfo& rule) : markers_(rule.data.at("markers")) {}
+  explicit HackMarker(const RuleInfo& rule)
+      : markers_(rule.data.at("markers")), demotions_(string_list(rule.data, "demotions")) {}
 
   void run(const CheckContext& ctx) const override {
     const SyntaxTree& t = ctx.tree;
@@ -14,12 +19,73 @@ class HackMarker : public Check {
       if (!t.is(id, "identifier")) continue;
       std::string name(t.text(id));
       if (!markers_.contains(name) || is_definition_name(t, id)) continue;
-      ctx.report(t.span(id), {{"marker", name}, {"loss", markers_.at(name).get<std::string>()}});
+      Finding& f = ctx.report(t.span(id), {{"marker", name}, {"loss", markers_.at(name).get<std::string>()}});
+      if (matches_any(demotions_, name)) offer_fix(ctx, f, id);
     }
   }
 
  private:
-  nlohmann::json markers_;  // marker -> what it loses
+  // The argument of a one-argument demotion call, when `node` is such a call; else -1.
+  int demoted(const SyntaxTree& t, int node) const {
+    if (!t.is(node, "call_expression") || !matches_any(demotions_, call_name(t, node))) return -1;
+    auto args = call_arguments(t, node);
+    return args.size() == 1 ? args[0] : -1;
+  }
+
+  // A camera term of a difference, demoted or not: its translated twin, or "".
+  std::string camera_twin(const CheckContext& ctx, int node, Kind want) const {
+    int inner = demoted(ctx.tree, node);
+    int value = inner >= 0 ? inner : node;
+    return ctx.world.kind(value) == want ? translated_twin(ctx, value) : "";
+  }
+
+  void offer_fix(const CheckContext& ctx, Finding& f, int marker) const {
+    const SyntaxTree& t = ctx.tree;
+    int call = t.at(marker).parent;
+    int value = demoted(t, call);
+    if (value < 0) return;
+    int use = call, parent = t.at(call).parent;
+    while (t.is(parent, "parenthesized_expression")) use = parent, parent = t.at(use).parent;
+    std::string twin = translated_twin(ctx, value);
+    std::string op = t.is(parent, "binary_expression") ? std::string(t.text(t.child_by_field(parent, "operator"))) : "";
+    if (twin.empty()) {
+      f.withheld.push_back(fmt::format("translated world: `{}` has no translated twin lwcport knows, so the demotion stays until the code "
+                                       "around it is ported (to translated world or DoubleFloat)",
+                                       t.text(value)));
+      return;
+    }
+    if (op != "-" && op != "+") {
+      f.withheld.push_back(fmt::format("translated world: the demoted value is used as `{}` (line {}), not as a difference with the "
+                                       "camera, so its translated twin would change the result",
+                                       t.text(parent), line_of(t, parent)));
+      return;
+    }
+    bool first = t.child_by_field(parent, "left") == use;
+    int other = t.child_by_field(parent, first ? "right" : "left");
+    // X - camera and camera - X: both sides move by the same pre-view translation.
+    if (std::string camera = op == "-" ? camera_twin(ctx, other, Kind::absolute) : ""; !camera.empty()) {
+      std::string text = first ? twin + " - " + camera : camera + " - " + twin;
+      ctx.fix(f, "translated", {{"marker", std::string(t.text(marker))}, {"text", text}}, {{t.span(parent), text}});
+      return;
+    }
+    // X + PreViewTranslation is the translated position itself.
+    if (op == "+" && is_pre_view(ctx, other)) {
+      ctx.fix(f, "translated", {{"marker", std::string(t.text(marker))}, {"text", twin}}, {{t.span(parent), twin}});
+      return;
+    }
+    f.withheld.push_back(fmt::format("translated world: `{}` is combined with `{}` (line {}), which is not the camera, so its "
+                                     "translated twin would change the result",
+                                     t.text(value), t.text(other), line_of(t, parent)));
+  }
+
+  // The pre-view translation, demoted or not (it has no twin of its own: it is the translation).
+  bool is_pre_view(const CheckContext& ctx, int node) const {
+    int inner = demoted(ctx.tree, node);
+    return ctx.world.kind(inner >= 0 ? inner : node) == Kind::camera_offset;
+  }
+
+  nlohmann::json markers_;               // marker -> what it loses
+  std::vector<std::string> demotions_;  // markers that demote one value to float
 };
 
 }  // namespace
