@@ -1,5 +1,8 @@
 // lwc-translated-world: DoubleFloat math on an absolute position whose every use is
-// camera-relative: translated world (plain float) would be cheaper and as precise.
+// camera-relative: translated world (plain float) would be cheaper and as precise. The rewrite
+// computes it in translated world from the start and turns each use into plain float math.
+#include <fmt/format.h>
+
 #include "rules/checks/util.h"
 
 namespace lwc::checks {
@@ -28,7 +31,11 @@ class TranslatedWorld : public Check {
         }
         if (consumer.empty()) consumer = c;
       }
-      if (all_relative) ctx.report(t.span(v.decl), {{"name", v.name}, {"type", v.type}, {"consumer", consumer}});
+      if (!all_relative) continue;
+      Finding& f = ctx.report(t.span(v.decl), {{"name", v.name}, {"type", v.type}, {"consumer", consumer}});
+      RewritePlan plan = plan_rewrite(ctx, static_cast<int>(i));
+      if (plan.blocker.empty()) ctx.fix(f, "translated", {{"name", v.name}, {"new-name", translated_name(v.name)}}, plan.edits);
+      else f.withheld.push_back("translated world: " + plan.blocker);
     }
   }
 
@@ -49,7 +56,56 @@ class TranslatedWorld : public Check {
     return {};
   }
 
+  // FDFVector3 X = DFMultiply(P, LocalToWorld) -> float3 TranslatedX =
+  // DFTransformLocalToTranslatedWorld(P, LocalToWorld, PrimaryView.PreViewTranslation); each use
+  // (a camera difference or the move to translated world) becomes plain float.
+  RewritePlan plan_rewrite(const CheckContext& ctx, int var) const {
+    const SyntaxTree& t = ctx.tree;
+    const Variable& v = ctx.world.variables()[var];
+    if (v.type != "FDFVector3") return withheld(fmt::format("`{}` is tile/offset or not a position vector: port it to `FDFVector3` first", v.type));
+    int init = v.init;
+    auto args = t.is(init, "call_expression") && call_name(t, init) == "DFMultiply" ? call_arguments(t, init) : std::vector<int>{};
+    if (args.size() != 2 || ctx.world.kind(args[1]) != Kind::world_matrix)
+      return withheld(fmt::format("its value (`{}`) is not a local position times a local-to-world matrix", init >= 0 ? t.text(init) : ""));
+    std::string name = translated_name(v.name);
+    for (const Variable& other : ctx.world.variables())
+      if (other.name == name && (other.function == v.function || other.function < 0)) return withheld(fmt::format("the name `{}` is already taken", name));
+    RewritePlan plan;
+    plan.edits.push_back({t.span(t.child_by_field(v.declaration, "type")), "float3"});
+    plan.edits.push_back({t.span(v.decl), name});
+    plan.edits.push_back({t.span(init), fmt::format("DFTransformLocalToTranslatedWorld({}, {}, PrimaryView.PreViewTranslation)",
+                                                    t.text(args[0]), t.text(args[1]))});
+    for (int use : ctx.world.uses(var)) {
+      int call = t.at(t.at(use).parent).parent;
+      auto call_args = call_arguments(t, call);
+      int other = call_args.size() == 2 ? call_args[call_args[0] == use ? 1 : 0] : -1;
+      std::string consumer(call_name(t, call));
+      std::string text;
+      if (ctx.world.kind(other) == Kind::camera_offset && matches_any(to_translated_, consumer)) {
+        text = name;
+      } else if (std::string twin = translated_twin(ctx, other); !twin.empty() && matches_any(camera_differences_, consumer)) {
+        text = call_args[0] == use ? name + " - " + twin : twin + " - " + name;
+        if (!bare_context(t, call)) text = "(" + text + ")";
+      } else {
+        return withheld(fmt::format("`{}` (line {}) keeps the result in DoubleFloat, so the value must stay one", t.text(call), line_of(t, call)));
+      }
+      plan.edits.push_back({t.span(call), text});
+    }
+    return plan;
+  }
+
+  // Where `a - b` may stand without parentheses: a whole argument, initialiser or statement.
+  static bool bare_context(const SyntaxTree& t, int node) {
+    int parent = t.at(node).parent;
+    for (const char* type : {"argument_list", "init_declarator", "return_statement", "expression_statement", "parenthesized_expression"})
+      if (t.is(parent, type)) return true;
+    return t.is(parent, "assignment_expression") && t.child_by_field(parent, "right") == node;
+  }
+
   std::vector<std::string> df_types_, consumers_;
+  // Consumers whose float result is the translated position, or its difference with the camera.
+  std::vector<std::string> to_translated_{"DFFastToTranslatedWorld", "DFToTranslatedWorld", "DFAddDemote", "DFFastAddDemote"};
+  std::vector<std::string> camera_differences_{"DFSubtractDemote", "DFFastSubtractDemote", "DFFastLocalSubtractDemote"};
 };
 
 }  // namespace
