@@ -139,5 +139,24 @@ TEST(FixCorpusGolden, FixedOutputMatchesTheGoldensAndCompiles) {
   }
 }
 
+// The fix keeps a file's form: the same corpus file saved with a BOM and CRLF line endings fixes
+// to the same text in that form, byte for byte.
+TEST(FixCorpusGolden, BomAndLineEndingsAreKeptOnEveryCorpusFile) {
+  auto crlf = [](const std::string& text) {
+    std::string out;
+    for (char c : text) out += c == '\n' ? std::string("\r\n") : std::string(1, c);
+    return out;
+  };
+  const std::string bom = "\xEF\xBB\xBF";
+  for (const std::string& path : test::corpus_shaders()) {
+    std::string original = test::read(test::source_dir() + "/" + path);
+    AnalyzeOptions options;
+    options.lang = *lang_from_path(path);
+    std::string lf = fix_source(Source(path, original), options, true).text;
+    std::string windows = fix_source(Source(path, bom + crlf(original)), options, true).text;
+    EXPECT_EQ(windows, bom + crlf(lf)) << path;
+  }
+}
+
 }  // namespace
 }  // namespace lwc

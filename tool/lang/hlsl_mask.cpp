@@ -240,17 +240,21 @@ void mask_bom(std::string& text) {
 
 }  // namespace
 
-MaskResult mask_hlsl(std::string_view text) {
+// A BOM is blanked before lexing: a directive on the first line must still start its line.
+MaskResult mask_hlsl(std::string_view original) {
+  std::string text(original);
+  mask_bom(text);
   Lexer lexer{text, {}, std::nullopt};
   lexer.run();
-  MaskResult result{Masker(text, std::move(lexer.tokens)).run(), lexer.unterminated_comment};
-  mask_bom(result.text);
-  return result;
+  return {Masker(text, std::move(lexer.tokens)).run(), lexer.unterminated_comment};
 }
 
 // Statements the GLSL grammar (0.2.0) does not parse and lwcport does not need:
 // `precision highp float;` and interface defaults such as `layout(local_size_x = 64) in;`.
-MaskResult mask_glsl(std::string_view text) {
+MaskResult mask_glsl(std::string_view original) {
+  std::string owned(original);
+  mask_bom(owned);
+  std::string_view text = owned;
   Lexer lexer{text, {}, std::nullopt};
   lexer.run();
   MaskResult result{std::string(text), lexer.unterminated_comment};
@@ -276,7 +280,6 @@ MaskResult mask_glsl(std::string_view text) {
       }
     }
   }
-  mask_bom(result.text);
   return result;
 }
 
