@@ -172,6 +172,11 @@ void plan_fixes(std::vector<Finding>& findings, const SceneNumbers& scene, Strat
   for (Finding& f : findings) {
     const RuleInfo* rule = find_rule(f.rule);
     if (!rule || !rule->scene_dependent) {
+      // A forced strategy holds for every rule: translated-world's rewrite must not undo --strategy df.
+      if (strategy != Strategy::automatic) {
+        std::string forced = strategy == Strategy::translated ? "translated" : "df";
+        std::erase_if(f.fixes, [&](const Fix& fix) { return !fix.strategy.empty() && fix.strategy != forced; });
+      }
       if (f.fixes.size() > 1) f.fixes.resize(1);
       continue;
     }
