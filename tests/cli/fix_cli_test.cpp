@@ -152,6 +152,19 @@ TEST(FixCli, TheHighLowRewriteWritesTheLibraryBesideTheFixedFile) {
   EXPECT_EQ(test::read(dir + "/lwc_doublefloat.glsl"), "// mine\n");
 }
 
+TEST(FixCli, TheHostNotesReachJsonAndSarif) {
+  std::string dir = test::scratch("fix-notes");
+  test::write(dir + "/a.vert", kPlainVertex);
+  std::string lint = "cd " + dir + " && " + test::binary() + " lint a.vert --select lwc-float-world-position --fail-on none --format ";
+  auto json = nlohmann::json::parse(test::run(lint + "json").out);
+  const auto& notes = json["findings"][0]["fix"]["notes"];
+  ASSERT_TRUE(notes.is_array() && notes.size() >= 2) << json.dump(2);
+  EXPECT_NE(notes[0].get<std::string>().find("new uniforms: `mat3 modelRotationScale`"), std::string::npos) << notes[0];
+  EXPECT_EQ(json["findings"][0]["fix"]["library"], nlohmann::json::parse(R"(["FDFVector3", "DFFastLocalSubtractDemote"])"));
+  auto sarif = nlohmann::json::parse(test::run(lint + "sarif").out);
+  EXPECT_EQ(sarif["runs"][0]["results"][0]["properties"]["fixNotes"], notes);
+}
+
 TEST(FixCli, DiffShowsTheLibraryAsANewFile) {
   std::string dir = test::scratch("fix-library-diff");
   test::write(dir + "/a.vert", kPlainVertex);

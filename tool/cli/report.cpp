@@ -170,6 +170,8 @@ nlohmann::json sarif_result(const std::string& path, const ReportedFinding& f) {
         {"artifactChanges", nlohmann::json::array({change})}};
     result["fixes"] = nlohmann::json::array({fix});
     result["properties"] = {{"fixApplicability", applicability_name(f.fix->applicability)}};
+    // What must change outside the shader (new uniforms, host code): SARIF's fix has no place for it.
+    if (!f.fix->notes.empty()) result["properties"]["fixNotes"] = f.fix->notes;
   }
   if (!f.decision.empty()) result["properties"]["sceneDecision"] = f.decision;
   if (f.not_needed) result["properties"]["notNeeded"] = true;
