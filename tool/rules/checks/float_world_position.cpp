@@ -16,14 +16,6 @@ bool unreal_code(const SyntaxTree& t) {
   return p.ends_with(".usf") || p.ends_with(".ush");
 }
 
-// The float4(use, 1) call that wraps a use, or -1.
-int homogeneous_wrapper(const SyntaxTree& t, int use) {
-  int list = t.at(use).parent;
-  int call = t.is(list, "argument_list") ? t.at(list).parent : -1;
-  if (call < 0 || call_name(t, call) != "float4" || call_arguments(t, call).size() != 2 || call_arguments(t, call)[0] != use) return -1;
-  return position_of_homogeneous(t, call).empty() ? -1 : call;
-}
-
 class FloatWorldPosition : public Check {
  public:
   explicit FloatWorldPosition(const RuleInfo& rule)
@@ -113,9 +105,7 @@ class FloatWorldPosition : public Check {
     const Variable& v = ctx.world.variables()[var];
     RewritePlan plan;
     std::string new_name = translated_name(v.name);
-    for (const Variable& other : ctx.world.variables())
-      if (other.name == new_name && (other.function == v.function || other.function < 0))
-        return withheld(fmt::format("the name `{}` is already taken", new_name));
+    if (name_taken(ctx.world, new_name, v.function)) return withheld(fmt::format("the name `{}` is already taken", new_name));
     // The initialiser: a transform to absolute world whose matrix has a translated form.
     int mul = mul_call(t, v.init);
     if (mul < 0) return withheld(fmt::format("its value (`{}`) has no translated form lwcport knows", t.text(v.init)));

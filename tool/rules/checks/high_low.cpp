@@ -146,10 +146,7 @@ class Follower {
   // from-world uniform read only here: it becomes its translated twin, a new uniform.
   bool from_world_transform(int node, int use, const std::string& new_name) {
     // A position used as vec4(X, 1.0) / float4(X, 1): the transform applies to the wrapper.
-    int list = t_.at(node).parent;
-    if (t_.is(list, "argument_list") && call_arguments(t_, t_.at(list).parent).front() == node &&
-        !position_of_homogeneous(t_, t_.at(list).parent).empty())
-      node = t_.at(list).parent;
+    if (int wrapper = homogeneous_wrapper(t_, node); wrapper >= 0) node = wrapper;
     int parent = t_.at(node).parent, matrix = -1;
     if (glsl(t_) && t_.is(parent, "binary_expression") && t_.child_by_field(parent, "right") == node &&
         t_.text(t_.child_by_field(parent, "operator")) == "*") {
@@ -165,9 +162,7 @@ class Follower {
     if (var < 0) return false;
     const Variable& v = ctx_.world.variables()[var];
     std::string twin = translated_name(v.name);
-    if (ctx_.world.uses(var).size() != 1)
-      return block(fmt::format("`{}` is read elsewhere too, so it cannot become `{}`", v.name, twin));
-    if (variable_named(ctx_.world, twin) >= 0) return block(fmt::format("the name `{}` is already taken", twin));
+    if (!can_rename(var, twin, fmt::format("`{}` is read", v.name))) return true;
     plan_.edits.push_back({t_.span(use), new_name});
     plan_.edits.push_back({t_.span(matrix), twin});
     plan_.edits.push_back({t_.span(v.decl), twin});
@@ -190,9 +185,7 @@ class Follower {
     auto words = leading_words(t_, out.declaration);
     if (out.role != Variable::Role::global || std::find(words.begin(), words.end(), "out") == words.end()) return false;
     std::string renamed = translated_name(out.name);
-    if (ctx_.world.uses(var).size() != 1)
-      return block(fmt::format("the output `{}` is written elsewhere too, so it cannot become `{}`", out.name, renamed));
-    if (variable_named(ctx_.world, renamed) >= 0) return block(fmt::format("the name `{}` is already taken", renamed));
+    if (!can_rename(var, renamed, fmt::format("the output `{}` is written", out.name))) return true;
     plan_.edits.push_back({t_.span(use), new_name});
     plan_.edits.push_back({t_.span(left), renamed});
     plan_.edits.push_back({t_.span(out.decl), renamed});
@@ -204,9 +197,14 @@ class Follower {
     return true;
   }
 
-  bool block(std::string why) {
-    plan_.blocker = std::move(why);
-    return true;
+  // A uniform or output used only here may take the new name; otherwise the plan is blocked
+  // (`what` says how it is used elsewhere).
+  bool can_rename(int var, const std::string& renamed, const std::string& what) {
+    if (ctx_.world.uses(var).size() != 1)
+      plan_.blocker = fmt::format("{} elsewhere too, so it cannot become `{}`", what, renamed);
+    else if (variable_named(ctx_.world, renamed) >= 0)
+      plan_.blocker = fmt::format("the name `{}` is already taken", renamed);
+    return plan_.blocker.empty();
   }
 
   const CheckContext& ctx_;
@@ -265,20 +263,24 @@ std::string stem(const std::string& name) {
   return name;
 }
 
+// The file's top-level `#version` directive, or -1.
+int version_directive(const SyntaxTree& t) {
+  for (int c : t.named_children(0))
+    if (t.is(c, "preproc_call") && t.text(c).starts_with("#version")) return c;
+  return -1;
+}
+
 // "300 es" when the file's #version has no `precise` (before 4.00, or ES 3.20), else "".
 std::string glsl_without_precise(const SyntaxTree& t) {
   if (!glsl(t)) return {};
-  for (int c : t.named_children(0)) {
-    std::string_view text = t.text(c);
-    if (!t.is(c, "preproc_call") || !text.starts_with("#version")) continue;
-    std::string version(text.substr(8));
-    version.erase(0, version.find_first_not_of(" \t"));
-    version.erase(version.find_last_not_of(" \t\r\n") + 1);
-    int number = std::atoi(version.c_str());
-    bool es = version.find("es") != std::string::npos;
-    return number < (es ? 320 : 400) ? version : std::string();
-  }
-  return "110";  // no #version: GLSL 1.10
+  int directive = version_directive(t);
+  if (directive < 0) return "110";  // no #version: GLSL 1.10
+  std::string version(t.text(directive).substr(8));
+  version.erase(0, version.find_first_not_of(" \t"));
+  version.erase(version.find_last_not_of(" \t\r\n") + 1);
+  int number = std::atoi(version.c_str());
+  bool es = version.find("es") != std::string::npos;
+  return number < (es ? 320 : 400) ? version : std::string();
 }
 
 }  // namespace
@@ -385,10 +387,8 @@ std::vector<Edit> library_include_edits(const SyntaxTree& t) {
   // Before the first top-level node that is not a comment or a plain directive (an #ifdef may
   // hold the whole file: the include goes before it).
   uint32_t at = static_cast<uint32_t>(text.size());
-  int version = -1;
   for (int c : t.named_children(0)) {
     std::string_view type = t.at(c).type;
-    if (type == "preproc_call" && t.text(c).starts_with("#version")) version = c;
     if (type == "comment" || type == "preproc_call" || type == "preproc_include" || type == "preproc_def" ||
         type == "preproc_function_def")
       continue;
@@ -399,7 +399,7 @@ std::vector<Edit> library_include_edits(const SyntaxTree& t) {
   if (!glsl(t) || text.find("GL_GOOGLE_include_directive") != std::string::npos) return {{{at, at}, include}};
   // GLSL: the extension goes right after #version, before any other token.
   uint32_t after_version = 0;
-  if (version >= 0) {
+  if (int version = version_directive(t); version >= 0) {
     int line = t.source->position(t.at(version).begin).line;
     after_version = line < t.source->line_count() ? t.source->offset({line + 1, 1}) : static_cast<uint32_t>(text.size());
   }

@@ -11,7 +11,10 @@ namespace {
 class TranslatedWorld : public Check {
  public:
   explicit TranslatedWorld(const RuleInfo& rule)
-      : df_types_(string_list(rule.data, "df-types")), consumers_(string_list(rule.data, "camera-relative-consumers")) {}
+      : df_types_(string_list(rule.data, "df-types")),
+        consumers_(string_list(rule.data, "camera-relative-consumers")),
+        to_translated_(string_list(rule.data, "to-translated")),
+        camera_differences_(string_list(rule.data, "camera-differences")) {}
 
   void run(const CheckContext& ctx) const override {
     const SyntaxTree& t = ctx.tree;
@@ -68,8 +71,7 @@ class TranslatedWorld : public Check {
     if (args.size() != 2 || ctx.world.kind(args[1]) != Kind::world_matrix)
       return withheld(fmt::format("its value (`{}`) is not a local position times a local-to-world matrix", init >= 0 ? t.text(init) : ""));
     std::string name = translated_name(v.name);
-    for (const Variable& other : ctx.world.variables())
-      if (other.name == name && (other.function == v.function || other.function < 0)) return withheld(fmt::format("the name `{}` is already taken", name));
+    if (name_taken(ctx.world, name, v.function)) return withheld(fmt::format("the name `{}` is already taken", name));
     RewritePlan plan;
     plan.edits.push_back({t.span(t.child_by_field(v.declaration, "type")), "float3"});
     plan.edits.push_back({t.span(v.decl), name});
@@ -104,8 +106,7 @@ class TranslatedWorld : public Check {
 
   std::vector<std::string> df_types_, consumers_;
   // Consumers whose float result is the translated position, or its difference with the camera.
-  std::vector<std::string> to_translated_{"DFFastToTranslatedWorld", "DFToTranslatedWorld", "DFAddDemote", "DFFastAddDemote"};
-  std::vector<std::string> camera_differences_{"DFSubtractDemote", "DFFastSubtractDemote", "DFFastLocalSubtractDemote"};
+  std::vector<std::string> to_translated_, camera_differences_;
 };
 
 }  // namespace

@@ -108,6 +108,19 @@ std::string position_of_homogeneous(const SyntaxTree& tree, int node) {
   return out + ")";
 }
 
+int homogeneous_wrapper(const SyntaxTree& tree, int use) {
+  int list = tree.at(use).parent;
+  int call = tree.is(list, "argument_list") ? tree.at(list).parent : -1;
+  if (call < 0 || call_arguments(tree, call).size() != 2 || call_arguments(tree, call)[0] != use) return -1;
+  return position_of_homogeneous(tree, call).empty() ? -1 : call;
+}
+
+bool name_taken(const WorldModel& world, const std::string& name, int function) {
+  for (const Variable& v : world.variables())
+    if (v.name == name && (v.function == function || v.function < 0)) return true;
+  return false;
+}
+
 int subtraction_partner(const SyntaxTree& tree, int use) {
   int parent = tree.at(use).parent;
   while (tree.is(parent, "parenthesized_expression")) use = parent, parent = tree.at(use).parent;

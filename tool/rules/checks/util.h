@@ -49,6 +49,11 @@ std::string translated_name(const std::string& name);
 int mul_call(const SyntaxTree& tree, int node);
 // The position of a `float4(P, 1)` / `vec4(P, 1.0)` / `float4(x, y, z, 1)` call as text, or "".
 std::string position_of_homogeneous(const SyntaxTree& tree, int node);
+// The `float4(use, 1)` / `vec4(use, 1.0)` call that wraps a use, or -1.
+int homogeneous_wrapper(const SyntaxTree& tree, int use);
+// True when a new variable called `name` in `function` (-1: file scope) would clash with one in
+// the same function or at file scope.
+bool name_taken(const WorldModel& world, const std::string& name, int function);
 // The other operand of `use - X` / `X - use` (looking through parentheses), or -1.
 int subtraction_partner(const SyntaxTree& tree, int use);
 // Why a use of a world position cannot be followed, for the withheld message.
