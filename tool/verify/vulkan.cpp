@@ -54,7 +54,6 @@ struct ComputeDevice::State {
 ComputeDevice::ComputeDevice(std::unique_ptr<State> state) : s_(std::move(state)) {}
 
 ComputeDevice::~ComputeDevice() {
-  if (!s_) return;
   if (s_->device) vkDestroyDevice(s_->device, nullptr);
   if (s_->instance) vkDestroyInstance(s_->instance, nullptr);
 }
@@ -73,8 +72,8 @@ std::unique_ptr<ComputeDevice> ComputeDevice::open(std::string& error) {
     error = fmt::format("no Vulkan instance (VkResult {}): {}", static_cast<int>(r), kInstallHint);
     return nullptr;
   }
-  ComputeDevice out(std::move(s));  // from here the destructor cleans up
-  State& st = *out.s_;
+  std::unique_ptr<ComputeDevice> out(new ComputeDevice(std::move(s)));  // from here the destructor cleans up
+  State& st = *out->s_;
   uint32_t count = 0;
   vkEnumeratePhysicalDevices(st.instance, &count, nullptr);
   std::vector<VkPhysicalDevice> devices(count);
@@ -120,7 +119,7 @@ std::unique_ptr<ComputeDevice> ComputeDevice::open(std::string& error) {
   }
   vkGetDeviceQueue(st.device, st.queue_family, 0, &st.queue);
   vkGetPhysicalDeviceMemoryProperties(st.physical, &st.memory);
-  return std::unique_ptr<ComputeDevice>(new ComputeDevice(std::move(out.s_)));
+  return out;
 }
 
 std::string ComputeDevice::run(const std::vector<uint32_t>& spirv, std::vector<std::vector<uint8_t>>& buffers, uint32_t groups,
