@@ -21,12 +21,16 @@
 #include "cli/files.h"
 #include "cli/includes.h"
 #include "cli/report.h"
+#include "cli/verify_report.h"
 #include "fix/apply.h"
 #include "fix/diff.h"
 #include "fix/scene.h"
 #include "rules/analyze.h"
 #include "rules/rule.h"
 #include "shaderlib/shaderlib.h"
+#include "verify/library_accuracy.h"
+#include "verify/probes.h"
+#include "verify/vulkan.h"
 
 namespace fs = std::filesystem;
 
@@ -39,6 +43,8 @@ constexpr const char* kUsage = R"(usage: lwcport <command> [options] [PATHS...]
 commands:
   lint [PATHS...]     report world-space hazards and their fixes (folders recurse; default: .)
   fix [PATHS...]      apply the safe fixes in place, then report what remains
+  verify --shaderlib  run every DoubleFloat operation on the Vulkan device (lavapipe) against a
+                      double-double reference and check the published error bounds
   parse [PATHS...]    parse only and count syntax errors (the benchmark's baseline)
   rules               list the rules
 
@@ -61,6 +67,10 @@ fix options:
   --diff                            print a unified diff of the fixes and write nothing (exit 1
                                     when there is something to fix, unless --fail-on none)
   --unsafe-fixes                    apply the unsafe fixes too
+
+verify options:
+  --format text|json                output format (default: text)
+  --output FILE                     write the report to FILE instead of standard output
   --version, --help
 )";
 
@@ -81,6 +91,7 @@ struct Options {
   std::optional<Scene> scene;
   Strategy strategy = Strategy::automatic;
   bool diff = false, unsafe_fixes = false;
+  bool shaderlib = false;
 };
 
 std::set<std::string> rule_list(const std::string& value, const char* flag) {
@@ -148,6 +159,7 @@ Options parse_options(const std::vector<std::string>& args) {
     } else if (a == "--explain") o.report.explain = true;
     else if (a == "--diff") o.diff = true;
     else if (a == "--unsafe-fixes") o.unsafe_fixes = true;
+    else if (a == "--shaderlib") o.shaderlib = true;
     else if (a.size() > 1 && a[0] == '-') throw UsageError("unknown option " + a);
     else if (o.command.empty()) o.command = a;
     else o.paths.push_back(a);
@@ -454,6 +466,31 @@ int parse_only(const Options& o, std::ostream& out) {
   return with_errors ? 1 : 0;
 }
 
+int verify(const Options& o, std::ostream& out, std::ostream& err) {
+  if (o.report.format != Format::text && o.report.format != Format::json)
+    throw UsageError("verify: --format must be text or json");
+  if (!o.shaderlib) throw UsageError("verify: give --shaderlib (verifying PATHS is not built yet)");
+  std::string error;
+  std::unique_ptr<ComputeDevice> device = ComputeDevice::open(error);
+  if (!device) {
+    err << "lwcport: error: " << error << '\n';
+    return 2;
+  }
+  DriverProbes probes;
+  if (std::string why = probe_driver(*device, probes); !why.empty()) {
+    err << "lwcport: error: driver probe on " << device->name() << ": " << why << '\n';
+    return 2;
+  }
+  LibraryCheckOptions options;
+  LibraryAccuracy accuracy = check_library(*device, probes, options);
+  ReportTarget target;
+  ReportOptions ro;
+  if (!open_target(o, out, err, target, ro)) return 2;
+  if (o.report.format == Format::json) print_library_json(*target.stream, device->name(), probes, accuracy, options.inputs);
+  else print_library_text(*target.stream, device->name(), probes, accuracy, options.inputs);
+  return accuracy.failed() ? 1 : 0;
+}
+
 void list_rules(std::ostream& out) {
   for (const RuleInfo& r : all_rules()) {
     std::string langs;
@@ -481,6 +518,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     if (o.command == "lint") return lint(o, out, err);
     if (o.command == "fix") return fix(o, out, err);
     if (o.command == "parse") return parse_only(o, out);
+    if (o.command == "verify") return verify(o, out, err);
     if (o.command == "rules") {
       list_rules(out);
       return 0;

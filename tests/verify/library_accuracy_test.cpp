@@ -1,0 +1,109 @@
+// lwcport's DoubleFloat library on lavapipe against a double-double reference: the good library
+// meets every published bound, and the known-bad variants are caught (LWC-BRIEF §4-§5).
+#include <gtest/gtest.h>
+
+#include <regex>
+
+#include "shaderlib/shaderlib.h"
+#include "verify/library_accuracy.h"
+#include "verify/probes.h"
+#include "verify/vulkan.h"
+
+namespace lwc {
+namespace {
+
+class LibraryOnLavapipe : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    std::string error;
+    device_ = ComputeDevice::open(error).release();
+    ASSERT_NE(device_, nullptr) << error;
+    ASSERT_EQ(probe_driver(*device_, probes_), "");
+  }
+  static void TearDownTestSuite() { delete device_; }
+
+  // One operation checked in one language.
+  static OpMeasurement check_one(LibraryOp op, Lang lang = Lang::glsl) {
+    LibraryCheckOptions options;
+    options.langs = {lang};
+    options.ops = {std::move(op)};
+    LibraryAccuracy result = check_library(*device_, probes_, options);
+    return result.ops.at(0).by_lang.at(lang);
+  }
+  static const LibraryOp& library_op(const std::string& call, InputFamily inputs) {
+    for (const LibraryOp& op : library_ops())
+      if (op.call == call && op.inputs == inputs) return op;
+    throw std::runtime_error("no library op " + call);
+  }
+
+  static ComputeDevice* device_;
+  static DriverProbes probes_;
+};
+ComputeDevice* LibraryOnLavapipe::device_ = nullptr;
+DriverProbes LibraryOnLavapipe::probes_;
+
+TEST_F(LibraryOnLavapipe, ProbesFindReassociationUnfusedFmaAndKeptDenormals) {
+  // lavapipe (llvmpipe, LLVM 15) as measured in LWC-BRIEF §5.
+  EXPECT_EQ(probes_.reassociated, DriverProbes::kInputs);
+  EXPECT_EQ(probes_.fma_fused, 0);
+  EXPECT_TRUE(probes_.keeps_denormals());
+}
+
+TEST_F(LibraryOnLavapipe, EveryOperationMeetsItsBoundInBothLanguages) {
+  LibraryCheckOptions options;
+  LibraryAccuracy result = check_library(*device_, probes_, options);
+  EXPECT_FALSE(result.failed());
+  for (Lang lang : {Lang::glsl, Lang::hlsl}) {
+    EXPECT_TRUE(result.contraction_losses.at(lang).empty());
+    EXPECT_EQ(result.error_free_functions_checked.at(lang), 5);
+  }
+  for (const OpReport& r : result.ops)
+    for (const auto& [lang, m] : r.by_lang) {
+      EXPECT_GE(m.inputs, 100000u);
+      if (r.op->bound.kind != Bound::none && !r.op->needs_fused_fma)
+        EXPECT_EQ(m.status, "pass") << r.op->call << " " << lang_name(lang) << ": " << m.worst;
+      if (r.op->bound.kind == Bound::exact && !r.op->needs_fused_fma) EXPECT_EQ(m.max_relative, 0.0) << r.op->call;
+    }
+}
+
+TEST_F(LibraryOnLavapipe, FmaProductIsReportedNotFailedWhereFmaIsNotFused) {
+  OpMeasurement m = check_one(library_op("DFTwoProductFMA(a, b)", InputFamily::product));
+  EXPECT_NE(m.status.find("reported: needs a fused fma"), std::string::npos) << m.status;
+  EXPECT_GT(m.max_relative, 0.5 * 0x1p-24);  // the error term is lost: float32 accuracy only
+}
+
+TEST_F(LibraryOnLavapipe, LibraryWithoutPreciseIsCaughtByTheSpirvAndTheNumbers) {
+  LibraryCheckOptions options;
+  options.langs = {Lang::glsl, Lang::hlsl};
+  options.library[Lang::glsl] = std::regex_replace(full_library_text(Lang::glsl), std::regex("LWC_PRECISE "), "");
+  options.library[Lang::hlsl] = std::regex_replace(full_library_text(Lang::hlsl), std::regex("precise "), "");
+  options.ops = {library_op("DFTwoSum(a, b)", InputFamily::sum), library_op("DFAdd(A, B)", InputFamily::sum)};
+  LibraryAccuracy result = check_library(*device_, probes_, options);
+  EXPECT_TRUE(result.failed());
+  for (Lang lang : {Lang::glsl, Lang::hlsl}) {
+    ASSERT_FALSE(result.contraction_losses.at(lang).empty());
+    EXPECT_NE(result.contraction_losses.at(lang).front().find("0 of"), std::string::npos);
+    for (const OpReport& r : result.ops) EXPECT_EQ(r.by_lang.at(lang).status, "fail") << r.op->call;
+  }
+}
+
+TEST_F(LibraryOnLavapipe, FastTwoSumWithTheOperandsSwappedIsCaught) {
+  LibraryOp swapped = library_op("DFFastTwoSum(a, b)", InputFamily::ordered);
+  swapped.call = "DFFastTwoSum(b, a)";  // |b| <= |a|: the precondition is broken
+  OpMeasurement m = check_one(swapped);
+  EXPECT_EQ(m.status, "fail");
+  EXPECT_NE(m.worst.find("case '"), std::string::npos) << m.worst;
+  EXPECT_NE(m.worst.find("expected"), std::string::npos) << m.worst;
+}
+
+TEST_F(LibraryOnLavapipe, SloppyAddWhereTheAccurateBoundIsNeededIsCaughtOnTheCounterexample) {
+  LibraryOp sloppy = library_op("DFFastAdd(A, B)", InputFamily::opposite);
+  sloppy.bound = library_op("DFAdd(A, B)", InputFamily::sum).bound;
+  OpMeasurement m = check_one(sloppy, Lang::hlsl);
+  EXPECT_EQ(m.status, "fail");
+  EXPECT_NE(m.worst.find("sloppy-add counterexample"), std::string::npos) << m.worst;
+  EXPECT_GT(m.max_relative, 0.05);  // off by a unit in 2k + 1, k <= 7
+}
+
+}  // namespace
+}  // namespace lwc

@@ -1,0 +1,133 @@
+#include "cli/verify_report.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+
+namespace lwc {
+
+namespace {
+
+constexpr double kU = 0x1p-24;
+
+const char* lang_label(Lang lang) { return lang == Lang::glsl ? "GLSL" : "HLSL"; }
+
+const char* family_name(InputFamily f) {
+  switch (f) {
+    case InputFamily::sum: return "any";
+    case InputFamily::ordered: return "|a| >= |b|";
+    case InputFamily::same_sign: return "same signs";
+    case InputFamily::opposite: return "opposite signs";
+    case InputFamily::close: return "close, same sign";
+    case InputFamily::product: return "2^-40..2^40";
+    case InputFamily::quotient: return "2^-40..2^40";
+    case InputFamily::positive: return "positive";
+  }
+  return "";
+}
+
+std::string short_status(const std::string& status) {
+  if (status.rfind("reported", 0) == 0) return "reported";
+  if (status.rfind("error", 0) == 0) return "error";
+  return status;
+}
+
+}  // namespace
+
+std::string format_relative_error(double relative) {
+  if (relative == 0) return "0";
+  if (!std::isfinite(relative)) return "inf";
+  if (relative >= 0.01 * kU) return fmt::format("{:.3g}u", relative / kU);
+  return fmt::format("{:.3g}u^2", relative / (kU * kU));
+}
+
+void print_library_text(std::ostream& out, const std::string& device, const DriverProbes& probes,
+                        const LibraryAccuracy& accuracy, size_t inputs) {
+  out << fmt::format("DoubleFloat library on {}\n\nDriver probes:\n", device);
+  for (const std::string& line : describe_probes(probes)) out << "  " << line << '\n';
+  out << "\nSPIR-V: ";
+  bool first = true;
+  for (const auto& [lang, losses] : accuracy.contraction_losses) {
+    out << (first ? "" : "; ")
+        << fmt::format("{} error-free function(s) in {}, {}", accuracy.error_free_functions_checked.at(lang), lang_label(lang),
+                       losses.empty() ? "every float operation carries NoContraction" : fmt::format("{} lost NoContraction", losses.size()));
+    first = false;
+  }
+  out << '\n';
+  for (const auto& [lang, losses] : accuracy.contraction_losses)
+    for (const std::string& loss : losses) out << fmt::format("  {}: {}\n", lang_label(lang), loss);
+
+  out << fmt::format("\n{} inputs per operation (named adversarial cases first, then random); relative error against a "
+                     "double-double reference, u = 2^-24\n\n", inputs);
+  std::vector<Lang> langs;
+  if (!accuracy.ops.empty())
+    for (const auto& [lang, m] : accuracy.ops.front().by_lang) langs.push_back(lang);
+  std::string header = fmt::format("{:<33} {:<17}", "operation", "inputs");
+  for (Lang lang : langs) header += fmt::format(" {:>9} {:>9}", fmt::format("{} max", lang_label(lang)), "median");
+  out << header << fmt::format("  {:<40} {}\n", "published bound", "result");
+  std::vector<std::string> details;
+  for (const OpReport& r : accuracy.ops) {
+    std::string row = fmt::format("{:<33} {:<17}", r.op->call, family_name(r.op->inputs));
+    std::string result;
+    for (Lang lang : langs) {
+      const OpMeasurement& m = r.by_lang.at(lang);
+      row += fmt::format(" {:>9} {:>9}", format_relative_error(m.max_relative), format_relative_error(m.median_relative));
+      std::string s = short_status(m.status);
+      if (result.empty()) result = s;
+      else if (result != s) result += "/" + s;
+      if (m.status != "pass") {
+        std::string why = m.status;
+        if (m.non_canonical) why += fmt::format(" ({} results not canonical)", m.non_canonical);
+        details.push_back(fmt::format("{} [{}]: {}\n    worst: {}", r.op->call, lang_label(lang), why, m.worst));
+      }
+    }
+    out << row << fmt::format("  {:<40} {}\n", r.op->bound.text, result);
+  }
+  if (!details.empty()) {
+    out << '\n';
+    for (const std::string& d : details) out << d << '\n';
+  }
+  out << fmt::format("\n{}: pipelines {:.2f} s, dispatches {:.2f} s.\n",
+                     accuracy.failed() ? "FAILED" : "All bounds hold", accuracy.pipeline_seconds, accuracy.dispatch_seconds);
+}
+
+void print_library_json(std::ostream& out, const std::string& device, const DriverProbes& probes,
+                        const LibraryAccuracy& accuracy, size_t inputs) {
+  using nlohmann::json;
+  json j;
+  j["device"] = device;
+  j["probes"] = {{"inputs", DriverProbes::kInputs},
+                 {"reassociates", probes.reassociates()},
+                 {"reassociatedInputs", probes.reassociated},
+                 {"fusesFma", probes.fuses_fma()},
+                 {"fmaFusedInputs", probes.fma_fused},
+                 {"keepsDenormals", probes.keeps_denormals()},
+                 {"denormalsKeptInputs", probes.denormals_kept},
+                 {"summary", describe_probes(probes)}};
+  json contraction = json::object();
+  for (const auto& [lang, losses] : accuracy.contraction_losses)
+    contraction[std::string(lang_name(lang))] = {{"errorFreeFunctions", accuracy.error_free_functions_checked.at(lang)}, {"losses", losses}};
+  j["noContraction"] = contraction;
+  j["inputsPerOperation"] = inputs;
+  json ops = json::array();
+  for (const OpReport& r : accuracy.ops) {
+    json results = json::object();
+    for (const auto& [lang, m] : r.by_lang)
+      results[std::string(lang_name(lang))] = {{"status", m.status},
+                                  {"maxRelativeError", m.max_relative},
+                                  {"medianRelativeError", m.median_relative},
+                                  {"maxErrorOverBound", std::isfinite(m.max_bound_ratio) ? json(m.max_bound_ratio) : json(nullptr)},
+                                  {"nonCanonicalResults", m.non_canonical},
+                                  {"inputs", m.inputs},
+                                  {"worst", m.worst}};
+    ops.push_back({{"operation", r.op->call}, {"inputs", family_name(r.op->inputs)}, {"bound", r.op->bound.text},
+                   {"needsFusedFma", r.op->needs_fused_fma}, {"results", results}});
+  }
+  j["operations"] = ops;
+  j["timing"] = {{"pipelineSeconds", accuracy.pipeline_seconds}, {"dispatchSeconds", accuracy.dispatch_seconds}};
+  j["failed"] = accuracy.failed();
+  out << j.dump(2) << '\n';
+}
+
+}  // namespace lwc

@@ -1,0 +1,19 @@
+#pragma once
+// How `lwcport verify` prints what it measured: a text table for people, JSON for tools.
+#include <ostream>
+#include <string>
+
+#include "verify/library_accuracy.h"
+#include "verify/probes.h"
+
+namespace lwc {
+
+// "0", "1.02u^2", "0.98u": a relative error in the unit that reads best.
+std::string format_relative_error(double relative);
+
+void print_library_text(std::ostream& out, const std::string& device, const DriverProbes& probes,
+                        const LibraryAccuracy& accuracy, size_t inputs);
+void print_library_json(std::ostream& out, const std::string& device, const DriverProbes& probes,
+                        const LibraryAccuracy& accuracy, size_t inputs);
+
+}  // namespace lwc

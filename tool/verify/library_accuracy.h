@@ -1,0 +1,89 @@
+#pragma once
+// `lwcport verify --shaderlib`: every DoubleFloat operation of lwcport's library run on the
+// device over random and adversarial inputs, against a double-double CPU reference, with the
+// measured error set beside the published bound (LWC-BRIEF §4).
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lang/syntax.h"
+#include "verify/double_double.h"
+#include "verify/probes.h"
+
+namespace lwc {
+
+class ComputeDevice;
+
+// The inputs an operation is checked on: the shape of its operands and the relation between them.
+enum class InputFamily {
+  sum,          // any magnitudes and signs, half of them close enough to cancel
+  ordered,      // |a| >= |b| (Fast2Sum's precondition)
+  same_sign,    // both operands of one sign (SloppyDWPlusDW's precondition)
+  opposite,     // opposite signs, close magnitudes (where SloppyDWPlusDW has no bound)
+  close,        // same sign, within a factor of 2 (a camera-relative difference)
+  product,      // magnitudes 2^-40..2^40: no overflow in Dekker's split, no underflow in the error
+  quotient,     // as product, divisor nonzero
+  positive,     // one positive operand (square roots)
+};
+
+// How the error is judged. u = 2^-24.
+struct Bound {
+  enum Kind { exact, relative, rounded, none } kind = none;
+  double u2 = 0;             // relative: |error| <= u2 * u^2 * |exact|; rounded: the u^2 term below
+  enum Scale { sum, product, quotient } scale = sum;
+  // rounded: |error| <= u * |exact| + u2 * u^2 * scale, where scale is |A| + |B|, |A * B| or |A / B|:
+  // one rounding of a float result plus the roundings of the low parts.
+  std::string text;          // as published: "3u^2 + 13u^3 (AccurateDWPlusDW)"
+};
+
+struct LibraryOp {
+  std::string call;          // in the shader: A, B are pairs, a, b floats (A.High, B.High)
+  bool pair_operands[2] = {false, false};
+  int operands = 2;
+  bool pair_result = true;
+  InputFamily inputs = InputFamily::sum;
+  Bound bound;
+  bool needs_fused_fma = false;
+  dd::Value (*reference)(dd::Value, dd::Value) = nullptr;
+};
+
+// The operations `verify --shaderlib` checks, in the order it prints them.
+const std::vector<LibraryOp>& library_ops();
+
+struct OpMeasurement {
+  std::string status;        // "pass", "fail", "reported: <why>", or "error: <why>"
+  double max_relative = 0;   // max |error| / |exact|
+  double median_relative = 0;
+  double max_bound_ratio = 0;  // max |error| / allowed error (> 1 fails)
+  int non_canonical = 0;     // pair results with High + Low != High in float32
+  size_t inputs = 0;
+  std::string worst;         // the worst input: its case, operands, expected and measured results
+};
+
+struct OpReport {
+  const LibraryOp* op = nullptr;
+  std::map<Lang, OpMeasurement> by_lang;
+};
+
+struct LibraryAccuracy {
+  std::vector<OpReport> ops;
+  std::map<Lang, std::vector<std::string>> contraction_losses;  // from the SPIR-V of every kernel
+  std::map<Lang, int> error_free_functions_checked;
+  double pipeline_seconds = 0, dispatch_seconds = 0;
+  bool failed() const;
+};
+
+struct LibraryCheckOptions {
+  std::vector<Lang> langs = {Lang::glsl, Lang::hlsl};
+  std::map<Lang, std::string> library;  // the library text per language; default: lwcport's own
+  std::vector<LibraryOp> ops;           // default: library_ops()
+  size_t inputs = 131072;               // per operation, adversarial cases first
+};
+
+LibraryAccuracy check_library(ComputeDevice& device, const DriverProbes& probes, const LibraryCheckOptions& options);
+
+// The named adversarial cases of a family (LWC-BRIEF §6), for docs and messages.
+std::vector<std::string> adversarial_case_names(InputFamily family);
+
+}  // namespace lwc
