@@ -109,6 +109,31 @@ CompileResult compile_shader(const CompileInput& input) {
   return result;
 }
 
+PreprocessResult preprocess_shader(const CompileInput& input) {
+  initialize_glslang();
+  PreprocessResult result;
+  EShLanguage stage = to_glslang(input.stage);
+  glslang::TShader shader(stage);
+  const char* text = input.text.c_str();
+  const char* name = input.name.c_str();
+  int length = static_cast<int>(input.text.size());
+  shader.setStringsWithLengthsAndNames(&text, &length, &name, 1);
+  if (!input.preamble.empty()) shader.setPreamble(input.preamble.c_str());
+  bool hlsl = input.lang == Lang::hlsl;
+  // GLSL as written (an ES 3.00 shader is not SPIR-V-legal, and need not be to be preprocessed).
+  shader.setEnvInput(hlsl ? glslang::EShSourceHlsl : glslang::EShSourceGlsl, stage,
+                     hlsl ? glslang::EShClientVulkan : glslang::EShClientNone, 100);
+  if (hlsl) {
+    shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_2);
+    shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_5);
+  }
+  auto messages = static_cast<EShMessages>(EShMsgDefault | (hlsl ? EShMsgReadHlsl : EShMsgDefault));
+  Includer includer(input);
+  result.ok = shader.preprocess(GetDefaultResources(), hlsl ? 500 : 110, ENoProfile, false, false, messages, &result.text, includer);
+  if (!result.ok) read_log(shader.getInfoLog(), result.messages);
+  return result;
+}
+
 std::string format_messages(const CompileResult& result) {
   std::string out;
   for (const CompileMessage& m : result.messages) out += m.source + ":" + std::to_string(m.line) + ": " + m.text + "\n";

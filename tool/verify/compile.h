@@ -42,6 +42,15 @@ std::string format_messages(const CompileResult& result);
 // Parses, checks and links one shader with glslang (the library, no process), optionally to SPIR-V.
 CompileResult compile_shader(const CompileInput& input);
 
+// Runs only glslang's preprocessor: the text with includes inlined, macros expanded and inactive
+// #if branches gone (what the compiler itself sees). `spirv` and `entry` are ignored.
+struct PreprocessResult {
+  bool ok = false;
+  std::string text;
+  std::vector<CompileMessage> messages;
+};
+PreprocessResult preprocess_shader(const CompileInput& input);
+
 // The stage a GLSL file's extension names (.vert, .frag, .comp), if any.
 std::optional<Stage> stage_from_extension(const std::string& path);
 

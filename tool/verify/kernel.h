@@ -1,8 +1,8 @@
 #pragma once
 // Compute kernels for verification: code under test plus an entry point that runs `body` once
 // per invocation. The body reads its inputs with IN(k) (float k of this invocation's record)
-// and writes results with OUT(k, value); records are `in_stride` floats in and `out_stride`
-// values out (float, or double for float64 reference kernels).
+// and writes results with OUT(k, value); records are `in_stride` values in and `out_stride`
+// values out, float (or double for float64 reference kernels).
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -20,7 +20,8 @@ struct KernelSpec {
   std::string body;
   int in_stride = 1;
   int out_stride = 1;
-  bool out_double = false;
+  bool float64 = false;       // double inputs and outputs (and GLSL 4.50)
+  std::string glsl_version = "450";  // "310 es" for code written for GLSL ES
 };
 
 // Invocations per workgroup: records are padded to a multiple of it.
