@@ -13,6 +13,7 @@
 #include <iostream>
 #include <map>
 #include <optional>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -28,6 +29,8 @@
 #include "rules/analyze.h"
 #include "rules/rule.h"
 #include "shaderlib/shaderlib.h"
+#include "verify/harness.h"
+#include "verify/kernel_builder.h"
 #include "verify/library_accuracy.h"
 #include "verify/probes.h"
 #include "verify/vulkan.h"
@@ -43,6 +46,8 @@ constexpr const char* kUsage = R"(usage: lwcport <command> [options] [PATHS...]
 commands:
   lint [PATHS...]     report world-space hazards and their fixes (folders recurse; default: .)
   fix [PATHS...]      apply the safe fixes in place, then report what remains
+  verify [PATHS...]   run every function with a finding, as written and as each rewrite, on the
+                      Vulkan device (lavapipe) against a float64 reference: error and run time
   verify --shaderlib  run every DoubleFloat operation on the Vulkan device (lavapipe) against a
                       double-double reference and check the published error bounds
   parse [PATHS...]    parse only and count syntax errors (the benchmark's baseline)
@@ -466,10 +471,75 @@ int parse_only(const Options& o, std::ostream& out) {
   return with_errors ? 1 : 0;
 }
 
+// The engine era an Unreal file was written for: 504 (DoubleFloat), 500 (tile/offset) or 427.
+int unreal_era(const std::string& text) {
+  static const std::regex df(R"(\bFDF\w+|\bDF[A-Z]\w*\s*\()"), lwc(R"(\bFLWC\w+|\bLWC[A-Z]\w*\s*\()");
+  if (std::regex_search(text, df)) return 504;
+  if (std::regex_search(text, lwc)) return 500;
+  return 427;
+}
+
+// `lwcport verify PATHS`: every function with a finding, in its original form and each rewrite.
+int verify_functions(const Options& o, ComputeDevice& device, const DriverProbes& probes, std::ostream& out, std::ostream& err) {
+  std::vector<InputFile> files = input_files(o);
+  IncludeSummaries includes;
+  std::vector<FunctionResult> results;
+  for (const InputFile& file : files) {
+    LoadedFile f = load(file, o, includes);
+    if (f.problem) {
+      for (const ReportedFinding& finding : f.problem->findings) err << fmt::format("{}: {}\n", file.display, finding.message);
+      continue;
+    }
+    const Source& source = *f.source;
+    std::optional<Lang> lang = language_for(source, f.options);
+    if (!lang) continue;
+    std::vector<uint32_t> offsets;
+    for (const Finding& finding : analyze(source, f.options)) offsets.push_back(finding.span.begin);
+    std::vector<std::string> names;
+    for (const std::string& name : enclosing_functions(*lang, source.text(), offsets))
+      if (!name.empty() && std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+    if (names.empty()) continue;
+    bool unreal = file.display.ends_with(".usf") || file.display.ends_with(".ush");
+    std::vector<FileVariant> variants = {{"original (float32)", source.text(), unreal_era(source.text())}};
+    for (auto [strategy, label] : {std::pair{Strategy::translated, "translated world"}, std::pair{Strategy::df, "DoubleFloat"}}) {
+      AnalyzeOptions a = f.options;
+      a.strategy = strategy;
+      std::string text = fix_source(source, a, true).text;
+      bool seen = false;
+      for (const FileVariant& v : variants) seen |= v.text == text;
+      if (!seen) variants.push_back({label, text, 504});
+    }
+    if (variants.size() == 2 && variants[1].label != "original (float32)") variants[1].label = "fixed";
+    HarnessSetup setup;
+    setup.lang = *lang;
+    setup.display = file.display;
+    setup.unreal = unreal;
+    setup.stage = *lang == Lang::glsl ? stage_from_extension(file.display).value_or(Stage::fragment) : Stage::fragment;
+    setup.scene = f.options.scene;
+    fs::path from = file.path;
+    std::shared_ptr<const ProjectConfig> config = file.config;
+    setup.include = [&includes, from, config, l = *lang](const std::string& name, const std::string&) -> std::optional<std::string> {
+      if (name == library_file_name(l)) return full_library_text(l);
+      if (auto p = includes.resolve(name, from, *config)) {
+        ReadResult r = read_file(*p, config->max_file_bytes);
+        if (r.error.empty()) return r.text;
+      }
+      if (name.rfind("/Engine/", 0) == 0) return std::string();  // what the Unreal stub declares
+      return std::nullopt;
+    };
+    for (const std::string& name : names) results.push_back(verify_function(device, probes, setup, name, variants));
+  }
+  if (o.report.format == Format::json) print_functions_json(out, device.name(), probes, results);
+  else print_functions_text(out, device.name(), probes, results);
+  for (const FunctionResult& r : results)
+    for (size_t i = 1; i < r.variants.size(); ++i)
+      if (r.variants[i].status.rfind("fail", 0) == 0 || r.variants[i].status.rfind("does not compile", 0) == 0) return 1;
+  return 0;
+}
+
 int verify(const Options& o, std::ostream& out, std::ostream& err) {
   if (o.report.format != Format::text && o.report.format != Format::json)
     throw UsageError("verify: --format must be text or json");
-  if (!o.shaderlib) throw UsageError("verify: give --shaderlib (verifying PATHS is not built yet)");
   std::string error;
   std::unique_ptr<ComputeDevice> device = ComputeDevice::open(error);
   if (!device) {
@@ -481,11 +551,12 @@ int verify(const Options& o, std::ostream& out, std::ostream& err) {
     err << "lwcport: error: driver probe on " << device->name() << ": " << why << '\n';
     return 2;
   }
-  LibraryCheckOptions options;
-  LibraryAccuracy accuracy = check_library(*device, probes, options);
   ReportTarget target;
   ReportOptions ro;
   if (!open_target(o, out, err, target, ro)) return 2;
+  if (!o.shaderlib) return verify_functions(o, *device, probes, *target.stream, err);
+  LibraryCheckOptions options;
+  LibraryAccuracy accuracy = check_library(*device, probes, options);
   if (o.report.format == Format::json) print_library_json(*target.stream, device->name(), probes, accuracy, options.inputs);
   else print_library_text(*target.stream, device->name(), probes, accuracy, options.inputs);
   return accuracy.failed() ? 1 : 0;

@@ -15,12 +15,13 @@ namespace lwc {
 // lwcport never needs them to lint, they only add context. Thread-safe; each file is read once.
 class IncludeSummaries {
  public:
+  // Where `#include "include"` in `from` leads: virtual roots, the including folder, include dirs.
+  std::optional<std::filesystem::path> resolve(const std::string& include, const std::filesystem::path& from,
+                                               const ProjectConfig& config) const;
   // What everything `text` (the file at `path`) includes declares, transitively.
   FileSummary for_file(const std::filesystem::path& path, std::string_view text, const ProjectConfig& config);
 
  private:
-  std::optional<std::filesystem::path> resolve(const std::string& include, const std::filesystem::path& from,
-                                               const ProjectConfig& config) const;
   void merge_includes(const std::filesystem::path& path, std::string_view text, const ProjectConfig& config,
                       FileSummary& into, std::set<std::filesystem::path>& seen, int depth);
   std::shared_ptr<const FileSummary> own_summary(const std::filesystem::path& file, const ProjectConfig& config,

@@ -130,4 +130,57 @@ void print_library_json(std::ostream& out, const std::string& device, const Driv
   out << j.dump(2) << '\n';
 }
 
+namespace {
+std::string cm(double x) { return std::isfinite(x) ? fmt::format("{:.3g} cm", x) : "inf"; }
+}  // namespace
+
+void print_functions_text(std::ostream& out, const std::string& device, const DriverProbes& probes,
+                          const std::vector<FunctionResult>& results) {
+  out << fmt::format("Verification on {}\n\nDriver probes:\n", device);
+  for (const std::string& line : describe_probes(probes)) out << "  " << line << '\n';
+  size_t variants = 0, passed = 0;
+  for (const FunctionResult& r : results) {
+    out << fmt::format("\n{}: {} (reference: {})\n", r.file, r.function, r.reference);
+    out << fmt::format("  {:<20} {:>11} {:>11} {:>10} {:>9} {:>7}  {:<6} {}\n", "variant", "max error", "median", "max ULPs",
+                       "ns/inv", "SPIR-V", "Pareto", "result");
+    std::vector<std::string> details;
+    for (const VariantResult& v : r.variants) {
+      ++variants;
+      passed += v.status == "pass";
+      std::string result = v.status.size() > 40 ? v.status.substr(0, v.status.find(':')) : v.status;
+      if (!v.measured) {
+        out << fmt::format("  {:<20} {:>11} {:>11} {:>10} {:>9} {:>7}  {:<6} {}\n", v.label, "-", "-", "-", "-", "-", "", result);
+        details.push_back(fmt::format("{}: {}", v.label, v.status));
+        continue;
+      }
+      out << fmt::format("  {:<20} {:>11} {:>11} {:>10.3g} {:>9.3g} {:>7}  {:<6} {}\n", v.label, cm(v.max_error), cm(v.median_error),
+                         v.max_ulps, v.ns_per_invocation, v.spirv_instructions, v.pareto ? "*" : "", result);
+      if (v.status != "pass" && !v.worst.empty()) details.push_back(fmt::format("{}: worst {}", v.label, v.worst));
+      for (const std::string& loss : v.contraction_losses) details.push_back(fmt::format("{}: {}", v.label, loss));
+    }
+    out << fmt::format("  scene pick: {}\n", r.pick);
+    for (const std::string& d : details) out << "    " << d << '\n';
+  }
+  out << fmt::format("\nVerified {} function(s), {} variant(s): {} within the scene's precision.\n", results.size(), variants, passed);
+}
+
+void print_functions_json(std::ostream& out, const std::string& device, const DriverProbes& probes,
+                          const std::vector<FunctionResult>& results) {
+  using nlohmann::json;
+  json fns = json::array();
+  auto number = [](double x) { return std::isfinite(x) ? json(x) : json(nullptr); };
+  for (const FunctionResult& r : results) {
+    json vs = json::array();
+    for (const VariantResult& v : r.variants)
+      vs.push_back({{"variant", v.label}, {"status", v.status}, {"measured", v.measured}, {"maxError", number(v.max_error)},
+                    {"medianError", number(v.median_error)}, {"maxUlps", number(v.max_ulps)},
+                    {"nsPerInvocation", v.ns_per_invocation}, {"pipelineSeconds", v.pipeline_seconds},
+                    {"spirvInstructions", v.spirv_instructions}, {"paretoFront", v.pareto},
+                    {"contractionLosses", v.contraction_losses}, {"worst", v.worst}});
+    fns.push_back({{"file", r.file}, {"function", r.function}, {"reference", r.reference}, {"pick", r.pick}, {"variants", vs}});
+  }
+  json j = {{"device", device}, {"probes", describe_probes(probes)}, {"functions", fns}};
+  out << j.dump(2) << '\n';
+}
+
 }  // namespace lwc

@@ -3,6 +3,9 @@
 #include <ostream>
 #include <string>
 
+#include <vector>
+
+#include "verify/harness.h"
 #include "verify/library_accuracy.h"
 #include "verify/probes.h"
 
@@ -15,5 +18,10 @@ void print_library_text(std::ostream& out, const std::string& device, const Driv
                         const LibraryAccuracy& accuracy, size_t inputs);
 void print_library_json(std::ostream& out, const std::string& device, const DriverProbes& probes,
                         const LibraryAccuracy& accuracy, size_t inputs);
+
+void print_functions_text(std::ostream& out, const std::string& device, const DriverProbes& probes,
+                          const std::vector<FunctionResult>& results);
+void print_functions_json(std::ostream& out, const std::string& device, const DriverProbes& probes,
+                          const std::vector<FunctionResult>& results);
 
 }  // namespace lwc

@@ -216,6 +216,22 @@ struct Global {
 
 }  // namespace
 
+std::vector<std::string> enclosing_functions(Lang lang, const std::string& text, const std::vector<uint32_t>& offsets) {
+  Source source("file", text);
+  SyntaxTree t = parse(source, lang);
+  std::vector<std::string> out;
+  for (uint32_t at : offsets) {
+    std::string name;
+    for (int c = t.at(0).first_child; c >= 0; c = t.at(c).next_sibling)
+      if (t.is(c, "function_definition") && t.at(c).begin <= at && at < t.at(c).end) {
+        int id = declared_identifier(t, t.child_by_field(c, "declarator"));
+        if (id >= 0) name = t.text(id);
+      }
+    out.push_back(name);
+  }
+  return out;
+}
+
 std::string promote_to_double(Lang lang, const std::string& text) {
   std::string out;
   if (lang == Lang::hlsl) {

@@ -1,0 +1,681 @@
+#include "verify/harness.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <random>
+#include <regex>
+
+#include "shaderlib/shaderlib.h"
+#include "verify/kernel.h"
+#include "verify/kernel_builder.h"
+#include "verify/probes.h"
+#include "verify/spirv.h"
+#include "verify/vulkan.h"
+
+namespace lwc {
+
+namespace {
+
+using Vec = std::array<double, 3>;
+using Mat4 = std::array<double, 16>;  // column-major, column-vector convention: M * v
+
+constexpr double kTile = 2097152.0;  // LWC_DF_TILE_SIZE
+
+// ---- The scene of one invocation ------------------------------------------------------------
+
+// Camera C, object origin T, the object's rotation-scale R, a local point L (world W = R L + T),
+// a unit direction N and the view rotation V. Everything else derives from these, in double.
+struct State {
+  Vec camera{}, origin{}, local{}, direction{};
+  std::array<double, 9> rotation_scale{};  // column-major 3x3
+  std::array<double, 9> view{};
+  Vec world() const {
+    Vec w = origin;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) w[r] += rotation_scale[c * 3 + r] * local[c];
+    return w;
+  }
+};
+
+Mat4 affine(const std::array<double, 9>& m, const Vec& t) {
+  Mat4 out{};
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) out[c * 4 + r] = m[c * 3 + r];
+  out[12] = t[0], out[13] = t[1], out[14] = t[2], out[15] = 1;
+  return out;
+}
+Mat4 multiply(const Mat4& a, const Mat4& b) {
+  Mat4 out{};
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      for (int k = 0; k < 4; ++k) out[c * 4 + r] += a[k * 4 + r] * b[c * 4 + k];
+  return out;
+}
+Mat4 translation(const Vec& t) { return affine({1, 0, 0, 0, 1, 0, 0, 0, 1}, t); }
+std::array<double, 9> inverse3(const std::array<double, 9>& m) {
+  auto at = [&](int r, int c) { return m[c * 3 + r]; };
+  double det = at(0, 0) * (at(1, 1) * at(2, 2) - at(1, 2) * at(2, 1)) - at(0, 1) * (at(1, 0) * at(2, 2) - at(1, 2) * at(2, 0)) +
+               at(0, 2) * (at(1, 0) * at(2, 1) - at(1, 1) * at(2, 0));
+  std::array<double, 9> out{};
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
+      out[c * 3 + r] = (at(r1, c1) * at(r2, c2) - at(r1, c2) * at(r2, c1)) / det;
+    }
+  return out;
+}
+Mat4 inverse_affine(const std::array<double, 9>& m, const Vec& t) {
+  std::array<double, 9> inv = inverse3(m);
+  Vec it{};
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) it[r] -= inv[c * 3 + r] * t[c];
+  return affine(inv, it);
+}
+std::array<double, 9> transpose3(const std::array<double, 9>& m) {
+  std::array<double, 9> out{};
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) out[r * 3 + c] = m[c * 3 + r];
+  return out;
+}
+// Perspective, 90 degree field of view, near plane 10 cm, far plane at infinity (GL clip
+// conventions): clip.w is the view depth, so an NDC error times w is a world-space offset.
+Mat4 projection() { return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, -1, -1, 0, 0, -20, 0}; }
+
+Vec neg(const Vec& v) { return {-v[0], -v[1], -v[2]}; }
+Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+
+class Rng {
+ public:
+  explicit Rng(uint64_t seed) : g_(seed) {}
+  double uniform(double lo = 0, double hi = 1) { return std::uniform_real_distribution<double>(lo, hi)(g_); }
+  double sign() { return uniform() < 0.5 ? -1 : 1; }
+  Vec unit() {
+    Vec v{uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)};
+    double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) + 1e-30;
+    return {v[0] / n, v[1] / n, v[2] / n};
+  }
+  std::array<double, 9> rotation() {
+    // Gram-Schmidt of two random directions.
+    Vec a = unit(), b = unit();
+    double d = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    b = {b[0] - d * a[0], b[1] - d * a[1], b[2] - d * a[2]};
+    double n = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]) + 1e-30;
+    b = {b[0] / n, b[1] / n, b[2] / n};
+    Vec c{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    return {a[0], a[1], a[2], b[0], b[1], b[2], c[0], c[1], c[2]};
+  }
+
+ private:
+  std::mt19937_64 g_;
+};
+
+std::array<double, 9> scaled(std::array<double, 9> m, Vec s) {
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) m[c * 3 + r] *= s[c];
+  return m;
+}
+
+// A value as the sum of two floats, so every encoding (float, High + Low, tile + offset) starts
+// from a value the pair holds exactly (LWC-BRIEF §6, reference hygiene).
+double pair_exact(double v) {
+  float hi = static_cast<float>(v);
+  return double(hi) + double(static_cast<float>(v - hi));
+}
+Vec pair_exact(Vec v) { return {pair_exact(v[0]), pair_exact(v[1]), pair_exact(v[2])}; }
+
+struct Case {
+  std::string name;
+  std::function<void(Rng&, State&)> make;
+};
+
+Vec near(Rng& r, const Vec& p, double lo, double hi) {
+  Vec d = r.unit();
+  double k = std::exp(r.uniform(std::log(lo), std::log(hi)));
+  return {p[0] + d[0] * k, p[1] + d[1] * k, p[2] + d[2] * k};
+}
+
+const std::vector<Case>& cases() {
+  static const std::vector<Case> list = [] {
+    std::vector<Case> v;
+    auto at = [](double m) { return [m](Rng& r, State& s) {
+      s.camera = {m * r.sign(), m * 0.5 * r.uniform(-1, 1), m * 0.25 * r.uniform(-1, 1)};
+      s.origin = near(r, s.camera, 1, 1000);
+    }; };
+    v.push_back({"origin", at(0)});
+    v.push_back({"1e5 cm", at(1e5)});
+    v.push_back({"2^20 cm", at(std::ldexp(1, 20))});
+    v.push_back({"2^24 cm", at(std::ldexp(1, 24))});
+    v.push_back({"2^31 cm", at(std::ldexp(1, 31))});
+    v.push_back({"2^42 cm", at(std::ldexp(1, 42))});
+    v.push_back({"2^43 - ulp cm", [](Rng& r, State& s) {
+      double edge = std::ldexp(1, 43) - std::ldexp(1, 43 - 24);
+      s.origin = {edge, r.uniform(-1000, 1000), r.uniform(-1000, 1000)};
+      s.camera = near(r, s.origin, 1, 1000);
+      s.camera[0] = std::min(s.camera[0], edge);
+    }});
+    v.push_back({"object 12.34 cm from a camera 2^42 cm away", [](Rng& r, State& s) {
+      s.camera = {std::ldexp(1, 42), r.uniform(-1e6, 1e6), r.uniform(-1e6, 1e6)};
+      Vec d = r.unit();
+      s.origin = {s.camera[0] + 12.34 * d[0], s.camera[1] + 12.34 * d[1], s.camera[2] + 12.34 * d[2]};
+      s.local = {0, 0, 0};
+    }});
+    for (double m : {1e6, std::ldexp(1, 30)})
+      v.push_back({fmt::format("camera and object on opposite sides of the origin (+-{:g})", m), [m](Rng& r, State& s) {
+        s.camera = {m, r.uniform(-100, 100), r.uniform(-100, 100)};
+        s.origin = {-m, r.uniform(-100, 100), r.uniform(-100, 100)};
+      }});
+    v.push_back({"straddling 2^33 (2^33 - d, 2^33 + d')", [](Rng& r, State& s) {
+      double top = std::ldexp(1, 33);
+      s.camera = {top - r.uniform(0, 500), r.uniform(-100, 100), r.uniform(-100, 100)};
+      s.origin = {top + r.uniform(0, 500), r.uniform(-100, 100), r.uniform(-100, 100)};
+    }});
+    for (double tile : {kTile, 262144.0})
+      v.push_back({fmt::format("tile edges (k * {:g} +- 0.5)", tile), [tile](Rng& r, State& s) {
+        double edge = std::floor(r.uniform(1, 4000)) * tile + 0.5 * r.sign();
+        s.origin = {edge, edge, -edge};
+        s.camera = near(r, s.origin, 1, 100);
+        s.local = {0, 0, 0};
+      }});
+    v.push_back({"half-tile tie (2.5 * 2^21)", [](Rng& r, State& s) {
+      s.origin = {2.5 * kTile, r.uniform(-100, 100), r.uniform(-100, 100)};
+      s.camera = near(r, s.origin, 1, 100);
+      s.local = {0, 0, 0};
+    }});
+    v.push_back({"log-uniform 1..2^43 cm", [](Rng& r, State& s) {
+      for (double& c : s.camera) c = r.sign() * std::exp(r.uniform(0, 43 * std::log(2.0)));
+      s.origin = near(r, s.camera, 1, 1e4);
+    }});
+    v.push_back({"ill-conditioned object matrix (scales 1e-4..1e4)", [](Rng& r, State& s) {
+      s.camera = {std::ldexp(1, 31), 0, 0};
+      s.origin = near(r, s.camera, 10, 1000);
+      s.rotation_scale = scaled(r.rotation(), {std::pow(10, r.uniform(-4, 4)), std::pow(10, r.uniform(-4, 4)), std::pow(10, r.uniform(-4, 4))});
+    }});
+    v.push_back({"near-singular object matrix", [](Rng& r, State& s) {
+      s.camera = {std::ldexp(1, 31), 0, 0};
+      s.origin = near(r, s.camera, 10, 1000);
+      s.rotation_scale = scaled(r.rotation(), {1, 1, 1e-6});
+    }});
+    return v;
+  }();
+  return list;
+}
+
+State make_state(size_t invocation) {
+  const std::vector<Case>& all = cases();
+  Rng r(0x9e3779b97f4a7c15ull ^ (invocation * 0x2545f4914f6cdd1dull));
+  State s;
+  s.rotation_scale = scaled(r.rotation(), {r.uniform(0.5, 2), r.uniform(0.5, 2), r.uniform(0.5, 2)});
+  s.view = r.rotation();
+  s.local = {r.uniform(-100, 100), r.uniform(-100, 100), r.uniform(-100, 100)};
+  s.direction = r.unit();
+  all[invocation % all.size()].make(r, s);
+  s.camera = pair_exact(s.camera);
+  s.origin = pair_exact(s.origin);
+  return s;
+}
+
+// ---- What a name means ------------------------------------------------------------------------
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+bool has(const std::string& s, const char* part) { return s.find(part) != std::string::npos; }
+bool camera_word(const std::string& n) {
+  return has(n, "camera") || has(n, "eye") || has(n, "viewpos") || has(n, "vieworigin") || has(n, "viewposition");
+}
+
+// What a value is (LWC-BRIEF terms), from its name: positions, matrices, directions.
+enum class Role { camera, translated_camera, pre_view_translation, world_position, translated_position, object_origin,
+                  local_position, direction, model, translated_model, world_to_local, model_normal, rotation_scale,
+                  view, translated_view, view_projection, translated_view_projection, world_view_projection, projection,
+                  other };
+
+Role role_of(const std::string& raw, int components) {
+  std::string n = lower(raw);
+  bool matrix = components >= 9;
+  if (matrix) {
+    if (has(n, "rotationscale") || has(n, "normalmatrix")) return has(n, "normal") ? Role::model_normal : Role::rotation_scale;
+    if (has(n, "invtranspose") || has(n, "inversetranspose")) return Role::model_normal;
+    if (has(n, "worldviewproj")) return Role::world_view_projection;
+    if (has(n, "translatedworldtoclip") || has(n, "translatedviewproj")) return Role::translated_view_projection;
+    if (has(n, "translatedworldtoview") || has(n, "translatedview")) return Role::translated_view;
+    if (has(n, "worldtoclip") || has(n, "viewproj")) return Role::view_projection;
+    if (has(n, "localtotranslatedworld")) return Role::translated_model;
+    if (has(n, "worldtolocal")) return Role::world_to_local;
+    if (has(n, "proj") || has(n, "viewtoclip")) return Role::projection;
+    if (has(n, "view")) return Role::view;
+    if (has(n, "world") || has(n, "model") || has(n, "localto")) return Role::model;
+    return Role::other;
+  }
+  if (has(n, "previewtranslation")) return Role::pre_view_translation;
+  if (camera_word(n)) return has(n, "translated") ? Role::translated_camera : Role::camera;
+  if (has(n, "translation")) return Role::object_origin;
+  if (has(n, "normal") || has(n, "tangent") || has(n, "direction") || has(n, "dir")) return Role::direction;
+  if (has(n, "relative") || has(n, "offset")) return Role::local_position;  // small by name: relative to something
+  bool position = has(n, "pos") || has(n, "origin") || has(n, "location") || has(n, "referencepoint") || has(n, "point");
+  if (position && has(n, "translated")) return Role::translated_position;
+  if (position && (has(n, "world") || raw.ends_with("W") || has(n, "reference") || has(n, "origin"))) return Role::world_position;
+  if (position || has(n, "local")) return Role::local_position;
+  return Role::other;
+}
+
+bool world_units(Role r) {
+  return r == Role::camera || r == Role::translated_camera || r == Role::pre_view_translation || r == Role::world_position ||
+         r == Role::translated_position || r == Role::object_origin || r == Role::local_position;
+}
+
+// The value of a role in `state`, as `components` doubles (matrices column-major, column-vector
+// convention); a float4 position gets w = 1.
+std::vector<double> role_value(Role role, int components, const State& s, uint64_t name_hash, size_t invocation) {
+  auto vec = [&](const Vec& v, double w) {
+    std::vector<double> out(v.begin(), v.end());
+    out.resize(components, w);
+    return out;
+  };
+  auto mat = [&](const Mat4& m) {
+    if (components == 16) return std::vector<double>(m.begin(), m.end());
+    std::vector<double> out;
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r) out.push_back(m[c * 4 + r]);
+    out.resize(components, 0);
+    return out;
+  };
+  Mat4 model = affine(s.rotation_scale, s.origin);
+  Mat4 view = multiply(affine(s.view, {0, 0, 0}), translation(neg(s.camera)));
+  Mat4 rotation_only = affine(s.view, {0, 0, 0});
+  switch (role) {
+    case Role::camera: return vec(s.camera, 1);
+    case Role::translated_camera: return vec({0, 0, 0}, 1);
+    case Role::pre_view_translation: return vec(neg(s.camera), 0);
+    case Role::world_position: return vec(s.world(), 1);
+    case Role::translated_position: return vec(sub(s.world(), s.camera), 1);
+    case Role::object_origin: return vec(s.origin, 1);
+    case Role::local_position: return vec(s.local, 1);
+    case Role::direction: return vec(s.direction, 0);
+    case Role::model: return mat(model);
+    case Role::translated_model: return mat(affine(s.rotation_scale, sub(s.origin, s.camera)));
+    case Role::world_to_local: return mat(inverse_affine(s.rotation_scale, s.origin));
+    case Role::model_normal: return mat(affine(transpose3(inverse3(s.rotation_scale)), {0, 0, 0}));
+    case Role::rotation_scale: return mat(affine(s.rotation_scale, {0, 0, 0}));
+    case Role::view: return mat(view);
+    case Role::translated_view: return mat(rotation_only);
+    case Role::view_projection: return mat(multiply(projection(), view));
+    case Role::translated_view_projection: return mat(multiply(projection(), rotation_only));
+    case Role::world_view_projection: return mat(multiply(projection(), multiply(view, model)));
+    case Role::projection: return mat(projection());
+    case Role::other: break;
+  }
+  // Anything else (fog parameters, colours): a value in [0.25, 1] by name, the same in every variant.
+  std::vector<double> out;
+  for (int i = 0; i < components; ++i) {
+    uint64_t x = name_hash ^ (invocation * 0x9e3779b97f4a7c15ull) ^ (static_cast<uint64_t>(i) << 56);
+    x ^= x >> 31, x *= 0xbf58476d1ce4e5b9ull, x ^= x >> 27;
+    out.push_back(0.25 + 0.75 * static_cast<double>(x >> 11) * 0x1p-53);
+  }
+  return out;
+}
+
+uint64_t hash_name(const std::string& s) {
+  uint64_t h = 1469598103934665603ull;
+  for (char c : s) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+  return h;
+}
+
+// ---- Encoding and decoding --------------------------------------------------------------------
+
+// Writes a leaf's value in its encoding: `float64` kernels take the doubles as they are.
+void encode(const Leaf& leaf, const std::vector<double>& v, bool float64, double* out) {
+  auto put = [&](int i, double x) { out[leaf.offset + i] = float64 ? x : static_cast<double>(static_cast<float>(x)); };
+  int n = leaf.components;
+  switch (leaf.encoding) {
+    case Encoding::plain:
+      for (int i = 0; i < n; ++i) put(i, leaf.integer ? 0.0 : v[i]);  // indices and flags: 0
+      break;
+    case Encoding::df:
+      for (int i = 0; i < n; ++i) {
+        double hi = float64 ? v[i] : static_cast<float>(v[i]);
+        put(i, hi), put(n + i, v[i] - hi);
+      }
+      break;
+    case Encoding::lwc:
+      for (int i = 0; i < n; ++i) {
+        double tile = std::round(v[i] / kTile);
+        put(i, tile), put(n + i, v[i] - tile * kTile);
+      }
+      break;
+    case Encoding::df_matrix:
+    case Encoding::lwc_matrix: {
+      // The large part of the translation moves out of the float matrix.
+      Vec big{};
+      for (int r = 0; r < 3; ++r)
+        big[r] = leaf.encoding == Encoding::lwc_matrix ? std::round(v[12 + r] / kTile) * kTile
+                 : float64                             ? 0.0
+                                                       : static_cast<float>(v[12 + r]);
+      for (int i = 0; i < 16; ++i) put(i, i >= 12 && i < 15 ? v[i] - big[i - 12] : v[i]);
+      for (int r = 0; r < 3; ++r) put(16 + r, leaf.encoding == Encoding::lwc_matrix ? big[r] / kTile : big[r]);
+      break;
+    }
+    case Encoding::df_inverse_matrix:
+    case Encoding::lwc_inverse_matrix: {
+      // local = M' (P + Post): Post is minus the object's large translation, M' = M T(-Post).
+      std::array<double, 9> m3{};
+      for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) m3[c * 3 + r] = v[c * 4 + r];
+      Vec origin = neg(Vec{v[12], v[13], v[14]});
+      Vec world_origin{};  // M^-1's translation is -R^-1 T: recover T = -R (translation part)
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) world_origin[r] += inverse3(m3)[c * 3 + r] * origin[c];
+      Vec post{};
+      for (int r = 0; r < 3; ++r)
+        post[r] = leaf.encoding == Encoding::lwc_inverse_matrix ? -std::round(world_origin[r] / kTile) * kTile
+                  : float64                                     ? 0.0
+                                                                : -static_cast<float>(world_origin[r]);
+      Mat4 m{};
+      std::copy(v.begin(), v.begin() + 16, m.begin());
+      Mat4 shifted = multiply(m, translation(neg(post)));
+      for (int i = 0; i < 16; ++i) put(i, shifted[i]);
+      for (int r = 0; r < 3; ++r) put(16 + r, leaf.encoding == Encoding::lwc_inverse_matrix ? post[r] / kTile : post[r]);
+      break;
+    }
+  }
+}
+
+// A leaf's value from the output record, as doubles.
+std::vector<double> decode(const Leaf& leaf, const double* in) {
+  int n = leaf.components;
+  std::vector<double> out;
+  switch (leaf.encoding) {
+    case Encoding::plain:
+      for (int i = 0; i < n; ++i) out.push_back(in[leaf.offset + i]);
+      break;
+    case Encoding::df:
+      for (int i = 0; i < n; ++i) out.push_back(in[leaf.offset + i] + in[leaf.offset + n + i]);
+      break;
+    case Encoding::lwc:
+      for (int i = 0; i < n; ++i) out.push_back(in[leaf.offset + i] * kTile + in[leaf.offset + n + i]);
+      break;
+    default:
+      for (int i = 0; i < leaf.width; ++i) out.push_back(in[leaf.offset + i]);
+  }
+  return out;
+}
+
+// Output leaves are matched across variants by path, with "Translated" dropped: a variant's
+// `vTranslatedWorldPosition` is the original's `vWorldPosition`, in the translated frame.
+std::string frame_free(const std::string& path, bool& translated) {
+  std::string out = path;
+  translated = false;
+  for (const char* word : {"Translated", "translated"})
+    for (size_t at; (at = out.find(word)) != std::string::npos;) out.erase(at, 10), translated = true;
+  return out;
+}
+
+bool is_clip(const Leaf& leaf) { return has(leaf.path, "gl_Position") || lower(leaf.semantic) == "sv_position"; }
+
+float ulp32(double x) {
+  float m = std::max(std::fabs(static_cast<float>(x)), 1.0f);
+  return std::nextafter(m, std::numeric_limits<float>::infinity()) - m;
+}
+
+double distance(const State& s) {
+  Vec d = sub(s.world(), s.camera);
+  return std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+}
+
+struct Kernel {
+  HarnessKernel code;
+  CompileResult compiled;
+  std::string problem;
+};
+
+}  // namespace
+
+std::vector<std::string> harness_case_names() {
+  std::vector<std::string> out;
+  for (const Case& c : cases()) out.push_back(c.name);
+  return out;
+}
+
+FunctionResult verify_function(ComputeDevice& device, const DriverProbes& probes, const HarnessSetup& setup,
+                               const std::string& function, const std::vector<FileVariant>& variants) {
+  FunctionResult result;
+  result.file = setup.display;
+  result.function = function;
+  std::string fused = probes.fuses_fma() ? "1" : "0";
+
+  // Preprocesses a variant and builds its kernel (float32 as written, or promoted to float64).
+  auto build = [&](const FileVariant& v, bool float64) {
+    Kernel k;
+    CompileInput in;
+    in.lang = setup.lang;
+    in.stage = setup.stage;
+    in.name = setup.display;
+    in.text = v.text;
+    in.include = setup.include;
+    in.preamble = "#define LWC_DF_FUSED_FMA " + fused + "\n";
+    if (setup.unreal) in.preamble += fmt::format("#define LWCPORT_UE_VERSION {}\n", v.ue_version) + unreal_environment_text();
+    PreprocessResult pre = preprocess_shader(in);
+    if (pre.text.empty()) {
+      CompileResult r;
+      r.messages = pre.messages;
+      k.problem = "does not preprocess: " + format_messages(r);
+      return k;
+    }
+    // The variant must compile as a shader of its own before it is cut down (errors on its own lines).
+    CompileInput check = in;
+    if (setup.lang == Lang::hlsl) {
+      check.entry = "lwcport_compile_check";
+      check.text += "\nvoid lwcport_compile_check() {}\n";
+    }
+    if (!float64) {
+      CompileResult whole = compile_shader(check);
+      if (!whole.ok) {
+        k.problem = "does not compile: " + format_messages(whole);
+        return k;
+      }
+    }
+    std::string text = float64 ? promote_to_double(setup.lang, pre.text) : pre.text;
+    k.code = build_harness_kernel(setup.lang, text, function, float64);
+    if (!k.code.problem.empty()) {
+      k.problem = "not verifiable: " + k.code.problem;
+      return k;
+    }
+    KernelSpec spec;
+    spec.lang = setup.lang;
+    spec.name = setup.display;
+    spec.declarations = k.code.declarations;
+    spec.body = k.code.body;
+    spec.in_stride = k.code.in_stride;
+    spec.out_stride = k.code.out_stride;
+    spec.float64 = float64;
+    if (v.text.find(" es") != std::string::npos && std::regex_search(v.text, std::regex(R"(#\s*version\s+3[0-2]0\s+es)")))
+      spec.glsl_version = std::regex_search(v.text, std::regex(R"(#\s*version\s+320\s+es)")) ? "320 es" : "310 es";
+    k.compiled = compile_kernel(spec);
+    if (!k.compiled.ok) k.problem = "the harness kernel does not compile: " + format_messages(k.compiled);
+    return k;
+  };
+
+  size_t n = static_cast<size_t>(setup.invocations + kKernelGroupSize - 1) / kKernelGroupSize * kKernelGroupSize;
+  std::vector<State> states(n);
+  for (size_t i = 0; i < n; ++i) states[i] = make_state(i);
+
+  // Fills the input records of a kernel from the states.
+  auto inputs_for = [&](const HarnessKernel& k, bool float64) {
+    std::vector<double> record(k.in_stride);
+    std::vector<uint8_t> bytes;
+    std::vector<double> all64;
+    std::vector<float> all32;
+    for (size_t i = 0; i < n; ++i) {
+      std::fill(record.begin(), record.end(), 0.0);
+      for (const Leaf& leaf : k.inputs) {
+        Role role = role_of(leaf.name, leaf.components);
+        encode(leaf, role_value(role, leaf.components, states[i], hash_name(leaf.name), i), float64, record.data());
+      }
+      if (float64) all64.insert(all64.end(), record.begin(), record.end());
+      else for (double x : record) all32.push_back(static_cast<float>(x));
+    }
+    return float64 ? to_bytes(all64) : to_bytes(all32);
+  };
+  struct Run {
+    std::vector<double> out;  // n * out_stride
+    DispatchTiming timing;
+    std::string problem;
+  };
+  auto run = [&](const Kernel& k, bool float64, int repeats) {
+    Run r;
+    std::vector<std::vector<uint8_t>> buffers = {inputs_for(k.code, float64),
+                                                 std::vector<uint8_t>(n * k.code.out_stride * (float64 ? 8 : 4))};
+    r.problem = device.run(k.compiled.spirv, buffers, static_cast<uint32_t>(n / kKernelGroupSize), repeats, &r.timing);
+    if (!r.problem.empty()) return r;
+    if (float64) r.out = from_bytes<double>(buffers[1]);
+    else for (float x : from_bytes<float>(buffers[1])) r.out.push_back(x);
+    return r;
+  };
+
+  // The reference: the original, every float promoted to double.
+  Kernel reference = build(variants.front(), true);
+  Run ref_run;
+  if (reference.problem.empty()) ref_run = run(reference, true, 1);
+  if (!reference.problem.empty() || !ref_run.problem.empty()) {
+    result.reference = "no float64 reference: " + (reference.problem.empty() ? ref_run.problem : reference.problem);
+  } else {
+    result.reference = "the original promoted to float64 (transcendentals in float32)";
+  }
+
+  std::map<std::string, const Leaf*> ref_outputs;
+  for (const Leaf& l : reference.code.outputs) {
+    bool translated;
+    ref_outputs[frame_free(l.path, translated)] = &l;
+  }
+
+  for (const FileVariant& v : variants) {
+    VariantResult vr;
+    vr.label = v.label;
+    Kernel k = build(v, false);
+    if (!k.problem.empty()) {
+      vr.status = k.problem;
+      result.variants.push_back(vr);
+      continue;
+    }
+    SpirvSummary spirv = inspect_spirv(k.compiled.spirv);
+    vr.spirv_instructions = spirv.instructions;
+    vr.contraction_losses = contraction_losses(spirv);
+    Run r = run(k, false, setup.repeats + 1);
+    if (!r.problem.empty()) {
+      vr.status = "did not run: " + r.problem;
+      result.variants.push_back(vr);
+      continue;
+    }
+    // The first dispatch compiles the shader (lavapipe JIT): it counts as pipeline time.
+    std::vector<double> timed(r.timing.dispatch_seconds.begin() + 1, r.timing.dispatch_seconds.end());
+    std::nth_element(timed.begin(), timed.begin() + timed.size() / 2, timed.end());
+    vr.ns_per_invocation = timed[timed.size() / 2] / static_cast<double>(n) * 1e9;
+    vr.pipeline_seconds = r.timing.pipeline_seconds + r.timing.dispatch_seconds.front() - timed[timed.size() / 2];
+    vr.measured = true;
+    if (!ref_run.problem.empty() || !reference.problem.empty()) {
+      vr.status = "timed only: " + result.reference;
+      result.variants.push_back(vr);
+      continue;
+    }
+
+    // Compare every output the reference has, in the reference's frame.
+    std::vector<double> errors;
+    bool failed = false;
+    double worst_score = -1;
+    std::string unmatched;
+    for (const Leaf& leaf : k.code.outputs) {
+      bool translated;
+      auto match = ref_outputs.find(frame_free(leaf.path, translated));
+      if (match == ref_outputs.end()) {
+        unmatched += (unmatched.empty() ? "" : ", ") + leaf.path;
+        continue;
+      }
+      const Leaf& ref_leaf = *match->second;
+      bool ref_translated;
+      frame_free(ref_leaf.path, ref_translated);
+      Role role = role_of(ref_leaf.name == "return" ? function : ref_leaf.name, ref_leaf.components);
+      bool clip = is_clip(ref_leaf);
+      bool world = !clip && (world_units(role) || translated != ref_translated);
+      for (size_t i = 0; i < n; ++i) {
+        std::vector<double> got = decode(leaf, &r.out[i * k.code.out_stride]);
+        std::vector<double> want = decode(ref_leaf, &ref_run.out[i * reference.code.out_stride]);
+        if (got.size() != want.size()) continue;
+        if (translated != ref_translated)  // move the variant's value into the reference's frame
+          for (int c = 0; c < 3 && c < static_cast<int>(got.size()); ++c)
+            got[c] += (translated ? 1 : -1) * states[i].camera[c];
+        double error = 0, ulps = 0;
+        if (distance(states[i]) > setup.scene.view_distance) continue;  // not drawn in this scene
+        if (clip && got.size() == 4) {
+          // NDC error times the view depth (clip w): the world-space offset it shows as.
+          double w = want[3];
+          if (!(w > 0) || std::fabs(want[0]) > w || std::fabs(want[1]) > w) continue;  // off screen: not drawn
+          for (int c = 0; c < 2; ++c) error = std::max(error, std::fabs(got[c] / got[3] - want[c] / w) * std::fabs(w));
+          if (!std::isfinite(error)) error = std::numeric_limits<double>::infinity();
+        } else {
+          for (size_t c = 0; c < got.size(); ++c) {
+            double e = std::fabs(got[c] - want[c]);
+            if (!std::isfinite(got[c]) && std::isfinite(want[c])) e = std::numeric_limits<double>::infinity();
+            error = std::max(error, e);
+            ulps = std::max(ulps, e / ulp32(want[c]));
+          }
+        }
+        bool bad = (world || clip) ? !(error <= setup.scene.precision) : !(ulps <= 16);
+        failed |= bad;
+        if (world || clip) errors.push_back(error);
+        vr.max_ulps = std::max(vr.max_ulps, ulps);
+        double score = (world || clip) ? error / setup.scene.precision : ulps / 16;
+        if (!std::isfinite(score)) score = std::numeric_limits<double>::max();
+        if (score > worst_score) {
+          worst_score = score;
+          const State& s = states[i];
+          vr.worst = fmt::format("case '{}': camera ({:.17g}, {:.17g}, {:.17g}), object origin ({:.17g}, {:.17g}, {:.17g}); "
+                                 "`{}` expected ({:.9g}), got ({:.9g}); error {:.3g}{}",
+                                 cases()[i % cases().size()].name, s.camera[0], s.camera[1], s.camera[2], s.origin[0],
+                                 s.origin[1], s.origin[2], ref_leaf.path == "lwc_result" ? "return value" : ref_leaf.path,
+                                 fmt::join(want, ", "), fmt::join(got, ", "), error,
+                                 world || clip ? " cm" : fmt::format(" ({:.3g} ULPs)", ulps));
+        }
+      }
+    }
+    if (!errors.empty()) {
+      vr.max_error = *std::max_element(errors.begin(), errors.end());
+      std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
+      vr.median_error = errors[errors.size() / 2];
+    }
+    vr.status = failed ? "fail" : "pass";
+    if (!vr.contraction_losses.empty()) vr.status = "fail: lost NoContraction";
+    if (!unmatched.empty()) vr.worst += (vr.worst.empty() ? "" : "; ") + std::string("not compared (no counterpart in the original): ") + unmatched;
+    result.variants.push_back(vr);
+  }
+
+  // The error/time Pareto front, and the scene's pick: the fastest variant that meets the target.
+  for (VariantResult& a : result.variants) {
+    if (!a.measured) continue;
+    a.pareto = true;
+    for (const VariantResult& b : result.variants)
+      if (&a != &b && b.measured && b.max_error <= a.max_error && b.ns_per_invocation <= a.ns_per_invocation &&
+          (b.max_error < a.max_error || b.ns_per_invocation < a.ns_per_invocation))
+        a.pareto = false;
+  }
+  const VariantResult* pick = nullptr;
+  for (const VariantResult& v : result.variants)
+    if (v.status == "pass" && (!pick || v.ns_per_invocation < pick->ns_per_invocation)) pick = &v;
+  int passing = 0;
+  for (const VariantResult& v : result.variants) passing += v.status == "pass";
+  if (pick)
+    result.pick = fmt::format("{}: the fastest of the {} variant(s) within {} ({:.3g} ns per invocation)", pick->label, passing,
+                              format_distance(setup.scene.precision), pick->ns_per_invocation);
+  else
+    result.pick = fmt::format("none: no variant keeps the error within {}", format_distance(setup.scene.precision));
+  return result;
+}
+
+}  // namespace lwc

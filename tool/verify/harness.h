@@ -1,0 +1,66 @@
+#pragma once
+// The per-function harness (docs/verify.md): one function of a shader run on the device in each
+// of its forms (the original in float32, each rewrite) and as a float64 reference, on the stiff
+// and extreme cases of LWC-BRIEF §6, with errors measured in one frame and run time per invocation.
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fix/scene.h"
+#include "lang/syntax.h"
+#include "verify/compile.h"
+
+namespace lwc {
+
+class ComputeDevice;
+struct DriverProbes;
+
+// One form of the file: its whole text, and the engine era it compiles against (Unreal files).
+struct FileVariant {
+  std::string label;     // "original (float32)", "translated world", "DoubleFloat"
+  std::string text;
+  int ue_version = 504;  // LWCPORT_UE_VERSION for Unreal files
+};
+
+struct HarnessSetup {
+  Lang lang = Lang::hlsl;
+  std::string display;   // the file, for messages
+  Stage stage = Stage::fragment;
+  bool unreal = false;
+  std::function<std::optional<std::string>(const std::string& name, const std::string& from)> include;
+  SceneNumbers scene;
+  int invocations = 65536;  // per dispatch
+  int repeats = 5;          // dispatches timed per variant
+};
+
+struct VariantResult {
+  std::string label;
+  std::string status;       // "pass", "fail", or why it could not be measured
+  double max_error = 0;     // world units (cm): positions, offsets, distances; clip as a world offset
+  double median_error = 0;
+  double max_ulps = 0;      // of the reference value, float32 ULPs (values below 1 count as 1)
+  double ns_per_invocation = 0;  // median over the timed dispatches
+  double pipeline_seconds = 0;   // shader module + pipeline creation (+ the first dispatch's JIT)
+  int spirv_instructions = 0;
+  std::vector<std::string> contraction_losses;
+  std::string worst;        // the case, its inputs, what was expected and what came out
+  bool measured = false;
+  bool pareto = false;
+};
+
+struct FunctionResult {
+  std::string file, function;
+  std::vector<VariantResult> variants;  // variants[0] is the original
+  std::string reference;   // how the reference was computed, or why it could not be
+  std::string pick;        // which variant the scene picks, and why
+};
+
+// The named cases every function runs on (LWC-BRIEF §6), in order.
+std::vector<std::string> harness_case_names();
+
+// Verifies `function` in every variant against the original promoted to float64.
+FunctionResult verify_function(ComputeDevice& device, const DriverProbes& probes, const HarnessSetup& setup,
+                               const std::string& function, const std::vector<FileVariant>& variants);
+
+}  // namespace lwc
