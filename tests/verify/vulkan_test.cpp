@@ -5,9 +5,9 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 
 #include "verify/compile.h"
+#include "verify/kernel.h"
 #include "verify/vulkan.h"
 
 namespace lwc {
@@ -23,20 +23,6 @@ std::vector<uint32_t> compute_spirv(const std::string& glsl) {
   CompileResult r = compile_shader(in);
   EXPECT_TRUE(r.ok) << format_messages(r);
   return r.spirv;
-}
-
-template <typename T>
-std::vector<uint8_t> bytes(const std::vector<T>& values) {
-  std::vector<uint8_t> out(values.size() * sizeof(T));
-  std::memcpy(out.data(), values.data(), out.size());
-  return out;
-}
-
-template <typename T>
-std::vector<T> values(const std::vector<uint8_t>& data) {
-  std::vector<T> out(data.size() / sizeof(T));
-  std::memcpy(out.data(), data.data(), data.size());
-  return out;
 }
 
 // TwoSum over pairs (a, b): writes (s, e) with s + e == a + b exactly when the steps are kept.
@@ -60,10 +46,10 @@ class OnLavapipe : public ::testing::Test {
   std::vector<float> error_terms(const char* qualifier) {
     std::vector<float> in;
     for (int i = 0; i < 64; ++i) in.push_back(1.0f), in.push_back(std::ldexp(1.0f + i / 64.0f, -30));
-    std::vector<std::vector<uint8_t>> buffers = {bytes(in), std::vector<uint8_t>(64 * 2 * sizeof(float))};
+    std::vector<std::vector<uint8_t>> buffers = {to_bytes(in), std::vector<uint8_t>(64 * 2 * sizeof(float))};
     std::string why = device_->run(compute_spirv(two_sum_shader(qualifier)), buffers, 1);
     EXPECT_EQ(why, "");
-    std::vector<float> out = values<float>(buffers[1]), errors;
+    std::vector<float> out = from_bytes<float>(buffers[1]), errors;
     for (size_t i = 0; i < 64; ++i) errors.push_back(out[2 * i + 1]);
     return errors;
   }

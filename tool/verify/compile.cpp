@@ -51,6 +51,28 @@ class Includer : public glslang::TShader::Includer {
   std::deque<IncludeResult> results_;
 };
 
+// The strings glslang reads when it parses: they must outlive the parse.
+struct SourceStrings {
+  explicit SourceStrings(const CompileInput& input)
+      : text(input.text.c_str()), name(input.name.c_str()), length(static_cast<int>(input.text.size())) {}
+  const char* text;
+  const char* name;
+  int length;
+};
+
+// The source, preamble and input language; `vulkan`: compile for Vulkan SPIR-V (HLSL always is).
+void set_source(glslang::TShader& shader, const CompileInput& input, SourceStrings& s, EShLanguage stage, bool vulkan) {
+  shader.setStringsWithLengthsAndNames(&s.text, &s.length, &s.name, 1);
+  if (!input.preamble.empty()) shader.setPreamble(input.preamble.c_str());
+  bool hlsl = input.lang == Lang::hlsl;
+  shader.setEnvInput(hlsl ? glslang::EShSourceHlsl : glslang::EShSourceGlsl, stage,
+                     vulkan ? glslang::EShClientVulkan : glslang::EShClientNone, 100);
+  if (vulkan) {
+    shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_2);
+    shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_5);
+  }
+}
+
 // glslang's info log: "ERROR: name:line: message" (or "ERROR: message" without a place).
 void read_log(const char* log, std::vector<CompileMessage>& out) {
   static const std::regex placed(R"(^(?:ERROR|WARNING): (.*?):(\d+): (.*)$)");
@@ -74,19 +96,10 @@ CompileResult compile_shader(const CompileInput& input) {
   CompileResult result;
   EShLanguage stage = to_glslang(input.stage);
   glslang::TShader shader(stage);
-  const char* text = input.text.c_str();
-  const char* name = input.name.c_str();
-  int length = static_cast<int>(input.text.size());
-  shader.setStringsWithLengthsAndNames(&text, &length, &name, 1);
-  if (!input.preamble.empty()) shader.setPreamble(input.preamble.c_str());
+  SourceStrings strings(input);
   bool hlsl = input.lang == Lang::hlsl;
+  set_source(shader, input, strings, stage, input.spirv || hlsl);
   shader.setEntryPoint(hlsl ? input.entry.c_str() : "main");
-  shader.setEnvInput(hlsl ? glslang::EShSourceHlsl : glslang::EShSourceGlsl, stage,
-                     input.spirv || hlsl ? glslang::EShClientVulkan : glslang::EShClientNone, 100);
-  if (input.spirv || hlsl) {
-    shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_2);
-    shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_5);
-  }
   auto messages = static_cast<EShMessages>(EShMsgDefault | (hlsl ? EShMsgReadHlsl : EShMsgDefault) |
                                            (input.spirv ? EShMsgSpvRules | EShMsgVulkanRules : EShMsgDefault));
   Includer includer(input);
@@ -114,19 +127,10 @@ PreprocessResult preprocess_shader(const CompileInput& input) {
   PreprocessResult result;
   EShLanguage stage = to_glslang(input.stage);
   glslang::TShader shader(stage);
-  const char* text = input.text.c_str();
-  const char* name = input.name.c_str();
-  int length = static_cast<int>(input.text.size());
-  shader.setStringsWithLengthsAndNames(&text, &length, &name, 1);
-  if (!input.preamble.empty()) shader.setPreamble(input.preamble.c_str());
+  SourceStrings strings(input);
   bool hlsl = input.lang == Lang::hlsl;
   // GLSL as written (an ES 3.00 shader is not SPIR-V-legal, and need not be to be preprocessed).
-  shader.setEnvInput(hlsl ? glslang::EShSourceHlsl : glslang::EShSourceGlsl, stage,
-                     hlsl ? glslang::EShClientVulkan : glslang::EShClientNone, 100);
-  if (hlsl) {
-    shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_2);
-    shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_5);
-  }
+  set_source(shader, input, strings, stage, hlsl);
   auto messages = static_cast<EShMessages>(EShMsgDefault | (hlsl ? EShMsgReadHlsl : EShMsgDefault));
   Includer includer(input);
   result.ok = shader.preprocess(GetDefaultResources(), hlsl ? 500 : 110, ENoProfile, false, false, messages, &result.text, includer);

@@ -496,8 +496,10 @@ FunctionResult verify_function(ComputeDevice& device, const DriverProbes& probes
     spec.in_stride = k.code.in_stride;
     spec.out_stride = k.code.out_stride;
     spec.float64 = float64;
-    if (v.text.find(" es") != std::string::npos && std::regex_search(v.text, std::regex(R"(#\s*version\s+3[0-2]0\s+es)")))
-      spec.glsl_version = std::regex_search(v.text, std::regex(R"(#\s*version\s+320\s+es)")) ? "320 es" : "310 es";
+    // Code for GLSL ES stays ES (no `precise` before 3.20, as on the target); compute needs 3.10.
+    static const std::regex es_version(R"(#\s*version\s+3([0-2])0\s+es)");
+    std::smatch es;
+    if (std::regex_search(v.text, es, es_version)) spec.glsl_version = es[1] == "2" ? "320 es" : "310 es";
     k.compiled = compile_kernel(spec);
     if (!k.compiled.ok) k.problem = "the harness kernel does not compile: " + format_messages(k.compiled);
     return k;

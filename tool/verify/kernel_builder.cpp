@@ -94,9 +94,9 @@ std::optional<std::pair<Encoding, int>> special_encoding(const std::string& type
 
 // Leaves of a value of `type` at `path`; false when some part cannot be filled (arrays, unknown types).
 bool collect_leaves(const Structs& structs, const std::string& type, const std::string& path, const std::string& name,
-                    const std::string& owner, const std::string& semantic, std::vector<Leaf>& out, int& offset, int depth = 0) {
+                    const std::string& semantic, std::vector<Leaf>& out, int& offset, int depth = 0) {
   if (depth > 8 || type.find('[') != std::string::npos) return false;
-  Leaf leaf{path, name, owner, type, semantic};
+  Leaf leaf{path, name, type, semantic};
   if (auto special = special_encoding(type)) {
     leaf.encoding = special->first;
     leaf.components = special->second;
@@ -107,7 +107,7 @@ bool collect_leaves(const Structs& structs, const std::string& type, const std::
   } else if (auto s = structs.find(type); s != structs.end()) {
     bool ok = true;
     for (const Field& f : s->second)
-      ok &= collect_leaves(structs, f.type, path + "." + f.name, f.name, type, f.semantic, out, offset, depth + 1);
+      ok &= collect_leaves(structs, f.type, path + "." + f.name, f.name, f.semantic, out, offset, depth + 1);
     return ok;
   } else {
     return false;
@@ -157,7 +157,7 @@ void assign(const Leaf& l, Lang lang, bool float64, std::string& body) {
   }
 }
 
-void write(const Leaf& l, Lang lang, bool float64, std::string& body) {
+void write(const Leaf& l, bool float64, std::string& body) {
   const char* cast = float64 ? "double" : "float";
   auto put = [&](const std::string& expr, int at) { body += fmt::format("\tOUT({}, {}({}));\n", at, cast, expr); };
   auto vector = [&](const std::string& path, int n, int at) {
@@ -174,7 +174,6 @@ void write(const Leaf& l, Lang lang, bool float64, std::string& body) {
       int k = 0;
       for (int i = 0; i < b.a; ++i)
         for (int j = 0; j < b.b; ++j) put(fmt::format("{}[{}][{}]", l.path, i, j), l.offset + k++);
-      (void)lang;
       break;
     }
     case Encoding::df: vector(l.path + ".High", n, l.offset); vector(l.path + ".Low", n, l.offset + n); break;
@@ -211,7 +210,6 @@ void for_subtree(const SyntaxTree& t, int id, F f) {
 struct Global {
   int node = -1;         // the declaration
   std::string name, type;
-  bool in_block = false;  // inside an HLSL cbuffer
 };
 
 }  // namespace
@@ -262,13 +260,13 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
   std::vector<Global> globals;
   std::vector<int> top;
   for (int c = t.at(0).first_child; c >= 0; c = t.at(c).next_sibling) top.push_back(c);
-  auto add_globals = [&](int decl, bool in_block) {
+  auto add_globals = [&](int decl) {
     int type = t.child_by_field(decl, "type");
     for (int d = t.at(decl).first_child; d >= 0; d = t.at(d).next_sibling) {
       if (!t.at(d).field || std::string_view(t.at(d).field) != "declarator") continue;
       if (t.is(d, "function_declarator")) return;
       int id = declared_identifier(t, d);
-      if (id >= 0) globals.push_back({decl, std::string(t.text(id)), type >= 0 ? slice(masked, type) : "", in_block});
+      if (id >= 0) globals.push_back({decl, std::string(t.text(id)), type >= 0 ? slice(masked, type) : ""});
     }
   };
   for (int c : top) {
@@ -276,9 +274,9 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
       int id = declared_identifier(t, t.child_by_field(c, "declarator"));
       if (id >= 0) functions[std::string(t.text(id))].push_back(c);
     } else if (t.is(c, "declaration")) {
-      add_globals(c, false);
+      add_globals(c);
     } else if (t.is(c, "linkage_specification")) {
-      for_subtree(t, c, [&](int i) { if (t.is(i, "declaration")) add_globals(i, true); });
+      for_subtree(t, c, [&](int i) { if (t.is(i, "declaration")) add_globals(i); });
     }
   }
   if (!functions.count(function)) {
@@ -306,14 +304,12 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
 
   // The declarations: kept functions and types as written, environment globals made private.
   std::string decl;
-  std::set<int> used_decls;
   static const std::regex glsl_qualifiers(
       R"(\blayout\s*\([^)]*\)|\b(uniform|in|out|inout|varying|attribute|flat|smooth|noperspective|centroid|invariant|readonly|writeonly|coherent|volatile|restrict)\b)");
   static const std::regex buffer(R"(^\s*(RW)?(?:Structured)?Buffer\s*<\s*(\w+)\s*>\s*(\w+))");
   static const std::regex resource(R"(^\s*(?:RW)?(Texture|Sampler|sampler|texture|image|ByteAddressBuffer|AppendStructuredBuffer|ConsumeStructuredBuffer))");
   std::vector<std::pair<std::string, std::string>> env_inputs, env_outputs;  // name, type
-  auto global_text = [&](const Global& g, bool& handled) -> std::string {
-    handled = true;
+  auto global_text = [&](const Global& g) -> std::string {
     std::string original = slice(text, g.node);
     std::smatch m;
     if (lang == Lang::hlsl) {
@@ -327,7 +323,8 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
         return "";
       }
       std::string masked_decl = slice(masked, g.node);
-      if (std::regex_search(masked_decl, std::regex(R"(^\s*(static|const)\b)"))) return masked_decl;
+      static const std::regex constant(R"(^\s*(static|const)\b)");
+      if (std::regex_search(masked_decl, constant)) return masked_decl;
       env_inputs.push_back({g.name, g.type});
       return "static " + masked_decl;
     }
@@ -335,8 +332,9 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
       k.problem = fmt::format("`{}` is declared in an interface block: not filled by the harness", g.name);
       return "";
     }
-    if (std::regex_search(original, std::regex(R"(^\s*const\b)"))) return original;
-    bool output = std::regex_search(original, std::regex(R"(\b(out|varying)\b)"));
+    static const std::regex constant(R"(^\s*const\b)"), stage_output(R"(\b(out|varying)\b)");
+    if (std::regex_search(original, constant)) return original;
+    bool output = std::regex_search(original, stage_output);
     (output ? env_outputs : env_inputs).push_back({g.name, g.type});
     return std::regex_replace(original, glsl_qualifiers, "");
   };
@@ -365,8 +363,7 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
         for (const Global* g : mine) {
           if (!used.count(g->name) || done.count(g->node)) continue;
           done.insert(g->node);
-          bool handled = false;
-          item += global_text(*g, handled) + "\n";
+          item += global_text(*g) + "\n";
         }
         keep = !item.empty();
       }
@@ -395,8 +392,8 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
     }
   if (float64) {
     // float32 transcendentals for the double reference (see promote_to_double).
-    std::string d = lang == Lang::hlsl ? "double" : "double", v = lang == Lang::hlsl ? "double" : "dvec";
-    std::string f = lang == Lang::hlsl ? "float" : "float", fv = lang == Lang::hlsl ? "float" : "vec";
+    std::string d = "double", f = "float";
+    std::string v = lang == Lang::hlsl ? "double" : "dvec", fv = lang == Lang::hlsl ? "float" : "vec";
     for (const char* fn : {"sin", "cos", "tan", "asin", "acos", "atan", "exp", "log", "exp2", "log2"}) {
       prefix += fmt::format("{0} lwc_f32_{1}({0} x) {{ return {0}({1}({2}(x))); }}\n", d, fn, f);
       for (int n = 2; n <= 4; ++n) prefix += fmt::format("{0}{3} lwc_f32_{1}({0}{3} x) {{ return {0}{3}({1}({2}{3}(x))); }}\n", v, fn, fv, n);
@@ -419,11 +416,11 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
   std::string body;
   int in_offset = 0, out_offset = 0;
   auto add_inputs = [&](const std::string& type, const std::string& path, const std::string& name) {
-    if (!collect_leaves(structs, type, path, name, "", "", k.inputs, in_offset))
+    if (!collect_leaves(structs, type, path, name, "", k.inputs, in_offset))
       k.problem = fmt::format("`{}` has type `{}`, which the harness cannot fill", name, type);
   };
   auto add_outputs = [&](const std::string& type, const std::string& path, const std::string& name) {
-    if (!collect_leaves(structs, type, path, name, "", "", k.outputs, out_offset))
+    if (!collect_leaves(structs, type, path, name, "", k.outputs, out_offset))
       k.problem = fmt::format("`{}` has type `{}`, which the harness cannot read", name, type);
   };
   if (params >= 0) {
@@ -435,8 +432,9 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
       if (type < 0 || id < 0) continue;
       std::string ptype = slice(masked, type), pname(t.text(id));
       std::string original = slice(text, p);
-      bool out = std::regex_search(original, std::regex(R"(^\s*(out|inout)\b)"));
-      bool in = !std::regex_search(original, std::regex(R"(^\s*out\b)"));
+      static const std::regex writes(R"(^\s*(out|inout)\b)"), only_writes(R"(^\s*out\b)");
+      bool out = std::regex_search(original, writes);
+      bool in = !std::regex_search(original, only_writes);
       std::string local = fmt::format("lwc_p{}", index++);
       body += fmt::format("\t{} {};\n", ptype, local);
       if (in) add_inputs(ptype, local, pname);
@@ -452,16 +450,10 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
     call_statement = fmt::format("\t{} lwc_result = {};\n", return_type, call);
     add_outputs(return_type, "lwc_result", "return");
   }
-  // Names in input leaves carry the path's last part; owners the first.
-  for (std::vector<Leaf>* leaves : {&k.inputs, &k.outputs})
-    for (Leaf& l : *leaves) {
-      size_t dot = l.path.find('.');
-      l.owner = dot == std::string::npos ? "" : l.path.substr(0, dot);
-    }
   std::string fill;
   for (const Leaf& l : k.inputs) assign(l, lang, float64, fill);
   std::string read;
-  for (const Leaf& l : k.outputs) write(l, lang, float64, read);
+  for (const Leaf& l : k.outputs) write(l, float64, read);
   k.body = body + fill + call_statement + read;
   k.in_stride = std::max(in_offset, 1);
   k.out_stride = std::max(out_offset, 1);

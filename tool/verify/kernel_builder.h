@@ -21,7 +21,6 @@ enum class Encoding { plain, df, lwc, df_matrix, df_inverse_matrix, lwc_matrix, 
 struct Leaf {
   std::string path;      // as written in the kernel
   std::string name;      // the last name in the path, for its role (`WorldCameraOrigin`)
-  std::string owner;     // the struct or variable it belongs to (`View`), "" for a plain name
   std::string type;      // the declared type (`float3`, `FDFVector3`, `mat4`)
   std::string semantic;  // HLSL semantic, if any (`SV_POSITION`)
   Encoding encoding = Encoding::plain;
