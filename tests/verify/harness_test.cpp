@@ -7,14 +7,14 @@
 #include "support.h"
 #include "verify/harness.h"
 #include "verify/probes.h"
-#include "verify/vulkan.h"
+#include "verify/worker.h"
 
 namespace lwc {
 namespace {
 
 TEST(HarnessOnLavapipe, ForwardVertexShaderOriginalFailsAndTheRewriteIsFarCloser) {
   std::string error;
-  auto device = ComputeDevice::open(error);
+  auto device = WorkerDevice::start(error);
   ASSERT_NE(device, nullptr) << error;
   DriverProbes probes;
   ASSERT_EQ(probe_driver(*device, probes), "");

@@ -7,7 +7,7 @@
 #include "shaderlib/shaderlib.h"
 #include "verify/library_accuracy.h"
 #include "verify/probes.h"
-#include "verify/vulkan.h"
+#include "verify/worker.h"
 
 namespace lwc {
 namespace {
@@ -16,7 +16,7 @@ class LibraryOnLavapipe : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     std::string error;
-    device_ = ComputeDevice::open(error).release();
+    device_ = WorkerDevice::start(error).release();
     ASSERT_NE(device_, nullptr) << error;
     ASSERT_EQ(probe_driver(*device_, probes_), "");
   }
@@ -36,10 +36,10 @@ class LibraryOnLavapipe : public ::testing::Test {
     throw std::runtime_error("no library op " + call);
   }
 
-  static ComputeDevice* device_;
+  static WorkerDevice* device_;
   static DriverProbes probes_;
 };
-ComputeDevice* LibraryOnLavapipe::device_ = nullptr;
+WorkerDevice* LibraryOnLavapipe::device_ = nullptr;
 DriverProbes LibraryOnLavapipe::probes_;
 
 TEST_F(LibraryOnLavapipe, ProbesFindReassociationUnfusedFmaAndKeptDenormals) {

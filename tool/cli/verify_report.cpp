@@ -146,7 +146,7 @@ void print_functions_text(std::ostream& out, const std::string& device, const Dr
     std::vector<std::string> details;
     for (const VariantResult& v : r.variants) {
       ++variants;
-      passed += v.status == "pass";
+      passed += v.passed();
       std::string result = v.status.size() > 40 ? v.status.substr(0, v.status.find(':')) : v.status;
       if (!v.measured) {
         out << fmt::format("  {:<20} {:>11} {:>11} {:>10} {:>9} {:>7}  {:<6} {}\n", v.label, "-", "-", "-", "-", "-", "", result);

@@ -17,7 +17,7 @@
 #include "verify/kernel_builder.h"
 #include "verify/probes.h"
 #include "verify/spirv.h"
-#include "verify/vulkan.h"
+#include "verify/worker.h"
 
 namespace lwc {
 
@@ -444,7 +444,7 @@ std::vector<std::string> harness_case_names() {
   return out;
 }
 
-FunctionResult verify_function(ComputeDevice& device, const DriverProbes& probes, const HarnessSetup& setup,
+FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes, const HarnessSetup& setup,
                                const std::string& function, const std::vector<FileVariant>& variants) {
   FunctionResult result;
   result.file = setup.display;
@@ -669,9 +669,9 @@ FunctionResult verify_function(ComputeDevice& device, const DriverProbes& probes
   }
   const VariantResult* pick = nullptr;
   for (const VariantResult& v : result.variants)
-    if (v.status == "pass" && (!pick || v.ns_per_invocation < pick->ns_per_invocation)) pick = &v;
+    if (v.passed() && (!pick || v.ns_per_invocation < pick->ns_per_invocation)) pick = &v;
   int passing = 0;
-  for (const VariantResult& v : result.variants) passing += v.status == "pass";
+  for (const VariantResult& v : result.variants) passing += v.passed();
   if (pick)
     result.pick = fmt::format("{}: the fastest of the {} variant(s) within {} ({:.3g} ns per invocation)", pick->label, passing,
                               format_distance(setup.scene.precision), pick->ns_per_invocation);

@@ -13,7 +13,7 @@
 
 namespace lwc {
 
-class ComputeDevice;
+class WorkerDevice;
 struct DriverProbes;
 
 // One form of the file: its whole text, and the engine era it compiles against (Unreal files).
@@ -47,6 +47,13 @@ struct VariantResult {
   std::string worst;        // the case, its inputs, what was expected and what came out
   bool measured = false;
   bool pareto = false;
+
+  bool passed() const { return status == "pass"; }
+  // Shown wrong: it misses the target, does not compile, or hung or crashed the driver. (A form
+  // the harness cannot run or compare is neither passed nor refuted.)
+  bool refuted() const {
+    return status.starts_with("fail") || status.starts_with("does not compile") || status.starts_with("did not run");
+  }
 };
 
 struct FunctionResult {
@@ -60,7 +67,7 @@ struct FunctionResult {
 std::vector<std::string> harness_case_names();
 
 // Verifies `function` in every variant against the original promoted to float64.
-FunctionResult verify_function(ComputeDevice& device, const DriverProbes& probes, const HarnessSetup& setup,
+FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes, const HarnessSetup& setup,
                                const std::string& function, const std::vector<FileVariant>& variants);
 
 }  // namespace lwc

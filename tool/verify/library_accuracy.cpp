@@ -12,7 +12,7 @@
 #include "shaderlib/shaderlib.h"
 #include "verify/kernel.h"
 #include "verify/spirv.h"
-#include "verify/vulkan.h"
+#include "verify/worker.h"
 
 namespace lwc {
 
@@ -381,7 +381,7 @@ bool LibraryAccuracy::failed() const {
   return false;
 }
 
-LibraryAccuracy check_library(ComputeDevice& device, const DriverProbes& probes, const LibraryCheckOptions& options) {
+LibraryAccuracy check_library(WorkerDevice& device, const DriverProbes& probes, const LibraryCheckOptions& options) {
   LibraryAccuracy result;
   const std::vector<LibraryOp>& ops = options.ops.empty() ? library_ops() : options.ops;
   std::vector<std::pair<std::string, std::string>> defines = {{"LWC_DF_FUSED_FMA", probes.fuses_fma() ? "1" : "0"}};

@@ -13,7 +13,7 @@
 
 namespace lwc {
 
-class ComputeDevice;
+class WorkerDevice;
 
 // The inputs an operation is checked on: the shape of its operands and the relation between them.
 enum class InputFamily {
@@ -81,7 +81,7 @@ struct LibraryCheckOptions {
   size_t inputs = 131072;               // per operation, adversarial cases first
 };
 
-LibraryAccuracy check_library(ComputeDevice& device, const DriverProbes& probes, const LibraryCheckOptions& options);
+LibraryAccuracy check_library(WorkerDevice& device, const DriverProbes& probes, const LibraryCheckOptions& options);
 
 // The named adversarial cases of a family (LWC-BRIEF §6), for docs and messages.
 std::vector<std::string> adversarial_case_names(InputFamily family);

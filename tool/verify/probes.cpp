@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "verify/kernel.h"
-#include "verify/vulkan.h"
+#include "verify/worker.h"
 
 namespace lwc {
 
@@ -28,7 +28,7 @@ constexpr const char* kProbeBody = R"(
 
 }  // namespace
 
-std::string probe_driver(ComputeDevice& device, DriverProbes& out) {
+std::string probe_driver(WorkerDevice& device, DriverProbes& out) {
   constexpr int n = DriverProbes::kInputs;
   KernelSpec spec;
   spec.lang = Lang::glsl;

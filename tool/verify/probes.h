@@ -6,7 +6,7 @@
 
 namespace lwc {
 
-class ComputeDevice;
+class WorkerDevice;
 
 struct DriverProbes {
   static constexpr int kInputs = 64;
@@ -20,7 +20,7 @@ struct DriverProbes {
 };
 
 // Runs the probe kernel on `device`; returns "" or why it could not run.
-std::string probe_driver(ComputeDevice& device, DriverProbes& out);
+std::string probe_driver(WorkerDevice& device, DriverProbes& out);
 
 // One line per probe: the answer, the measurement behind it, and what lwcport does about it.
 std::vector<std::string> describe_probes(const DriverProbes& probes);

@@ -1,0 +1,252 @@
+#include "verify/worker.h"
+
+#include <fmt/format.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <thread>
+
+namespace lwc {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Messages are length-prefixed byte strings; inside them, numbers and length-prefixed blobs.
+class Message {
+ public:
+  Message() = default;
+  explicit Message(std::vector<uint8_t> bytes) : bytes_(std::move(bytes)) {}
+  template <typename T>
+  void put(T value) {
+    const auto* p = reinterpret_cast<const uint8_t*>(&value);
+    bytes_.insert(bytes_.end(), p, p + sizeof value);
+  }
+  void put_blob(const void* data, size_t size) {
+    put<uint64_t>(size);
+    const auto* p = static_cast<const uint8_t*>(data);
+    bytes_.insert(bytes_.end(), p, p + size);
+  }
+  void put_string(const std::string& s) { put_blob(s.data(), s.size()); }
+  template <typename T>
+  T get() {
+    T value{};
+    if (at_ + sizeof value <= bytes_.size()) std::memcpy(&value, bytes_.data() + at_, sizeof value);
+    at_ += sizeof value;
+    return value;
+  }
+  std::vector<uint8_t> get_blob() {
+    size_t size = get<uint64_t>();
+    if (at_ + size > bytes_.size()) return {};
+    std::vector<uint8_t> out(bytes_.begin() + static_cast<ptrdiff_t>(at_), bytes_.begin() + static_cast<ptrdiff_t>(at_ + size));
+    at_ += size;
+    return out;
+  }
+  std::string get_string() {
+    std::vector<uint8_t> b = get_blob();
+    return {b.begin(), b.end()};
+  }
+  const std::vector<uint8_t>& bytes() const { return bytes_; }
+
+ private:
+  std::vector<uint8_t> bytes_;
+  size_t at_ = 0;
+};
+
+bool send_all(int fd, const void* data, size_t size) {
+  const auto* p = static_cast<const uint8_t*>(data);
+  while (size) {
+    ssize_t n = ::send(fd, p, size, MSG_NOSIGNAL);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    p += n, size -= static_cast<size_t>(n);
+  }
+  return true;
+}
+
+bool send_message(int fd, const Message& m) {
+  uint64_t size = m.bytes().size();
+  return send_all(fd, &size, sizeof size) && send_all(fd, m.bytes().data(), m.bytes().size());
+}
+
+enum class Received { ok, closed, timed_out };
+
+// Reads exactly `size` bytes; with a deadline, gives up when it passes.
+Received receive_all(int fd, void* data, size_t size, const Clock::time_point* deadline) {
+  auto* p = static_cast<uint8_t*>(data);
+  while (size) {
+    if (deadline) {
+      auto left = std::chrono::duration_cast<std::chrono::milliseconds>(*deadline - Clock::now()).count();
+      if (left <= 0) return Received::timed_out;
+      pollfd pfd{fd, POLLIN, 0};
+      int ready = ::poll(&pfd, 1, static_cast<int>(std::min<long long>(left, 1000)));
+      if (ready < 0 && errno != EINTR) return Received::closed;
+      if (ready <= 0) continue;
+    }
+    ssize_t n = ::recv(fd, p, size, 0);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return Received::closed;
+    p += n, size -= static_cast<size_t>(n);
+  }
+  return Received::ok;
+}
+
+Received receive_message(int fd, Message& m, const Clock::time_point* deadline) {
+  uint64_t size = 0;
+  if (Received r = receive_all(fd, &size, sizeof size, deadline); r != Received::ok) return r;
+  std::vector<uint8_t> bytes(size);
+  if (Received r = receive_all(fd, bytes.data(), size, deadline); r != Received::ok) return r;
+  m = Message(std::move(bytes));
+  return Received::ok;
+}
+
+// The child: opens the device, says so, then runs each kernel it is sent until the socket closes.
+[[noreturn]] void serve(int fd) {
+  std::string error;
+  std::unique_ptr<ComputeDevice> device = ComputeDevice::open(error);
+  Message hello;
+  hello.put_string(error);
+  hello.put_string(device ? device->name() : "");
+  if (!send_message(fd, hello) || !device) _exit(0);
+  // A request: its header, then each buffer's bytes. A reply: its header, then the bytes of the
+  // buffers the kernel changed (inputs are not sent back: they are most of the traffic).
+  for (Message request; receive_message(fd, request, nullptr) == Received::ok;) {
+    auto groups = request.get<uint32_t>();
+    auto repeats = request.get<int32_t>();
+    std::vector<uint8_t> code = request.get_blob();
+    std::vector<uint32_t> spirv(code.size() / 4);
+    if (!spirv.empty()) std::memcpy(spirv.data(), code.data(), spirv.size() * 4);
+    std::vector<std::vector<uint8_t>> buffers(request.get<uint64_t>()), sent(buffers.size());
+    for (size_t i = 0; i < buffers.size(); ++i) {
+      buffers[i].resize(request.get<uint64_t>());
+      if (receive_all(fd, buffers[i].data(), buffers[i].size(), nullptr) != Received::ok) _exit(0);
+      sent[i] = buffers[i];
+    }
+    DispatchTiming timing;
+    std::string problem = device->run(spirv, buffers, groups, repeats, &timing);
+    Message reply;
+    reply.put_string(problem);
+    reply.put(timing.pipeline_seconds);
+    reply.put_blob(timing.dispatch_seconds.data(), timing.dispatch_seconds.size() * sizeof(double));
+    std::vector<bool> changed(buffers.size());
+    for (size_t i = 0; i < buffers.size(); ++i) {
+      changed[i] = problem.empty() && buffers[i] != sent[i];
+      reply.put<uint64_t>(changed[i] ? buffers[i].size() : UINT64_MAX);
+    }
+    if (!send_message(fd, reply)) break;
+    for (size_t i = 0; i < buffers.size(); ++i)
+      if (changed[i] && !send_all(fd, buffers[i].data(), buffers[i].size())) _exit(0);
+  }
+  device.reset();
+  _exit(0);
+}
+
+}  // namespace
+
+std::unique_ptr<WorkerDevice> WorkerDevice::start(std::string& error, double timeout_seconds) {
+  std::unique_ptr<WorkerDevice> device(new WorkerDevice(timeout_seconds));
+  error = device->spawn();
+  if (!error.empty()) return nullptr;
+  return device;
+}
+
+WorkerDevice::~WorkerDevice() { stop(); }
+
+std::string WorkerDevice::spawn() {
+  int fds[2];
+  if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds) != 0)
+    return fmt::format("cannot create a socket for the driver process: {}", std::strerror(errno));
+  pid_t pid = ::fork();
+  if (pid < 0) {
+    ::close(fds[0]), ::close(fds[1]);
+    return fmt::format("cannot start the driver process: {}", std::strerror(errno));
+  }
+  if (pid == 0) {
+    ::close(fds[0]);
+    serve(fds[1]);
+  }
+  ::close(fds[1]);
+  child_ = pid;
+  socket_ = fds[0];
+  Clock::time_point deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout_seconds_));
+  Message hello;
+  if (Received r = receive_message(socket_, hello, &deadline); r != Received::ok) {
+    std::string why = r == Received::timed_out ? fmt::format("opening the device took over {:g} s", timeout_seconds_)
+                                               : "the driver process ended while opening the device (" + child_ended() + ")";
+    stop();
+    return why;
+  }
+  std::string error = hello.get_string();
+  name_ = hello.get_string();
+  if (!error.empty()) stop();
+  return error;
+}
+
+void WorkerDevice::stop() {
+  if (socket_ >= 0) ::close(socket_);
+  socket_ = -1;
+  if (child_ > 0) {
+    ::kill(child_, SIGKILL);
+    ::waitpid(child_, nullptr, 0);
+  }
+  child_ = -1;
+}
+
+std::string WorkerDevice::child_ended() {
+  int status = 0;
+  pid_t done = 0;
+  // A closed socket means the child is exiting: give it a moment to finish dying.
+  for (int i = 0; i < 100 && (done = ::waitpid(child_, &status, WNOHANG)) == 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  if (done != child_) return "it stopped answering";
+  child_ = -1;
+  if (WIFSIGNALED(status)) return fmt::format("killed by signal {}, {}", WTERMSIG(status), strsignal(WTERMSIG(status)));
+  return fmt::format("exit status {}", WEXITSTATUS(status));
+}
+
+std::string WorkerDevice::run(const std::vector<uint32_t>& spirv, std::vector<std::vector<uint8_t>>& buffers, uint32_t groups,
+                              int repeats, DispatchTiming* timing) {
+  if (child_ < 0)
+    if (std::string why = spawn(); !why.empty()) return "the driver process could not be restarted: " + why;
+  Message request;
+  request.put<uint32_t>(groups);
+  request.put<int32_t>(repeats);
+  request.put_blob(spirv.data(), spirv.size() * 4);
+  request.put<uint64_t>(buffers.size());
+  for (const auto& b : buffers) request.put<uint64_t>(b.size());
+  bool sent = send_message(socket_, request);
+  for (const auto& b : buffers) sent = sent && send_all(socket_, b.data(), b.size());
+  Clock::time_point deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout_seconds_));
+  Message reply;
+  Received r = sent ? receive_message(socket_, reply, &deadline) : Received::closed;
+  std::string problem = reply.get_string();
+  DispatchTiming t;
+  t.pipeline_seconds = reply.get<double>();
+  std::vector<uint8_t> seconds = reply.get_blob();
+  t.dispatch_seconds.resize(seconds.size() / sizeof(double));
+  if (!seconds.empty()) std::memcpy(t.dispatch_seconds.data(), seconds.data(), seconds.size());
+  for (size_t i = 0; i < buffers.size() && r == Received::ok; ++i)
+    if (auto size = reply.get<uint64_t>(); size != UINT64_MAX) {
+      buffers[i].resize(size);
+      r = receive_all(socket_, buffers[i].data(), size, &deadline);
+    }
+  if (r == Received::timed_out) {
+    stop();
+    return fmt::format("did not finish within {:g} s (the shader hangs or is far too slow): its driver process was killed, "
+                       "the next kernel gets a new one", timeout_seconds_);
+  }
+  if (r == Received::closed) {
+    std::string how = child_ended();
+    stop();
+    return fmt::format("the driver crashed running this kernel ({}): the next kernel gets a new driver process", how);
+  }
+  if (timing) *timing = t;
+  return problem;
+}
+
+}  // namespace lwc
