@@ -35,5 +35,24 @@ TEST(VerifyCli, AHangingShaderTimesOutAndTheOtherFilesAreStillVerified) {
   EXPECT_EQ(r.exit_code, 0);  // only the original hangs: no rewrite was shown wrong
 }
 
+TEST(VerifyCli, FixVerifyAppliesTheRewriteThatPassesAndHoldsBackTheOneThatDoesNot) {
+  std::string dir = test::scratch("fix-verify");
+  // Adding `precise` to a plain TwoSum passes; forward.vert's translated-world rewrite misses 1/16 cm
+  // on the ill-conditioned-matrix case (float32 depth at 6 km), so it is held back.
+  std::string two_sum = "float2 TwoSumPlain(float A, float B)\n{\n\tfloat S = A + B;\n\tfloat V = S - A;\n"
+                        "\tfloat E = (A - (S - V)) + (B - V);\n\treturn float2(S, E);\n}\n";
+  std::string forward = test::read(test::source_dir() + "/corpus/glsl/forward.vert");
+  test::write(dir + "/a_passes.usf", two_sum);
+  test::write(dir + "/b_fails.vert", forward);
+  test::Run r = test::run(test::binary() + " fix " + dir + " --verify --unsafe-fixes --fail-on none --color never");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  std::string fixed = test::read(dir + "/a_passes.usf");
+  EXPECT_NE(fixed.find("precise float E"), std::string::npos) << fixed;
+  EXPECT_NE(r.out.find("the rewrite of `TwoSumPlain` is within 0.0625 cm of the float64 reference"), std::string::npos) << r.out;
+  EXPECT_EQ(test::read(dir + "/b_fails.vert"), forward);
+  EXPECT_NE(r.out.find("b_fails.vert:1:1: warning: fix held back: the rewrite of `main` did not pass verification"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("worst case 'ill-conditioned object matrix"), std::string::npos) << r.out;
+}
+
 }  // namespace
 }  // namespace lwc

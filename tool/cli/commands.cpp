@@ -72,6 +72,9 @@ fix options:
   --diff                            print a unified diff of the fixes and write nothing (exit 1
                                     when there is something to fix, unless --fail-on none)
   --unsafe-fixes                    apply the unsafe fixes too
+  --verify                          run each fixed file's functions on the Vulkan device against
+                                    the float64 reference first; apply only the files whose
+                                    rewrites all pass (the others are reported, unchanged)
 
 verify options:
   --format text|json                output format (default: text)
@@ -101,6 +104,7 @@ struct Options {
   Strategy strategy = Strategy::automatic;
   bool diff = false, unsafe_fixes = false;
   bool shaderlib = false;
+  bool verify = false;  // fix: apply only the rewrites that pass on the device
   double timeout_seconds = 60;  // per kernel on the device
 };
 
@@ -170,6 +174,7 @@ Options parse_options(const std::vector<std::string>& args) {
     else if (a == "--diff") o.diff = true;
     else if (a == "--unsafe-fixes") o.unsafe_fixes = true;
     else if (a == "--shaderlib") o.shaderlib = true;
+    else if (a == "--verify") o.verify = true;
     else if (a == "--timeout") {
       std::string n = get();
       char* end = nullptr;
@@ -323,6 +328,113 @@ int lint(const Options& o, std::ostream& out, std::ostream& err) {
   return o.fail_on && writer.failed(*o.fail_on) ? 1 : 0;
 }
 
+// The engine era an Unreal file was written for: 504 (DoubleFloat), 500 (tile/offset) or 427.
+int unreal_era(const std::string& text) {
+  static const std::regex df(R"(\bFDF\w+|\bDF[A-Z]\w*\s*\()"), lwc(R"(\bFLWC\w+|\bLWC[A-Z]\w*\s*\()");
+  if (std::regex_search(text, df)) return 504;
+  if (std::regex_search(text, lwc)) return 500;
+  return 427;
+}
+
+// The same code with each accurate DoubleFloat addition replaced by its DFFast* twin: fewer flops,
+// exact only within their preconditions (same signs, |a| >= |b|), which the harness's cases probe.
+std::string fast_double_float_form(const std::string& text) {
+  static const std::regex accurate(R"(\bDF(Add|Subtract|AddDemote|SubtractDemote)(\s*\())");
+  return std::regex_replace(text, accurate, "DFFast$1$2");
+}
+
+// The device and what its driver does to float arithmetic, for `verify` and `fix --verify`.
+struct Verifier {
+  std::unique_ptr<WorkerDevice> device;
+  DriverProbes probes;
+};
+
+// Starts the device and probes it; false, with the error printed, when there is none.
+bool start_verifier(const Options& o, Verifier& v, std::ostream& err) {
+  std::string error;
+  v.device = WorkerDevice::start(error, o.timeout_seconds);
+  if (!v.device) {
+    err << "lwcport: error: " << error << '\n';
+    return false;
+  }
+  if (std::string why = probe_driver(*v.device, v.probes); !why.empty()) {
+    err << "lwcport: error: driver probe on " << v.device->name() << ": " << why << '\n';
+    return false;
+  }
+  return true;
+}
+
+// The functions that hold the file's findings, each once, in order: what verification runs.
+// A finding outside any function (a uniform, a stage input) counts in every function that uses it.
+std::vector<std::string> functions_with_findings(const Source& source, const AnalyzeOptions& options, Lang lang) {
+  const std::string& text = source.text();
+  std::vector<Finding> findings = analyze(source, options);
+  std::vector<uint32_t> offsets;
+  for (const Finding& finding : findings) offsets.push_back(finding.span.begin);
+  std::vector<std::string> found = enclosing_functions(lang, text, offsets);
+  static const std::regex identifier(R"(\w+)");
+  std::vector<uint32_t> uses;
+  for (size_t i = 0; i < findings.size(); ++i) {
+    std::string name = text.substr(findings[i].span.begin, findings[i].span.end - findings[i].span.begin);
+    if (!found[i].empty() || !std::regex_match(name, identifier)) continue;
+    std::regex use("\\b" + name + "\\b");
+    for (auto m = std::sregex_iterator(text.begin(), text.end(), use); m != std::sregex_iterator(); ++m)
+      uses.push_back(static_cast<uint32_t>(m->position()));
+  }
+  std::vector<std::string> users = enclosing_functions(lang, text, uses);
+  found.insert(found.end(), users.begin(), users.end());
+  std::vector<std::string> names;
+  for (const std::string& name : found)
+    if (!name.empty() && std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  return names;
+}
+
+// How the harness compiles one file: its language, stage, scene, and includes resolved as lint
+// resolves them (lwcport's library from memory, Unreal's engine headers from the stub).
+HarnessSetup harness_setup(const InputFile& file, const LoadedFile& f, Lang lang, IncludeSummaries& includes) {
+  HarnessSetup setup;
+  setup.lang = lang;
+  setup.display = file.display;
+  setup.unreal = file.display.ends_with(".usf") || file.display.ends_with(".ush");
+  setup.stage = lang == Lang::glsl ? stage_from_extension(file.display).value_or(Stage::fragment) : Stage::fragment;
+  setup.scene = f.options.scene;
+  fs::path from = file.path;
+  std::shared_ptr<const ProjectConfig> config = file.config;
+  setup.include = [&includes, from, config, lang](const std::string& name, const std::string&) -> std::optional<std::string> {
+    if (name == library_file_name(lang)) return full_library_text(lang);
+    if (auto p = includes.resolve(name, from, *config)) {
+      ReadResult r = read_file(*p, config->max_file_bytes);
+      if (r.error.empty()) return r.text;
+    }
+    if (name.rfind("/Engine/", 0) == 0) return std::string();  // what the Unreal stub declares
+    return std::nullopt;
+  };
+  return setup;
+}
+
+// `fix --verify`: runs every function with a finding as written and as fixed. "" when each fixed
+// form passes; else why the fix is held back. `verified` gets one line per function that passed.
+std::string verify_fix(Verifier& verifier, const InputFile& file, const LoadedFile& f, Lang lang, const std::string& fixed,
+                       IncludeSummaries& includes, std::vector<std::string>& verified) {
+  const Source& source = *f.source;
+  std::vector<std::string> names = functions_with_findings(source, f.options, lang);
+  if (names.empty()) return "no function of the file holds a finding, so there is nothing to run";
+  HarnessSetup setup = harness_setup(file, f, lang, includes);
+  std::vector<FileVariant> variants = {{"original (float32)", source.text(), unreal_era(source.text())}, {"fixed", fixed, 504}};
+  for (const std::string& name : names) {
+    FunctionResult r = verify_function(*verifier.device, verifier.probes, setup, name, variants);
+    const VariantResult& v = r.variants.back();
+    if (!v.passed())
+      return fmt::format("the rewrite of `{}` did not pass verification on {}: {}{}", name, verifier.device->name(), v.status,
+                         v.worst.empty() ? "" : "; worst " + v.worst);
+    verified.push_back(fmt::format("verified on {}: the rewrite of `{}` is within {} of the float64 reference (max {:.3g} cm; "
+                                   "{:.3g} ns per invocation, the original {:.3g})", verifier.device->name(), name,
+                                   format_distance(setup.scene.precision), v.max_error, v.ns_per_invocation,
+                                   r.variants.front().ns_per_invocation));
+  }
+  return "";
+}
+
 struct FixedFile {
   std::filesystem::path path;
   FileReport report;   // what remains, plus any write problem
@@ -343,7 +455,18 @@ struct LibraryFile {
   std::set<std::string> names;
 };
 
-FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& includes) {
+// Nothing was written: the report is the original file's findings after `why`, not the unwritten result's.
+void keep_original(FixedFile& out, const Source& source, const AnalyzeOptions& options, const Finding& why) {
+  out.changed = false;
+  out.applied = 0;
+  out.diff.clear();
+  out.report.findings.clear();
+  out.report.findings.push_back(locate(source, why));
+  for (const Finding& finding : analyze(source, options)) out.report.findings.push_back(locate(source, finding));
+  out.library_lang.reset();
+}
+
+FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& includes, Verifier* verifier) {
   FixedFile out;
   LoadedFile f = load(file, o, includes);
   if (f.problem) {
@@ -367,6 +490,15 @@ FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& in
   }
   if (!out.changed) return out;
   std::optional<Lang> lang = language_for(source, f.options);
+  if (verifier && lang) {
+    std::vector<std::string> verified;
+    if (std::string why = verify_fix(*verifier, file, f, *lang, fixed.text, includes, verified); !why.empty()) {
+      keep_original(out, source, f.options, input_finding(Severity::warning, 0, "fix held back: " + why,
+                                                          "run `lwcport verify` on the file for every variant's numbers"));
+      return out;
+    }
+    for (const std::string& line : verified) out.report.findings.push_back(locate(result, input_finding(Severity::note, 0, line, "")));
+  }
   if (lang && fixed.text.find("\"" + library_file_name(*lang) + "\"") != std::string::npos) {
     out.library_lang = lang;
     out.library_names = library_names_used(*lang, fixed.text);
@@ -376,16 +508,8 @@ FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& in
     return out;
   }
   std::string why = replace_file(file.path, source.text(), fixed.text);
-  if (!why.empty()) {
-    // Nothing was written: report the original file's findings, not the unwritten result's.
-    out.changed = false;
-    out.applied = 0;
-    out.report.findings.clear();
-    for (const Finding& finding : analyze(source, f.options)) out.report.findings.push_back(locate(source, finding));
-    out.report.findings.insert(out.report.findings.begin(),
-                               locate(source, input_finding(Severity::error, 0, "cannot write the fixes: " + why, "the other files were still fixed")));
-    out.library_lang.reset();
-  }
+  if (!why.empty())
+    keep_original(out, source, f.options, input_finding(Severity::error, 0, "cannot write the fixes: " + why, "the other files were still fixed"));
   return out;
 }
 
@@ -425,6 +549,9 @@ void write_library(const LibraryFile& lib, const Options& o, std::ostream& out, 
 
 int fix(const Options& o, std::ostream& out, std::ostream& err) {
   std::vector<InputFile> files = input_files(o);
+  // --verify: one device, used by one file at a time (started before any thread: it forks).
+  std::optional<Verifier> verifier;
+  if (o.verify && !start_verifier(o, verifier.emplace(), err)) return 2;
   ReportTarget target;
   ReportOptions ro;
   if (!open_target(o, out, err, target, ro)) return 2;
@@ -435,7 +562,7 @@ int fix(const Options& o, std::ostream& out, std::ostream& err) {
   int applied = 0, changed_files = 0, unsafe_left = 0;
   std::map<std::string, LibraryFile> libraries;  // by path
   run_in_order<FixedFile>(
-      files.size(), job_count(o), [&](size_t i) { return fix_file(files[i], o, includes); },
+      files.size(), verifier ? 1 : job_count(o), [&](size_t i) { return fix_file(files[i], o, includes, verifier ? &*verifier : nullptr); },
       [&](const FixedFile& r) {
         applied += r.applied;
         changed_files += r.changed;
@@ -483,16 +610,8 @@ int parse_only(const Options& o, std::ostream& out) {
   return with_errors ? 1 : 0;
 }
 
-// The engine era an Unreal file was written for: 504 (DoubleFloat), 500 (tile/offset) or 427.
-int unreal_era(const std::string& text) {
-  static const std::regex df(R"(\bFDF\w+|\bDF[A-Z]\w*\s*\()"), lwc(R"(\bFLWC\w+|\bLWC[A-Z]\w*\s*\()");
-  if (std::regex_search(text, df)) return 504;
-  if (std::regex_search(text, lwc)) return 500;
-  return 427;
-}
-
 // `lwcport verify PATHS`: every function with a finding, in its original form and each rewrite.
-int verify_functions(const Options& o, WorkerDevice& device, const DriverProbes& probes, std::ostream& out, std::ostream& err) {
+int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, std::ostream& err) {
   std::vector<InputFile> files = input_files(o);
   IncludeSummaries includes;
   std::vector<FunctionResult> results;
@@ -505,13 +624,8 @@ int verify_functions(const Options& o, WorkerDevice& device, const DriverProbes&
     const Source& source = *f.source;
     std::optional<Lang> lang = language_for(source, f.options);
     if (!lang) continue;
-    std::vector<uint32_t> offsets;
-    for (const Finding& finding : analyze(source, f.options)) offsets.push_back(finding.span.begin);
-    std::vector<std::string> names;
-    for (const std::string& name : enclosing_functions(*lang, source.text(), offsets))
-      if (!name.empty() && std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+    std::vector<std::string> names = functions_with_findings(source, f.options, *lang);
     if (names.empty()) continue;
-    bool unreal = file.display.ends_with(".usf") || file.display.ends_with(".ush");
     std::vector<FileVariant> variants = {{"original (float32)", source.text(), unreal_era(source.text())}};
     for (auto [strategy, label] : {std::pair{Strategy::translated, "translated world"}, std::pair{Strategy::df, "DoubleFloat"}}) {
       AnalyzeOptions a = f.options;
@@ -522,27 +636,15 @@ int verify_functions(const Options& o, WorkerDevice& device, const DriverProbes&
       if (!seen) variants.push_back({label, text, 504});
     }
     if (variants.size() == 2 && variants[1].label != "original (float32)") variants[1].label = "fixed";
-    HarnessSetup setup;
-    setup.lang = *lang;
-    setup.display = file.display;
-    setup.unreal = unreal;
-    setup.stage = *lang == Lang::glsl ? stage_from_extension(file.display).value_or(Stage::fragment) : Stage::fragment;
-    setup.scene = f.options.scene;
-    fs::path from = file.path;
-    std::shared_ptr<const ProjectConfig> config = file.config;
-    setup.include = [&includes, from, config, l = *lang](const std::string& name, const std::string&) -> std::optional<std::string> {
-      if (name == library_file_name(l)) return full_library_text(l);
-      if (auto p = includes.resolve(name, from, *config)) {
-        ReadResult r = read_file(*p, config->max_file_bytes);
-        if (r.error.empty()) return r.text;
-      }
-      if (name.rfind("/Engine/", 0) == 0) return std::string();  // what the Unreal stub declares
-      return std::nullopt;
-    };
-    for (const std::string& name : names) results.push_back(verify_function(device, probes, setup, name, variants));
+    for (size_t i = 0, n = variants.size(); i < n; ++i)
+      if (std::string fast = fast_double_float_form(variants[i].text); fast != variants[i].text)
+        variants.push_back({variants[i].label.substr(0, variants[i].label.find(" (")) + ", DFFast*", fast, variants[i].ue_version});
+    HarnessSetup setup = harness_setup(file, f, *lang, includes);
+    for (const std::string& name : names)
+      results.push_back(verify_function(*verifier.device, verifier.probes, setup, name, variants));
   }
-  if (o.report.format == Format::json) print_functions_json(out, device.name(), probes, results);
-  else print_functions_text(out, device.name(), probes, results);
+  if (o.report.format == Format::json) print_functions_json(out, verifier.device->name(), verifier.probes, results);
+  else print_functions_text(out, verifier.device->name(), verifier.probes, results);
   if (!o.fail_on) return 0;
   for (const FunctionResult& r : results)
     for (size_t i = 1; i < r.variants.size(); ++i)
@@ -553,25 +655,17 @@ int verify_functions(const Options& o, WorkerDevice& device, const DriverProbes&
 int verify(const Options& o, std::ostream& out, std::ostream& err) {
   if (o.report.format != Format::text && o.report.format != Format::json)
     throw UsageError("verify: --format must be text or json");
-  std::string error;
-  std::unique_ptr<WorkerDevice> device = WorkerDevice::start(error, o.timeout_seconds);
-  if (!device) {
-    err << "lwcport: error: " << error << '\n';
-    return 2;
-  }
-  DriverProbes probes;
-  if (std::string why = probe_driver(*device, probes); !why.empty()) {
-    err << "lwcport: error: driver probe on " << device->name() << ": " << why << '\n';
-    return 2;
-  }
+  Verifier verifier;
+  if (!start_verifier(o, verifier, err)) return 2;
   ReportTarget target;
   ReportOptions ro;
   if (!open_target(o, out, err, target, ro)) return 2;
-  if (!o.shaderlib) return verify_functions(o, *device, probes, *target.stream, err);
+  if (!o.shaderlib) return verify_functions(o, verifier, *target.stream, err);
   LibraryCheckOptions options;
-  LibraryAccuracy accuracy = check_library(*device, probes, options);
-  if (o.report.format == Format::json) print_library_json(*target.stream, device->name(), probes, accuracy, options.inputs);
-  else print_library_text(*target.stream, device->name(), probes, accuracy, options.inputs);
+  LibraryAccuracy accuracy = check_library(*verifier.device, verifier.probes, options);
+  const std::string& name = verifier.device->name();
+  if (o.report.format == Format::json) print_library_json(*target.stream, name, verifier.probes, accuracy, options.inputs);
+  else print_library_text(*target.stream, name, verifier.probes, accuracy, options.inputs);
   return accuracy.failed() ? 1 : 0;
 }
 

@@ -1,8 +1,10 @@
 #include "cli/verify_report.h"
 
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace lwc {
@@ -141,7 +143,9 @@ void print_functions_text(std::ostream& out, const std::string& device, const Dr
   size_t variants = 0, passed = 0;
   for (const FunctionResult& r : results) {
     out << fmt::format("\n{}: {} (reference: {})\n", r.file, r.function, r.reference);
-    out << fmt::format("  {:<20} {:>11} {:>11} {:>10} {:>9} {:>7}  {:<6} {}\n", "variant", "max error", "median", "max ULPs",
+    size_t w = 20;  // the label column fits the longest label
+    for (const VariantResult& v : r.variants) w = std::max(w, v.label.size());
+    out << fmt::format("  {:<{}} {:>11} {:>11} {:>10} {:>9} {:>7}  {:<6} {}\n", "variant", w, "max error", "median", "max ULPs",
                        "ns/inv", "SPIR-V", "Pareto", "result");
     std::vector<std::string> details;
     for (const VariantResult& v : r.variants) {
@@ -149,11 +153,11 @@ void print_functions_text(std::ostream& out, const std::string& device, const Dr
       passed += v.passed();
       std::string result = v.status.size() > 40 ? v.status.substr(0, v.status.find(':')) : v.status;
       if (!v.measured) {
-        out << fmt::format("  {:<20} {:>11} {:>11} {:>10} {:>9} {:>7}  {:<6} {}\n", v.label, "-", "-", "-", "-", "-", "", result);
+        out << fmt::format("  {:<{}} {:>11} {:>11} {:>10} {:>9} {:>7}  {:<6} {}\n", v.label, w, "-", "-", "-", "-", "-", "", result);
         details.push_back(fmt::format("{}: {}", v.label, v.status));
         continue;
       }
-      out << fmt::format("  {:<20} {:>11} {:>11} {:>10.3g} {:>9.3g} {:>7}  {:<6} {}\n", v.label, cm(v.max_error), cm(v.median_error),
+      out << fmt::format("  {:<{}} {:>11} {:>11} {:>10.3g} {:>9.3g} {:>7}  {:<6} {}\n", v.label, w, cm(v.max_error), cm(v.median_error),
                          v.max_ulps, v.ns_per_invocation, v.spirv_instructions, v.pareto ? "*" : "", result);
       if (v.status != "pass" && !v.worst.empty()) details.push_back(fmt::format("{}: worst {}", v.label, v.worst));
       for (const std::string& loss : v.contraction_losses) details.push_back(fmt::format("{}: {}", v.label, loss));

@@ -212,6 +212,26 @@ struct Global {
   std::string name, type;
 };
 
+// glslang's HLSL has `mul` and `transpose` for float matrices only: the double reference gets
+// its own, row by row as HLSL defines them (row vectors on the left, rows of the matrix).
+std::string hlsl_double_matrix_functions() {
+  std::string out;
+  for (int n = 2; n <= 4; ++n)
+    for (int m = 2; m <= 4; ++m) {
+      out += fmt::format("double{1} mul(double{0} v, double{0}x{1} a) {{ double{1} r = 0; for (int i = 0; i < {0}; ++i) r += v[i] * a[i]; return r; }}\n", n, m);
+      out += fmt::format("double{0} mul(double{0}x{1} a, double{1} v) {{ double{0} r; for (int i = 0; i < {0}; ++i) {{ double s = 0; "
+                         "for (int j = 0; j < {1}; ++j) s += a[i][j] * v[j]; r[i] = s; }} return r; }}\n", n, m);
+      out += fmt::format("double{1}x{0} transpose(double{0}x{1} a) {{ double{1}x{0} r; for (int i = 0; i < {0}; ++i) "
+                         "for (int j = 0; j < {1}; ++j) r[j][i] = a[i][j]; return r; }}\n", n, m);
+    }
+  for (int n = 2; n <= 4; ++n)
+    for (int k = 2; k <= 4; ++k)
+      for (int m = 2; m <= 4; ++m)
+        out += fmt::format("double{0}x{2} mul(double{0}x{1} a, double{1}x{2} b) {{ double{0}x{2} r; for (int i = 0; i < {0}; ++i) "
+                           "r[i] = mul(a[i], b); return r; }}\n", n, k, m);
+  return out;
+}
+
 }  // namespace
 
 std::vector<std::string> enclosing_functions(Lang lang, const std::string& text, const std::vector<uint32_t>& offsets) {
@@ -220,11 +240,18 @@ std::vector<std::string> enclosing_functions(Lang lang, const std::string& text,
   std::vector<std::string> out;
   for (uint32_t at : offsets) {
     std::string name;
-    for (int c = t.at(0).first_child; c >= 0; c = t.at(c).next_sibling)
-      if (t.is(c, "function_definition") && t.at(c).begin <= at && at < t.at(c).end) {
+    // Down through whatever holds the offset (include guards, #if blocks) to a function.
+    for (int c = t.at(0).first_child; c >= 0 && name.empty();) {
+      if (!(t.at(c).begin <= at && at < t.at(c).end)) {
+        c = t.at(c).next_sibling;
+        continue;
+      }
+      if (t.is(c, "function_definition")) {
         int id = declared_identifier(t, t.child_by_field(c, "declarator"));
         if (id >= 0) name = t.text(id);
       }
+      c = t.at(c).first_child;
+    }
     out.push_back(name);
   }
   return out;
@@ -401,6 +428,7 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
     prefix += fmt::format("{0} lwc_f32_pow({0} x, {0} y) {{ return {0}(pow({1}(x), {1}(y))); }}\n", d, f);
     for (int n = 2; n <= 4; ++n)
       prefix += fmt::format("{0}{2} lwc_f32_pow({0}{2} x, {0}{2} y) {{ return {0}{2}(pow({1}{2}(x), {1}{2}(y))); }}\n", v, fv, n);
+    if (lang == Lang::hlsl) prefix += hlsl_double_matrix_functions();
   }
   k.declarations = prefix + decl;
 
