@@ -2,6 +2,8 @@
 // the timeout with a clear error, and the other file's function is still verified.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include "support.h"
 
 namespace lwc {
@@ -52,6 +54,30 @@ TEST(VerifyCli, FixVerifyAppliesTheRewriteThatPassesAndHoldsBackTheOneThatDoesNo
   EXPECT_EQ(test::read(dir + "/b_fails.vert"), forward);
   EXPECT_NE(r.out.find("b_fails.vert:1:1: warning: fix held back: the rewrite of `main` did not pass verification"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("worst case 'ill-conditioned object matrix"), std::string::npos) << r.out;
+}
+
+// The README's main command ends with this table: the whole corpus, every function with a finding
+// verified or given a reason, in CI's time budget (measured in tests/bench/RESULTS.md).
+TEST(VerifyCli, TheWholeCorpusIsVerified) {
+  test::Run r = test::run(test::binary() + " verify " + test::source_dir() + "/corpus --format json --fail-on none");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_GE(j["functions"].size(), 30u);
+  int measured = 0, passed = 0;
+  for (const auto& f : j["functions"]) {
+    ASSERT_FALSE(f["variants"].empty()) << f["file"];
+    EXPECT_FALSE(f["pick"].get<std::string>().empty()) << f["file"];
+    for (const auto& v : f["variants"]) {
+      std::string status = v["status"];
+      EXPECT_EQ(status.find("did not run"), std::string::npos) << f["file"] << " " << f["function"] << ": " << status;
+      measured += v["measured"].get<bool>();
+      passed += status == "pass";
+      if (status == "fail") EXPECT_NE(v["worst"].get<std::string>().find("case '"), std::string::npos) << f["function"];
+    }
+  }
+  EXPECT_GE(measured, 60);
+  EXPECT_GE(passed, 15);
+  EXPECT_GT(j["time"]["dispatchSeconds"].get<double>(), 0.0);
 }
 
 }  // namespace

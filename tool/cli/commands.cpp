@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <mutex>
 #include <cstdlib>
@@ -612,6 +613,7 @@ int parse_only(const Options& o, std::ostream& out) {
 
 // `lwcport verify PATHS`: every function with a finding, in its original form and each rewrite.
 int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, std::ostream& err) {
+  auto start = std::chrono::steady_clock::now();
   std::vector<InputFile> files = input_files(o);
   IncludeSummaries includes;
   std::vector<FunctionResult> results;
@@ -643,8 +645,9 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
     for (const std::string& name : names)
       results.push_back(verify_function(*verifier.device, verifier.probes, setup, name, variants));
   }
-  if (o.report.format == Format::json) print_functions_json(out, verifier.device->name(), verifier.probes, results);
-  else print_functions_text(out, verifier.device->name(), verifier.probes, results);
+  double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (o.report.format == Format::json) print_functions_json(out, verifier.device->name(), verifier.probes, results, wall);
+  else print_functions_text(out, verifier.device->name(), verifier.probes, results, wall);
   if (!o.fail_on) return 0;
   for (const FunctionResult& r : results)
     for (size_t i = 1; i < r.variants.size(); ++i)

@@ -134,10 +134,19 @@ void print_library_json(std::ostream& out, const std::string& device, const Driv
 
 namespace {
 std::string cm(double x) { return std::isfinite(x) ? fmt::format("{:.3g} cm", x) : "inf"; }
+struct TimeSplit {
+  double compile = 0, pipeline = 0, dispatch = 0;
+};
+TimeSplit time_split(const std::vector<FunctionResult>& results) {
+  TimeSplit t;
+  for (const FunctionResult& r : results) t.compile += r.compile_seconds, t.pipeline += r.pipeline_seconds, t.dispatch += r.dispatch_seconds;
+  return t;
+}
+
 }  // namespace
 
 void print_functions_text(std::ostream& out, const std::string& device, const DriverProbes& probes,
-                          const std::vector<FunctionResult>& results) {
+                          const std::vector<FunctionResult>& results, double wall_seconds) {
   out << fmt::format("Verification on {}\n\nDriver probes:\n", device);
   for (const std::string& line : describe_probes(probes)) out << "  " << line << '\n';
   size_t variants = 0, passed = 0;
@@ -166,10 +175,13 @@ void print_functions_text(std::ostream& out, const std::string& device, const Dr
     for (const std::string& d : details) out << "    " << d << '\n';
   }
   out << fmt::format("\nVerified {} function(s), {} variant(s): {} within the scene's precision.\n", results.size(), variants, passed);
+  TimeSplit t = time_split(results);
+  out << fmt::format("Time: {:.1f} s, {:.2f} function(s) per second; glslang {:.1f} s, pipelines and JIT {:.1f} s, dispatches {:.1f} s.\n",
+                     wall_seconds, results.size() / wall_seconds, t.compile, t.pipeline, t.dispatch);
 }
 
 void print_functions_json(std::ostream& out, const std::string& device, const DriverProbes& probes,
-                          const std::vector<FunctionResult>& results) {
+                          const std::vector<FunctionResult>& results, double wall_seconds) {
   using nlohmann::json;
   json fns = json::array();
   auto number = [](double x) { return std::isfinite(x) ? json(x) : json(nullptr); };
@@ -183,7 +195,10 @@ void print_functions_json(std::ostream& out, const std::string& device, const Dr
                     {"contractionLosses", v.contraction_losses}, {"worst", v.worst}});
     fns.push_back({{"file", r.file}, {"function", r.function}, {"reference", r.reference}, {"pick", r.pick}, {"variants", vs}});
   }
-  json j = {{"device", device}, {"probes", describe_probes(probes)}, {"functions", fns}};
+  TimeSplit t = time_split(results);
+  json time = {{"wallSeconds", wall_seconds}, {"functionsPerSecond", results.size() / wall_seconds}, {"compileSeconds", t.compile},
+               {"pipelineSeconds", t.pipeline}, {"dispatchSeconds", t.dispatch}};
+  json j = {{"device", device}, {"probes", describe_probes(probes)}, {"functions", fns}, {"time", time}};
   out << j.dump(2) << '\n';
 }
 

@@ -19,9 +19,11 @@ void print_library_text(std::ostream& out, const std::string& device, const Driv
 void print_library_json(std::ostream& out, const std::string& device, const DriverProbes& probes,
                         const LibraryAccuracy& accuracy, size_t inputs);
 
+// `wall_seconds`: the whole run, for the time split (functions per second; glslang, pipelines
+// and JIT, dispatches).
 void print_functions_text(std::ostream& out, const std::string& device, const DriverProbes& probes,
-                          const std::vector<FunctionResult>& results);
+                          const std::vector<FunctionResult>& results, double wall_seconds);
 void print_functions_json(std::ostream& out, const std::string& device, const DriverProbes& probes,
-                          const std::vector<FunctionResult>& results);
+                          const std::vector<FunctionResult>& results, double wall_seconds);
 
 }  // namespace lwc

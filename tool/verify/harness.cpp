@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -288,9 +289,10 @@ std::vector<double> role_value(Role role, int components, const State& s, uint64
     out.resize(components, 0);
     return out;
   };
-  Mat4 model = affine(s.rotation_scale, s.origin);
-  Mat4 view = multiply(affine(s.view, {0, 0, 0}), translation(neg(s.camera)));
-  Mat4 rotation_only = affine(s.view, {0, 0, 0});
+  // Built on demand: this runs for every input of every invocation.
+  auto model = [&] { return affine(s.rotation_scale, s.origin); };
+  auto rotation_only = [&] { return affine(s.view, {0, 0, 0}); };
+  auto view = [&] { return multiply(rotation_only(), translation(neg(s.camera))); };
   switch (role) {
     case Role::camera: return vec(s.camera, 1);
     case Role::translated_camera: return vec({0, 0, 0}, 1);
@@ -300,16 +302,16 @@ std::vector<double> role_value(Role role, int components, const State& s, uint64
     case Role::object_origin: return vec(s.origin, 1);
     case Role::local_position: return vec(s.local, 1);
     case Role::direction: return vec(s.direction, 0);
-    case Role::model: return mat(model);
+    case Role::model: return mat(model());
     case Role::translated_model: return mat(affine(s.rotation_scale, sub(s.origin, s.camera)));
     case Role::world_to_local: return mat(inverse_affine(s.rotation_scale, s.origin));
     case Role::model_normal: return mat(affine(transpose3(inverse3(s.rotation_scale)), {0, 0, 0}));
     case Role::rotation_scale: return mat(affine(s.rotation_scale, {0, 0, 0}));
-    case Role::view: return mat(view);
-    case Role::translated_view: return mat(rotation_only);
-    case Role::view_projection: return mat(multiply(projection(), view));
-    case Role::translated_view_projection: return mat(multiply(projection(), rotation_only));
-    case Role::world_view_projection: return mat(multiply(projection(), multiply(view, model)));
+    case Role::view: return mat(view());
+    case Role::translated_view: return mat(rotation_only());
+    case Role::view_projection: return mat(multiply(projection(), view()));
+    case Role::translated_view_projection: return mat(multiply(projection(), rotation_only()));
+    case Role::world_view_projection: return mat(multiply(projection(), multiply(view(), model())));
     case Role::projection: return mat(projection());
     case Role::other: break;
   }
@@ -452,7 +454,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
   std::string fused = probes.fuses_fma() ? "1" : "0";
 
   // Preprocesses a variant and builds its kernel (float32 as written, or promoted to float64).
-  auto build = [&](const FileVariant& v, bool float64) {
+  auto build_kernel = [&](const FileVariant& v, bool float64) {
     Kernel k;
     CompileInput in;
     in.lang = setup.lang;
@@ -504,6 +506,12 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     if (!k.compiled.ok) k.problem = "the harness kernel does not compile: " + format_messages(k.compiled);
     return k;
   };
+  auto build = [&](const FileVariant& v, bool float64) {
+    auto start = std::chrono::steady_clock::now();
+    Kernel k = build_kernel(v, float64);
+    result.compile_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return k;
+  };
 
   size_t n = static_cast<size_t>(setup.invocations + kKernelGroupSize - 1) / kKernelGroupSize * kKernelGroupSize;
   std::vector<State> states(n);
@@ -515,11 +523,13 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     std::vector<uint8_t> bytes;
     std::vector<double> all64;
     std::vector<float> all32;
+    std::vector<std::pair<Role, uint64_t>> roles;  // per leaf, once: names are slow to read
+    for (const Leaf& leaf : k.inputs) roles.emplace_back(role_of(leaf.name, leaf.components), hash_name(leaf.name));
     for (size_t i = 0; i < n; ++i) {
       std::fill(record.begin(), record.end(), 0.0);
-      for (const Leaf& leaf : k.inputs) {
-        Role role = role_of(leaf.name, leaf.components);
-        encode(leaf, role_value(role, leaf.components, states[i], hash_name(leaf.name), i), float64, record.data());
+      for (size_t l = 0; l < k.inputs.size(); ++l) {
+        const Leaf& leaf = k.inputs[l];
+        encode(leaf, role_value(roles[l].first, leaf.components, states[i], roles[l].second, i), float64, record.data());
       }
       if (float64) all64.insert(all64.end(), record.begin(), record.end());
       else for (double x : record) all32.push_back(static_cast<float>(x));
@@ -537,6 +547,12 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
                                                  std::vector<uint8_t>(n * k.code.out_stride * (float64 ? 8 : 4))};
     r.problem = device.run(k.compiled.spirv, buffers, static_cast<uint32_t>(n / kKernelGroupSize), repeats, &r.timing);
     if (!r.problem.empty()) return r;
+    // The first dispatch compiles the shader (lavapipe's JIT): pipeline time, less one dispatch.
+    const std::vector<double>& d = r.timing.dispatch_seconds;
+    double typical = d.size() > 1 ? d.back() : 0;
+    result.pipeline_seconds += r.timing.pipeline_seconds + d.front() - typical;
+    for (size_t i = 1; i < d.size(); ++i) result.dispatch_seconds += d[i];
+    result.dispatch_seconds += typical;
     if (float64) r.out = from_bytes<double>(buffers[1]);
     else for (float x : from_bytes<float>(buffers[1])) r.out.push_back(x);
     return r;

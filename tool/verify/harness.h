@@ -61,6 +61,10 @@ struct FunctionResult {
   std::vector<VariantResult> variants;  // variants[0] is the original
   std::string reference;   // how the reference was computed, or why it could not be
   std::string pick;        // which variant the scene picks, and why
+  // Where the time went, over every kernel of the function (the reference included).
+  double compile_seconds = 0;   // glslang: preprocessing, the compile check, the kernel to SPIR-V
+  double pipeline_seconds = 0;  // Vulkan pipeline creation and lavapipe's JIT (the first dispatch)
+  double dispatch_seconds = 0;  // the timed dispatches
 };
 
 // The named cases every function runs on (LWC-BRIEF §6), in order.
