@@ -432,6 +432,24 @@ double distance(const State& s) {
   return std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
 }
 
+// lavapipe compiles a shader in its first dispatch: that dispatch, less a typical one (the median
+// of the rest), is pipeline time; the rest are the timed dispatches. One dispatch: all pipeline.
+struct TimingSplit {
+  double pipeline = 0, median_dispatch = 0, dispatches = 0;
+};
+TimingSplit split_timing(const DispatchTiming& t) {
+  TimingSplit out;
+  std::vector<double> timed(t.dispatch_seconds.begin() + (t.dispatch_seconds.empty() ? 0 : 1), t.dispatch_seconds.end());
+  if (!timed.empty()) {
+    std::nth_element(timed.begin(), timed.begin() + timed.size() / 2, timed.end());
+    out.median_dispatch = timed[timed.size() / 2];
+  }
+  for (double s : timed) out.dispatches += s;
+  out.dispatches += out.median_dispatch;  // the first dispatch's share that is execution
+  out.pipeline = t.pipeline_seconds + (t.dispatch_seconds.empty() ? 0 : t.dispatch_seconds.front()) - out.median_dispatch;
+  return out;
+}
+
 struct Kernel {
   HarnessKernel code;
   CompileResult compiled;
@@ -539,6 +557,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
   struct Run {
     std::vector<double> out;  // n * out_stride
     DispatchTiming timing;
+    TimingSplit split;
     std::string problem;
   };
   auto run = [&](const Kernel& k, bool float64, int repeats) {
@@ -547,12 +566,9 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
                                                  std::vector<uint8_t>(n * k.code.out_stride * (float64 ? 8 : 4))};
     r.problem = device.run(k.compiled.spirv, buffers, static_cast<uint32_t>(n / kKernelGroupSize), repeats, &r.timing);
     if (!r.problem.empty()) return r;
-    // The first dispatch compiles the shader (lavapipe's JIT): pipeline time, less one dispatch.
-    const std::vector<double>& d = r.timing.dispatch_seconds;
-    double typical = d.size() > 1 ? d.back() : 0;
-    result.pipeline_seconds += r.timing.pipeline_seconds + d.front() - typical;
-    for (size_t i = 1; i < d.size(); ++i) result.dispatch_seconds += d[i];
-    result.dispatch_seconds += typical;
+    r.split = split_timing(r.timing);
+    result.pipeline_seconds += r.split.pipeline;
+    result.dispatch_seconds += r.split.dispatches;
     if (float64) r.out = from_bytes<double>(buffers[1]);
     else for (float x : from_bytes<float>(buffers[1])) r.out.push_back(x);
     return r;
@@ -592,11 +608,8 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
       result.variants.push_back(vr);
       continue;
     }
-    // The first dispatch compiles the shader (lavapipe JIT): it counts as pipeline time.
-    std::vector<double> timed(r.timing.dispatch_seconds.begin() + 1, r.timing.dispatch_seconds.end());
-    std::nth_element(timed.begin(), timed.begin() + timed.size() / 2, timed.end());
-    vr.ns_per_invocation = timed[timed.size() / 2] / static_cast<double>(n) * 1e9;
-    vr.pipeline_seconds = r.timing.pipeline_seconds + r.timing.dispatch_seconds.front() - timed[timed.size() / 2];
+    vr.ns_per_invocation = r.split.median_dispatch / static_cast<double>(n) * 1e9;
+    vr.pipeline_seconds = r.split.pipeline;
     vr.measured = true;
     if (!ref_run.problem.empty() || !reference.problem.empty()) {
       vr.status = "timed only: " + result.reference;
