@@ -23,14 +23,10 @@ class Message {
   Message() = default;
   explicit Message(std::vector<uint8_t> bytes) : bytes_(std::move(bytes)) {}
   template <typename T>
-  void put(T value) {
-    const auto* p = reinterpret_cast<const uint8_t*>(&value);
-    bytes_.insert(bytes_.end(), p, p + sizeof value);
-  }
+  void put(T value) { append(&value, sizeof value); }
   void put_blob(const void* data, size_t size) {
     put<uint64_t>(size);
-    const auto* p = static_cast<const uint8_t*>(data);
-    bytes_.insert(bytes_.end(), p, p + size);
+    append(data, size);
   }
   void put_string(const std::string& s) { put_blob(s.data(), s.size()); }
   template <typename T>
@@ -54,6 +50,12 @@ class Message {
   const std::vector<uint8_t>& bytes() const { return bytes_; }
 
  private:
+  void append(const void* data, size_t size) {
+    if (size == 0) return;
+    size_t at = bytes_.size();
+    bytes_.resize(at + size);
+    std::memcpy(bytes_.data() + at, data, size);
+  }
   std::vector<uint8_t> bytes_;
   size_t at_ = 0;
 };
