@@ -424,14 +424,21 @@ std::string verify_fix(Verifier& verifier, const InputFile& file, const LoadedFi
   std::vector<FileVariant> variants = {{"original (float32)", source.text(), unreal_era(source.text())}, {"fixed", fixed, 504}};
   for (const std::string& name : names) {
     FunctionResult r = verify_function(*verifier.device, verifier.probes, setup, name, variants);
-    const VariantResult& v = r.variants.back();
-    if (!v.passed())
+    const VariantResult &v = r.variants.back(), &original = r.variants.front();
+    // Input-limited: right on what it is handed, but a value its callers pass (unchanged by the
+    // fix) is float32; written when it is no further from the reference than the original was.
+    bool no_worse = original.measured && v.worst_over_target <= original.worst_over_target + 1;
+    if (!v.passed() && !(v.input_limited() && no_worse))
       return fmt::format("the rewrite of `{}` did not pass verification on {}: {}{}", name, verifier.device->name(), v.status,
                          v.worst.empty() ? "" : "; worst " + v.worst);
-    verified.push_back(fmt::format("verified on {}: the rewrite of `{}` is within {} of the float64 reference (max {:.3g} cm; "
-                                   "{:.3g} ns per invocation, the original {:.3g})", verifier.device->name(), name,
-                                   format_distance(setup.scene.precision), v.max_error, v.ns_per_invocation,
-                                   r.variants.front().ns_per_invocation));
+    std::string timing = fmt::format("{:.3g} ns per invocation, the original {:.3g}", v.ns_per_invocation, original.ns_per_invocation);
+    if (v.passed())
+      verified.push_back(fmt::format("verified on {}: the rewrite of `{}` is within {} of the float64 reference (max {:.3g} cm; {})",
+                                     verifier.device->name(), name, format_distance(setup.scene.precision), v.max_error, timing));
+    else
+      verified.push_back(fmt::format("verified on {}: the rewrite of `{}` computes within {} on the inputs it is handed, and is no "
+                                     "further from the float64 reference than the original; {}; {}",
+                                     verifier.device->name(), name, format_distance(setup.scene.precision), v.worst, timing));
   }
   return "";
 }

@@ -149,32 +149,36 @@ void print_functions_text(std::ostream& out, const std::string& device, const Dr
                           const std::vector<FunctionResult>& results, double wall_seconds) {
   out << fmt::format("Verification on {}\n\nDriver probes:\n", device);
   for (const std::string& line : describe_probes(probes)) out << "  " << line << '\n';
-  size_t variants = 0, passed = 0;
+  size_t variants = 0, passed = 0, input_limited = 0;
   for (const FunctionResult& r : results) {
     out << fmt::format("\n{}: {} (reference: {})\n", r.file, r.function, r.reference);
     size_t w = 20;  // the label column fits the longest label
     for (const VariantResult& v : r.variants) w = std::max(w, v.label.size());
-    out << fmt::format("  {:<{}} {:>11} {:>11} {:>10} {:>9} {:>7}  {:<6} {}\n", "variant", w, "max error", "median", "max ULPs",
-                       "ns/inv", "SPIR-V", "Pareto", "result");
+    out << fmt::format("  {:<{}} {:>11} {:>11} {:>11} {:>10} {:>9} {:>7}  {:<6} {}\n", "variant", w, "max error", "median", "own max",
+                       "max ULPs", "ns/inv", "SPIR-V", "Pareto", "result");
     std::vector<std::string> details;
     for (const VariantResult& v : r.variants) {
       ++variants;
       passed += v.passed();
+      input_limited += v.input_limited();
       std::string result = v.status.size() > 40 ? v.status.substr(0, v.status.find(':')) : v.status;
       if (!v.measured) {
-        out << fmt::format("  {:<{}} {:>11} {:>11} {:>10} {:>9} {:>7}  {:<6} {}\n", v.label, w, "-", "-", "-", "-", "-", "", result);
+        out << fmt::format("  {:<{}} {:>11} {:>11} {:>11} {:>10} {:>9} {:>7}  {:<6} {}\n", v.label, w, "-", "-", "-", "-", "-", "-", "", result);
         details.push_back(fmt::format("{}: {}", v.label, v.status));
         continue;
       }
-      out << fmt::format("  {:<{}} {:>11} {:>11} {:>10.3g} {:>9.3g} {:>7}  {:<6} {}\n", v.label, w, cm(v.max_error), cm(v.median_error),
-                         v.max_ulps, v.ns_per_invocation, v.spirv_instructions, v.pareto ? "*" : "", result);
+      if (v.mismatches) result += fmt::format(" ({} decision(s) differ)", v.mismatches);
+      out << fmt::format("  {:<{}} {:>11} {:>11} {:>11} {:>10.3g} {:>9.3g} {:>7}  {:<6} {}\n", v.label, w, cm(v.max_error), cm(v.median_error),
+                         cm(v.own_max_error), v.max_ulps, v.ns_per_invocation, v.spirv_instructions, v.pareto ? "*" : "", result);
       if (v.status != "pass" && !v.worst.empty()) details.push_back(fmt::format("{}: worst {}", v.label, v.worst));
       for (const std::string& loss : v.contraction_losses) details.push_back(fmt::format("{}: {}", v.label, loss));
     }
     out << fmt::format("  scene pick: {}\n", r.pick);
     for (const std::string& d : details) out << "    " << d << '\n';
   }
-  out << fmt::format("\nVerified {} function(s), {} variant(s): {} within the scene's precision.\n", results.size(), variants, passed);
+  out << fmt::format("\nVerified {} function(s), {} variant(s): {} within the scene's precision, {} input-limited (right on the "
+                     "inputs they are handed, held back by float32 inputs their callers pass).\n",
+                     results.size(), variants, passed, input_limited);
   TimeSplit t = time_split(results);
   out << fmt::format("Time: {:.1f} s, {:.2f} function(s) per second; glslang {:.1f} s, pipelines and JIT {:.1f} s, dispatches {:.1f} s.\n",
                      wall_seconds, results.size() / wall_seconds, t.compile, t.pipeline, t.dispatch);
@@ -190,6 +194,8 @@ void print_functions_json(std::ostream& out, const std::string& device, const Dr
     for (const VariantResult& v : r.variants)
       vs.push_back({{"variant", v.label}, {"status", v.status}, {"measured", v.measured}, {"maxError", number(v.max_error)},
                     {"medianError", number(v.median_error)}, {"maxUlps", number(v.max_ulps)},
+                    {"ownMaxError", number(v.own_max_error)}, {"ownMaxUlps", number(v.own_max_ulps)},
+                    {"decisionMismatches", v.mismatches}, {"worstOverTarget", number(v.worst_over_target)},
                     {"nsPerInvocation", v.ns_per_invocation}, {"pipelineSeconds", v.pipeline_seconds},
                     {"spirvInstructions", v.spirv_instructions}, {"paretoFront", v.pareto},
                     {"contractionLosses", v.contraction_losses}, {"worst", v.worst}});

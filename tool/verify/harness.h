@@ -36,10 +36,17 @@ struct HarnessSetup {
 
 struct VariantResult {
   std::string label;
-  std::string status;       // "pass", "fail", or why it could not be measured
+  // "pass"; "fail" (its own arithmetic misses the target); "input-limited" (its arithmetic is
+  // within the target, but inputs it keeps from the original, as the original's callers hand them
+  // over, are not); or why it could not be measured.
+  std::string status;
   double max_error = 0;     // world units (cm): positions, offsets, distances; clip as a world offset
   double median_error = 0;
   double max_ulps = 0;      // of the reference value, float32 ULPs (values below 1 count as 1)
+  double own_max_error = 0; // against the reference run on the inputs as this variant receives them
+  double own_max_ulps = 0;
+  int mismatches = 0;       // integer and bool results (decisions) that differ from the reference
+  double worst_over_target = 0;  // the worst result's error over the target (ULPs over 16 where not world units)
   double ns_per_invocation = 0;  // median over the timed dispatches
   double pipeline_seconds = 0;   // shader module + pipeline creation (+ the first dispatch's JIT)
   int spirv_instructions = 0;
@@ -49,6 +56,7 @@ struct VariantResult {
   bool pareto = false;
 
   bool passed() const { return status == "pass"; }
+  bool input_limited() const { return status == "input-limited"; }
   // Shown wrong: it misses the target, does not compile, or hung or crashed the driver. (A form
   // the harness cannot run or compare is neither passed nor refuted.)
   bool refuted() const {
