@@ -37,15 +37,18 @@ TEST(VerifyCli, AHangingShaderTimesOutAndTheOtherFilesAreStillVerified) {
   EXPECT_EQ(r.exit_code, 0);  // only the original hangs: no rewrite was shown wrong
 }
 
-TEST(VerifyCli, FixVerifyAppliesTheRewriteThatPassesAndHoldsBackTheOneThatDoesNot) {
+TEST(VerifyCli, FixVerifyAppliesPassingAndInputLimitedRewritesAndHoldsBackTheOneThatFails) {
   std::string dir = test::scratch("fix-verify");
   // Adding `precise` to a plain TwoSum passes; forward.vert's translated-world rewrite misses 1/16 cm
-  // on the ill-conditioned-matrix case (float32 depth at 6 km), so it is held back.
+  // on the ill-conditioned-matrix case (float32 depth at 6 km), so it is held back. `ToCamera`'s
+  // DFSubtractDemote is exact on the float3 it is handed: written, with the caller's part named.
   std::string two_sum = "float2 TwoSumPlain(float A, float B)\n{\n\tfloat S = A + B;\n\tfloat V = S - A;\n"
                         "\tfloat E = (A - (S - V)) + (B - V);\n\treturn float2(S, E);\n}\n";
   std::string forward = test::read(test::source_dir() + "/corpus/glsl/forward.vert");
   test::write(dir + "/a_passes.usf", two_sum);
   test::write(dir + "/b_fails.vert", forward);
+  std::string to_camera = "float3 ToCamera(float3 WorldPosition)\n{\n\treturn WorldPosition - View.WorldCameraOrigin;\n}\n";
+  test::write(dir + "/c_input_limited.usf", to_camera);
   test::Run r = test::run(test::binary() + " fix " + dir + " --verify --unsafe-fixes --fail-on none --color never");
   EXPECT_EQ(r.exit_code, 0) << r.out;
   std::string fixed = test::read(dir + "/a_passes.usf");
@@ -54,6 +57,10 @@ TEST(VerifyCli, FixVerifyAppliesTheRewriteThatPassesAndHoldsBackTheOneThatDoesNo
   EXPECT_EQ(test::read(dir + "/b_fails.vert"), forward);
   EXPECT_NE(r.out.find("b_fails.vert:1:1: warning: fix held back: the rewrite of `main` did not pass verification"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("worst case 'ill-conditioned object matrix"), std::string::npos) << r.out;
+  EXPECT_NE(test::read(dir + "/c_input_limited.usf").find("DFSubtractDemote(WorldPosition, PrimaryView.WorldCameraOrigin)"),
+            std::string::npos);
+  EXPECT_NE(r.out.find("the rewrite of `ToCamera` computes within 0.0625 cm on the inputs it is handed"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("still round (`WorldPosition` by up to"), std::string::npos) << r.out;
 }
 
 // The README's main command ends with this table: the whole corpus, every function with a finding
@@ -63,7 +70,7 @@ TEST(VerifyCli, TheWholeCorpusIsVerified) {
   ASSERT_EQ(r.exit_code, 0) << r.out;
   nlohmann::json j = nlohmann::json::parse(r.out);
   ASSERT_GE(j["functions"].size(), 30u);
-  int measured = 0, passed = 0;
+  int measured = 0, passed = 0, input_limited = 0;
   for (const auto& f : j["functions"]) {
     ASSERT_FALSE(f["variants"].empty()) << f["file"];
     EXPECT_FALSE(f["pick"].get<std::string>().empty()) << f["file"];
@@ -73,10 +80,17 @@ TEST(VerifyCli, TheWholeCorpusIsVerified) {
       measured += v["measured"].get<bool>();
       passed += status == "pass";
       if (status == "fail") EXPECT_NE(v["worst"].get<std::string>().find("case '"), std::string::npos) << f["function"];
+      if (status == "input-limited") {
+        ++input_limited;
+        EXPECT_NE(v["worst"].get<std::string>().find("inherited inputs round"), std::string::npos) << f["function"];
+      }
+      // Culling returns a decision: counted, never measured in ULPs.
+      if (f["function"] == "IsInstanceVisible" && v["measured"].get<bool>()) EXPECT_EQ(v["maxUlps"].get<double>(), 0.0);
     }
   }
   EXPECT_GE(measured, 60);
   EXPECT_GE(passed, 15);
+  EXPECT_GE(input_limited, 5);
   EXPECT_GT(j["time"]["dispatchSeconds"].get<double>(), 0.0);
 }
 

@@ -1,6 +1,8 @@
-// The per-function harness on lavapipe: a corpus vertex shader in float32 is caught at large
-// coordinates, its translated-world rewrite is measured far closer to the float64 reference.
+// The per-function harness on lavapipe: float32 originals caught at large coordinates, rewrites
+// measured against the float64 reference (and against it on the inputs they inherit), edge cases.
 #include <gtest/gtest.h>
+
+#include <algorithm>
 
 #include "fix/apply.h"
 #include "shaderlib/shaderlib.h"
@@ -47,6 +49,135 @@ TEST(HarnessOnLavapipe, ForwardVertexShaderOriginalFailsAndTheRewriteIsFarCloser
   EXPECT_LT(rewrite.median_error, 1e-3);
   EXPECT_GT(rewrite.ns_per_invocation, 0.0);
   EXPECT_GT(rewrite.spirv_instructions, 0);
+}
+
+
+// A small harness set-up for hand-written GLSL variants.
+HarnessSetup glsl_setup() {
+  HarnessSetup setup;
+  setup.lang = Lang::glsl;
+  setup.display = "test.frag";
+  setup.stage = Stage::fragment;
+  setup.invocations = 8192;
+  setup.repeats = 2;
+  setup.include = [](const std::string& name, const std::string&) -> std::optional<std::string> {
+    if (name == library_file_name(Lang::glsl)) return full_library_text(Lang::glsl);
+    return std::nullopt;
+  };
+  return setup;
+}
+
+struct Driver {
+  std::unique_ptr<WorkerDevice> device;
+  DriverProbes probes;
+};
+Driver start_driver() {
+  Driver d;
+  std::string error;
+  d.device = WorkerDevice::start(error);
+  EXPECT_NE(d.device, nullptr) << error;
+  if (d.device) EXPECT_EQ(probe_driver(*d.device, d.probes), "");
+  return d;
+}
+
+TEST(HarnessOnLavapipe, EveryEdgeCaseOfTheBriefIsNamed) {
+  std::vector<std::string> names = harness_case_names();
+  for (const char* wanted : {"+-0", "float32 denormals", "Inf input (object origin)", "NaN input (local position)",
+                             "FLWC offset larger than the tile size", "half-tile tie (2.5 * 2^21)", "2^43 - ulp cm"})
+    EXPECT_NE(std::find(names.begin(), names.end(), wanted), names.end()) << wanted;
+}
+
+// A rewrite that keeps a float32 parameter is right on what it is handed: it is input-limited, its
+// own error within the target, while the error against the exact position stays what float32 gives.
+TEST(HarnessOnLavapipe, ARewriteThatKeepsAFloatParameterIsInputLimited) {
+  Driver d = start_driver();
+  ASSERT_NE(d.device, nullptr);
+  std::string original = "#version 320 es\nprecision highp float;\nuniform vec3 cameraPosition;\n"
+                         "vec3 toCamera(vec3 worldPosition) { return worldPosition - cameraPosition; }\nvoid main() {}\n";
+  std::string rewrite = "#version 320 es\n#extension GL_GOOGLE_include_directive : require\nprecision highp float;\n"
+                        "#include \"lwc_doublefloat.glsl\"\nuniform FDFVector3 cameraPosition;\n"
+                        "vec3 toCamera(vec3 worldPosition) { return DFSubtractDemote(worldPosition, cameraPosition); }\nvoid main() {}\n";
+  FunctionResult r = verify_function(*d.device, d.probes, glsl_setup(), "toCamera", {{"original (float32)", original}, {"DoubleFloat", rewrite}});
+  ASSERT_EQ(r.variants.size(), 2u);
+  const VariantResult& v = r.variants[1];
+  ASSERT_TRUE(v.measured) << v.status;
+  EXPECT_EQ(v.status, "input-limited") << v.worst;
+  EXPECT_LE(v.own_max_error, 1.0 / 16);
+  EXPECT_GT(v.max_error, 1000.0);  // float32 positions near 2^42 cm: 2^18 cm apart
+  EXPECT_NE(v.worst.find("`worldPosition` by up to"), std::string::npos) << v.worst;
+  EXPECT_FALSE(v.refuted());
+}
+
+// Inf and NaN must stay visible: a variant that turns them into a finite value fails on that case.
+// A variant that only shares the original's float32 behaviour on an edge case (a vector of
+// denormal length normalises to NaN) does not.
+TEST(HarnessOnLavapipe, HidingANaNFailsAndSharingTheOriginalsEdgeBehaviourDoesNot) {
+  Driver d = start_driver();
+  ASSERT_NE(d.device, nullptr);
+  auto shader = [](const std::string& body) {
+    return "#version 320 es\nprecision highp float;\nvec3 scaled(vec3 localPosition) { " + body + " }\nvoid main() {}\n";
+  };
+  FunctionResult r = verify_function(*d.device, d.probes, glsl_setup(), "scaled",
+                                     {{"original (float32)", shader("return normalize(localPosition) * 2.0;")},
+                                      {"same edges", shader("return 2.0 * normalize(localPosition);")},
+                                      {"hides NaN", shader("vec3 p = normalize(localPosition) * 2.0; return any(isnan(p)) ? vec3(0.0) : p;")}});
+  ASSERT_EQ(r.variants.size(), 3u);
+  EXPECT_EQ(r.variants[1].status, "pass") << r.variants[1].worst;
+  EXPECT_EQ(r.variants[2].status, "fail");
+  EXPECT_NE(r.variants[2].worst.find("case 'NaN input (local position)'"), std::string::npos) << r.variants[2].worst;
+  EXPECT_NE(r.variants[2].worst.find("finite where the reference is not"), std::string::npos) << r.variants[2].worst;
+}
+
+// A bool result is a decision: differences are counted, not measured in ULPs.
+TEST(HarnessOnLavapipe, BoolResultsAreComparedAsDecisions) {
+  Driver d = start_driver();
+  ASSERT_NE(d.device, nullptr);
+  auto shader = [](const std::string& test) {
+    return "#version 320 es\nprecision highp float;\nuniform vec3 cameraPosition;\n"
+           "bool isNear(vec3 worldPosition) { return " + test + "; }\nvoid main() {}\n";
+  };
+  FunctionResult r = verify_function(*d.device, d.probes, glsl_setup(), "isNear",
+                                     {{"original (float32)", shader("distance(worldPosition, cameraPosition) < 500.0")},
+                                      {"always", shader("true")}});
+  ASSERT_EQ(r.variants.size(), 2u);
+  const VariantResult& v = r.variants[1];
+  EXPECT_EQ(v.status, "fail");
+  EXPECT_GT(v.mismatches, 0);
+  EXPECT_EQ(v.max_ulps, 0.0);
+  EXPECT_NE(v.worst.find("a different decision"), std::string::npos) << v.worst;
+}
+
+// The UE 5.0 tile/offset vertex factory moved to DoubleFloat matrices: the low part of each
+// matrix's translation reaches the shader (a GCC 12 vectoriser bug once dropped it on the host).
+TEST(HarnessOnLavapipe, DoubleFloatMatrixRewriteOfATileOffsetFactoryIsSubCentimetre) {
+  Driver d = start_driver();
+  ASSERT_NE(d.device, nullptr);
+  std::string path = "corpus/ue5.0/LWCVertexFactory.ush";
+  Source source(path, test::read(test::source_dir() + "/" + path));
+  AnalyzeOptions options;
+  std::string fixed = fix_source(source, options, true).text;
+  ASSERT_NE(fixed, source.text());
+  HarnessSetup setup;
+  setup.lang = Lang::hlsl;
+  setup.display = path;
+  setup.unreal = true;
+  setup.invocations = 8192;
+  setup.repeats = 2;
+  setup.include = [](const std::string& name, const std::string&) -> std::optional<std::string> {
+    if (name == library_file_name(Lang::hlsl)) return full_library_text(Lang::hlsl);
+    if (name.rfind("/Engine/", 0) == 0) return std::string();
+    return std::nullopt;
+  };
+  FunctionResult r = verify_function(*d.device, d.probes, setup, "TransformLocalToWorld",
+                                     {{"original (float32)", source.text(), 500}, {"fixed", fixed, 504}});
+  ASSERT_EQ(r.variants.size(), 2u);
+  const VariantResult &original = r.variants[0], &rewrite = r.variants[1];
+  ASSERT_TRUE(original.measured) << original.status;
+  ASSERT_TRUE(rewrite.measured) << rewrite.status;
+  EXPECT_LT(rewrite.max_error, 0.5) << rewrite.worst;
+  EXPECT_LT(rewrite.median_error, 1e-3);
+  // The original's FLWC offset larger than a tile costs it precision the rewrite does not lose.
+  EXPECT_GT(original.max_error, rewrite.max_error);
 }
 
 }  // namespace

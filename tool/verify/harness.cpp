@@ -847,11 +847,10 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
           rounded.emplace_back(oracle->rounding[l], ref_inputs[l].name);
       }
       std::sort(rounded.rbegin(), rounded.rend());
-      std::string inputs;
       for (size_t i = 0; i < rounded.size() && i < 3; ++i)
-        inputs += fmt::format("{}`{}` by up to {:.3g} cm", i ? ", " : "", rounded[i].second, rounded[i].first);
+        vr.inherited_rounding += fmt::format("{}`{}` by up to {:.3g} cm", i ? ", " : "", rounded[i].second, rounded[i].first);
       vr.worst = total.worst + "; its own arithmetic is within the target on the inputs as it receives them" +
-                 (inputs.empty() ? "" : "; inherited inputs round: " + inputs);
+                 (vr.inherited_rounding.empty() ? "" : "; inherited inputs round: " + vr.inherited_rounding);
     } else {
       vr.status = "pass";
     }

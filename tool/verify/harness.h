@@ -52,6 +52,7 @@ struct VariantResult {
   int spirv_instructions = 0;
   std::vector<std::string> contraction_losses;
   std::string worst;        // the case, its inputs, what was expected and what came out
+  std::string inherited_rounding;  // input-limited: which inherited inputs round, and by how much
   bool measured = false;
   bool pareto = false;
 
