@@ -72,6 +72,18 @@ TEST_F(LibraryOnLavapipe, FmaProductIsReportedNotFailedWhereFmaIsNotFused) {
   EXPECT_GT(m.max_relative, 0.5 * 0x1p-24);  // the error term is lost: float32 accuracy only
 }
 
+// Products whose operand is beyond Dekker's split limit (4097 * A overflows) come out NaN even when
+// the result fits: counted apart as outside the domain, every other input still judged.
+TEST_F(LibraryOnLavapipe, DekkerProductsBeyondTheSplitLimitAreCountedOutsideTheDomain) {
+  OpMeasurement m = check_one(library_op("DFMultiply(A, B)", InputFamily::product));
+  EXPECT_EQ(m.status, "pass") << m.worst;
+  EXPECT_EQ(m.outside_domain_inputs, 256u);
+  EXPECT_EQ(m.outside_domain_misses, 256u);
+  EXPECT_NE(m.outside_domain_example.find("beyond Dekker's split limit"), std::string::npos) << m.outside_domain_example;
+  EXPECT_NE(m.outside_domain_example.find("nan"), std::string::npos) << m.outside_domain_example;
+  EXPECT_LT(m.max_relative, 5 * 0x1p-48);  // the judged inputs keep the published 5u^2
+}
+
 TEST_F(LibraryOnLavapipe, LibraryWithoutPreciseIsCaughtByTheSpirvAndTheNumbers) {
   LibraryCheckOptions options;
   options.langs = {Lang::glsl, Lang::hlsl};

@@ -2,6 +2,7 @@
 
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -68,7 +69,8 @@ void print_library_text(std::ostream& out, const std::string& device, const Driv
   std::string header = fmt::format("{:<33} {:<17}", "operation", "inputs");
   for (Lang lang : langs) header += fmt::format(" {:>9} {:>9}", fmt::format("{} max", lang_label(lang)), "median");
   out << header << fmt::format("  {:<40} {}\n", "published bound", "result");
-  std::vector<std::string> details;
+  std::vector<std::string> details, outside;
+  std::string outside_example;
   for (const OpReport& r : accuracy.ops) {
     std::string row = fmt::format("{:<33} {:<17}", r.op->call, family_name(r.op->inputs));
     std::string result;
@@ -78,6 +80,11 @@ void print_library_text(std::ostream& out, const std::string& device, const Driv
       std::string s = short_status(m.status);
       if (result.empty()) result = s;
       else if (result != s) result += "/" + s;
+      if (m.outside_domain_misses) {
+        std::string entry = fmt::format("{} ({} of {})", r.op->call, m.outside_domain_misses, m.outside_domain_inputs);
+        if (std::find(outside.begin(), outside.end(), entry) == outside.end()) outside.push_back(entry);
+        if (outside_example.empty()) outside_example = m.outside_domain_example;
+      }
       if (m.status != "pass") {
         std::string why = m.status;
         if (m.non_canonical) why += fmt::format(" ({} results not canonical)", m.non_canonical);
@@ -90,6 +97,10 @@ void print_library_text(std::ostream& out, const std::string& device, const Driv
     out << '\n';
     for (const std::string& d : details) out << d << '\n';
   }
+  if (!outside.empty())
+    out << fmt::format("\nOutside the domain: beyond Dekker's split limit (|operand| above 8.3e34, where 4097 * A overflows) these "
+                       "miss the bound, their inputs counted apart (world values stay below 2^43 cm, their products below 2^86): {}\n"
+                       "  e.g. {}\n", fmt::join(outside, ", "), outside_example);
   out << fmt::format("\n{}: pipelines {:.2f} s, dispatches {:.2f} s.\n",
                      accuracy.failed() ? "FAILED" : "All bounds hold", accuracy.pipeline_seconds, accuracy.dispatch_seconds);
 }
@@ -121,6 +132,8 @@ void print_library_json(std::ostream& out, const std::string& device, const Driv
                                   {"medianRelativeError", m.median_relative},
                                   {"maxErrorOverBound", std::isfinite(m.max_bound_ratio) ? json(m.max_bound_ratio) : json(nullptr)},
                                   {"nonCanonicalResults", m.non_canonical},
+                                  {"outsideDomain", {{"inputs", m.outside_domain_inputs}, {"missingTheBound", m.outside_domain_misses},
+                                                     {"example", m.outside_domain_example}}},
                                   {"inputs", m.inputs},
                                   {"worst", m.worst}};
     ops.push_back({{"operation", r.op->call}, {"inputs", family_name(r.op->inputs)}, {"bound", r.op->bound.text},
