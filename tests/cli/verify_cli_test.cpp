@@ -84,6 +84,12 @@ TEST(VerifyCli, TheWholeCorpusIsVerified) {
         ++input_limited;
         EXPECT_NE(v["worst"].get<std::string>().find("inherited inputs round"), std::string::npos) << f["function"];
       }
+      // `View.ScreenToWorld` on line 34 has no automatic fix: the rewrite is incomplete, not wrong.
+      if (f["function"] == "CalculateHeightFog" && v["variant"] == "fixed")
+      {
+        EXPECT_EQ(status.rfind("incomplete: line 34 still needs a fix by hand (no automatic fix for ", 0), 0u) << status;
+        EXPECT_NE(status.find("lwc-primary-view"), std::string::npos) << status;
+      }
       // Culling returns a decision: counted, never measured in ULPs.
       if (f["function"] == "IsInstanceVisible" && v["measured"].get<bool>()) EXPECT_EQ(v["maxUlps"].get<double>(), 0.0);
     }

@@ -392,6 +392,18 @@ std::vector<std::string> functions_with_findings(const Source& source, const Ana
 
 // How the harness compiles one file: its language, stage, scene, and includes resolved as lint
 // resolves them (lwcport's library from memory, Unreal's engine headers from the stub).
+// A fixed text as a harness variant (UE 5.4 era), with the lines whose findings have no automatic fix.
+FileVariant fixed_variant(const std::string& label, const FixOutcome& fixed) {
+  FileVariant v{label, fixed.text, 504, {}};
+  Source text("fixed", fixed.text);
+  for (const Finding& f : fixed.remaining)
+    if (f.fixes.empty() && !f.not_needed) {
+      std::string& rules = v.hand_fixes[text.position(f.span.begin).line];
+      if (rules.find(f.rule) == std::string::npos) rules += (rules.empty() ? "" : ", ") + f.rule;
+    }
+  return v;
+}
+
 HarnessSetup harness_setup(const InputFile& file, const LoadedFile& f, Lang lang, IncludeSummaries& includes) {
   HarnessSetup setup;
   setup.lang = lang;
@@ -415,13 +427,13 @@ HarnessSetup harness_setup(const InputFile& file, const LoadedFile& f, Lang lang
 
 // `fix --verify`: runs every function with a finding as written and as fixed. "" when each fixed
 // form passes; else why the fix is held back. `verified` gets one line per function that passed.
-std::string verify_fix(Verifier& verifier, const InputFile& file, const LoadedFile& f, Lang lang, const std::string& fixed,
+std::string verify_fix(Verifier& verifier, const InputFile& file, const LoadedFile& f, Lang lang, const FixOutcome& fixed,
                        IncludeSummaries& includes, std::vector<std::string>& verified) {
   const Source& source = *f.source;
   std::vector<std::string> names = functions_with_findings(source, f.options, lang);
   if (names.empty()) return "no function of the file holds a finding, so there is nothing to run";
   HarnessSetup setup = harness_setup(file, f, lang, includes);
-  std::vector<FileVariant> variants = {{"original (float32)", source.text(), unreal_era(source.text())}, {"fixed", fixed, 504}};
+  std::vector<FileVariant> variants = {{"original (float32)", source.text(), unreal_era(source.text()), {}}, fixed_variant("fixed", fixed)};
   for (const std::string& name : names) {
     FunctionResult r = verify_function(*verifier.device, verifier.probes, setup, name, variants);
     const VariantResult &v = r.variants.back(), &original = r.variants.front();
@@ -502,7 +514,7 @@ FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& in
   std::optional<Lang> lang = language_for(source, f.options);
   if (verifier && lang) {
     std::vector<std::string> verified;
-    if (std::string why = verify_fix(*verifier, file, f, *lang, fixed.text, includes, verified); !why.empty()) {
+    if (std::string why = verify_fix(*verifier, file, f, *lang, fixed, includes, verified); !why.empty()) {
       keep_original(out, source, f.options, input_finding(Severity::warning, 0, "fix held back: " + why,
                                                           "run `lwcport verify` on the file for every variant's numbers"));
       return out;
@@ -637,19 +649,20 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
     if (!lang) continue;
     std::vector<std::string> names = functions_with_findings(source, f.options, *lang);
     if (names.empty()) continue;
-    std::vector<FileVariant> variants = {{"original (float32)", source.text(), unreal_era(source.text())}};
+    std::vector<FileVariant> variants = {{"original (float32)", source.text(), unreal_era(source.text()), {}}};
     for (auto [strategy, label] : {std::pair{Strategy::translated, "translated world"}, std::pair{Strategy::df, "DoubleFloat"}}) {
       AnalyzeOptions a = f.options;
       a.strategy = strategy;
-      std::string text = fix_source(source, a, true).text;
+      FixOutcome fixed = fix_source(source, a, true);
       bool seen = false;
-      for (const FileVariant& v : variants) seen |= v.text == text;
-      if (!seen) variants.push_back({label, text, 504});
+      for (const FileVariant& v : variants) seen |= v.text == fixed.text;
+      if (!seen) variants.push_back(fixed_variant(label, fixed));
     }
     if (variants.size() == 2 && variants[1].label != "original (float32)") variants[1].label = "fixed";
     for (size_t i = 0, n = variants.size(); i < n; ++i)
       if (std::string fast = fast_double_float_form(variants[i].text); fast != variants[i].text)
-        variants.push_back({variants[i].label.substr(0, variants[i].label.find(" (")) + ", DFFast*", fast, variants[i].ue_version});
+        variants.push_back({variants[i].label.substr(0, variants[i].label.find(" (")) + ", DFFast*", fast, variants[i].ue_version,
+                            variants[i].hand_fixes});
     HarnessSetup setup = harness_setup(file, f, *lang, includes);
     for (const std::string& name : names)
       results.push_back(verify_function(*verifier.device, verifier.probes, setup, name, variants));

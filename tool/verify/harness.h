@@ -3,6 +3,7 @@
 // of its forms (the original in float32, each rewrite) and as a float64 reference, on the stiff
 // and extreme cases of LWC-BRIEF §6, with errors measured in one frame and run time per invocation.
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,6 +22,9 @@ struct FileVariant {
   std::string label;     // "original (float32)", "translated world", "DoubleFloat"
   std::string text;
   int ue_version = 504;  // LWCPORT_UE_VERSION for Unreal files
+  // Lines (1-based) of a fixed text that still hold a finding with no automatic fix, and its rule:
+  // a compile error there means the rewrite is incomplete, not wrong.
+  std::map<int, std::string> hand_fixes;
 };
 
 struct HarnessSetup {
@@ -38,7 +42,8 @@ struct VariantResult {
   std::string label;
   // "pass"; "fail" (its own arithmetic misses the target); "input-limited" (its arithmetic is
   // within the target, but inputs it keeps from the original, as the original's callers hand them
-  // over, are not); or why it could not be measured.
+  // over, are not); "incomplete: ..." (it does not compile where a finding has no automatic fix);
+  // or why it could not be measured.
   std::string status;
   double max_error = 0;     // world units (cm): positions, offsets, distances; clip as a world offset
   double median_error = 0;
@@ -59,7 +64,7 @@ struct VariantResult {
   bool passed() const { return status == "pass"; }
   bool input_limited() const { return status == "input-limited"; }
   // Shown wrong: it misses the target, does not compile, or hung or crashed the driver. (A form
-  // the harness cannot run or compare is neither passed nor refuted.)
+  // the harness cannot run or compare, or an incomplete one, is neither passed nor refuted.)
   bool refuted() const {
     return status.starts_with("fail") || status.starts_with("does not compile") || status.starts_with("did not run");
   }
