@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <functional>
 #include <map>
 #include <regex>
 #include <set>
@@ -232,6 +233,59 @@ std::string hlsl_double_matrix_functions() {
   return out;
 }
 
+// Replaces each call or index that `head` matches (from the match through the bracket closing the
+// match's last opening bracket) with what `with` makes of the text inside those brackets.
+void replace_bracketed(std::string& text, const std::regex& head, const std::function<std::string(const std::string&)>& with) {
+  std::string out;
+  size_t from = 0;
+  std::smatch m;
+  while (std::regex_search(text.cbegin() + static_cast<ptrdiff_t>(from), text.cend(), m, head)) {
+    size_t at = from + static_cast<size_t>(m.position(0));
+    size_t open = text.find_last_of("([", at + static_cast<size_t>(m.length(0)) - 1);
+    char closer = text[open] == '(' ? ')' : ']';
+    int depth = 0;
+    size_t close = open;
+    for (; close < text.size(); ++close) {
+      if (text[close] == '(' || text[close] == '[') ++depth;
+      if ((text[close] == ')' || text[close] == ']') && --depth == 0) break;
+    }
+    if (close >= text.size() || text[close] != closer) break;  // unbalanced: left to the compiler
+    out += text.substr(from, at - from) + with(text.substr(open + 1, close - open - 1));
+    from = close + 1;
+  }
+  text = out + text.substr(from);
+}
+
+// The arguments of a call, split at top-level commas.
+std::vector<std::string> split_arguments(const std::string& inside) {
+  std::vector<std::string> out(1);
+  int depth = 0;
+  for (char c : inside) {
+    if (c == '(' || c == '[') ++depth;
+    if (c == ')' || c == ']') --depth;
+    if (c == ',' && depth == 0) out.emplace_back();
+    else out.back() += c;
+  }
+  return out;
+}
+
+// Textures and images become one value per invocation, `lwc_texel_NAME`: every sample, load or
+// index of NAME reads it, every store or indexed write sets it (then a result). The harness checks
+// arithmetic, not filtering: the value stands for whatever the texture holds at that pixel.
+void replace_texture_accesses(Lang lang, std::string& text, const std::string& name) {
+  std::string texel = "lwc_texel_" + name;
+  auto whole = [&](const std::string&) { return texel; };
+  if (lang == Lang::hlsl) {
+    replace_bracketed(text, std::regex("\\b" + name + R"(\s*\.\s*(Sample\w*|Load|Gather\w*)\s*\()"), whole);
+    replace_bracketed(text, std::regex("\\b" + name + R"(\s*\[)"), whole);
+    return;
+  }
+  replace_bracketed(text, std::regex(R"(\bimageStore\s*\(\s*)" + name + R"(\s*,)"), [&](const std::string& inside) {
+    return "(" + texel + " = " + split_arguments(inside).back() + ")";
+  });
+  replace_bracketed(text, std::regex(R"(\b(texture\w*|texelFetch\w*|imageLoad)\s*\(\s*)" + name + R"(\s*,)"), whole);
+}
+
 }  // namespace
 
 std::vector<std::string> enclosing_functions(Lang lang, const std::string& text, const std::vector<uint32_t>& offsets) {
@@ -335,6 +389,10 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
       R"(\blayout\s*\([^)]*\)|\b(uniform|in|out|inout|varying|attribute|flat|smooth|noperspective|centroid|invariant|readonly|writeonly|coherent|volatile|restrict)\b)");
   static const std::regex buffer(R"(^\s*(RW)?(?:Structured)?Buffer\s*<\s*(\w+)\s*>\s*(\w+))");
   static const std::regex resource(R"(^\s*(?:RW)?(Texture|Sampler|sampler|texture|image|ByteAddressBuffer|AppendStructuredBuffer|ConsumeStructuredBuffer))");
+  static const std::regex hlsl_texture(R"(^\s*(RW)?Texture\w*\s*(?:<\s*(\w+)\s*>)?\s+\w)");
+  static const std::regex hlsl_sampler(R"(^\s*(SamplerState|SamplerComparisonState|sampler\w*)\b)");
+  static const std::regex glsl_texture(R"(\b([iu]?)(sampler|image)\w*\s+\w+\s*;)");
+  std::vector<std::string> textures;  // globals whose accesses become `lwc_texel_NAME`
   std::vector<std::pair<std::string, std::string>> env_inputs, env_outputs;  // name, type
   auto global_text = [&](const Global& g) -> std::string {
     std::string original = slice(text, g.node);
@@ -345,6 +403,14 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
         if (m[1].matched) env_outputs.push_back({m[3].str() + "[0]", m[2]});
         return fmt::format("static {} {}[1];", m[2].str(), m[3].str());
       }
+      if (std::regex_search(original, m, hlsl_texture)) {
+        std::string type = m[2].matched ? m[2].str() : float64 ? "double4" : "float4";
+        textures.push_back(g.name);
+        env_inputs.push_back({"lwc_texel_" + g.name, type});
+        if (m[1].matched) env_outputs.push_back({"lwc_texel_" + g.name, type});
+        return fmt::format("static {} lwc_texel_{};", type, g.name);
+      }
+      if (std::regex_search(original, hlsl_sampler)) return "";  // only ever an argument of the samples replaced
       if (std::regex_search(original, m, resource)) {
         k.problem = fmt::format("`{}` is a texture or sampler: not filled by the harness", g.name);
         return "";
@@ -358,6 +424,13 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
     if (original.find('{') != std::string::npos) {
       k.problem = fmt::format("`{}` is declared in an interface block: not filled by the harness", g.name);
       return "";
+    }
+    if (std::regex_search(original, m, glsl_texture)) {
+      std::string kind = m[1].str(), type = kind == "i" ? "ivec4" : kind == "u" ? "uvec4" : float64 ? "dvec4" : "vec4";
+      textures.push_back(g.name);
+      env_inputs.push_back({"lwc_texel_" + g.name, type});
+      if (m[2] == "image") env_outputs.push_back({"lwc_texel_" + g.name, type});
+      return fmt::format("{} lwc_texel_{};", type, g.name);
     }
     static const std::regex constant(R"(^\s*const\b)"), stage_output(R"(\b(out|varying)\b)");
     if (std::regex_search(original, constant)) return original;
@@ -402,6 +475,7 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
     if (keep) decl += item;
   }
   if (!k.problem.empty()) return k;
+  for (const std::string& name : textures) replace_texture_accesses(lang, decl, name);
 
   // GLSL stage built-ins become private globals.
   static const std::map<std::string, std::pair<std::string, bool>> builtins = {
@@ -459,7 +533,10 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
       int id = declared_identifier(t, t.child_by_field(p, "declarator"));
       if (type < 0 || id < 0) continue;
       std::string ptype = slice(masked, type), pname(t.text(id));
-      std::string original = slice(text, p);
+      // From the previous `(` or `,`: HLSL's masking hides `in`/`out` from the parser, so they sit
+      // before the parameter's node.
+      size_t from = text.find_last_of("(,", t.at(p).begin - 1) + 1;
+      std::string original = text.substr(from, t.at(p).end - from);
       static const std::regex writes(R"(^\s*(out|inout)\b)"), only_writes(R"(^\s*out\b)");
       bool out = std::regex_search(original, writes);
       bool in = !std::regex_search(original, only_writes);

@@ -1,0 +1,67 @@
+// The harness kernel builder: which values a function reads and writes, and how textures and
+// `out` parameters reach the input and output records.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "verify/kernel_builder.h"
+
+namespace lwc {
+namespace {
+
+const Leaf* find_leaf(const std::vector<Leaf>& leaves, const std::string& path) {
+  auto it = std::find_if(leaves.begin(), leaves.end(), [&](const Leaf& l) { return l.path == path; });
+  return it == leaves.end() ? nullptr : &*it;
+}
+
+TEST(KernelBuilder, HlslOutAndInoutParametersAreResults) {
+  std::string text = "void Split(float3 WorldPosition, out float3 High, inout float3 Low : TEXCOORD0)\n"
+                     "{\n\tHigh = WorldPosition;\n\tLow += WorldPosition - High;\n}\n";
+  HarnessKernel k = build_harness_kernel(Lang::hlsl, text, "Split", false);
+  ASSERT_EQ(k.problem, "");
+  EXPECT_NE(find_leaf(k.inputs, "lwc_p0"), nullptr);
+  EXPECT_EQ(find_leaf(k.inputs, "lwc_p1"), nullptr);  // `out`: written only
+  EXPECT_NE(find_leaf(k.inputs, "lwc_p2"), nullptr);  // `inout`: both
+  EXPECT_EQ(find_leaf(k.outputs, "lwc_p0"), nullptr);
+  EXPECT_NE(find_leaf(k.outputs, "lwc_p1"), nullptr);
+  EXPECT_NE(find_leaf(k.outputs, "lwc_p2"), nullptr);
+}
+
+TEST(KernelBuilder, HlslTextureSamplesBecomeOneValuePerInvocation) {
+  std::string text = "Texture2D<float> HeightMap : register(t0);\nSamplerState LinearSampler;\nTexture2D Albedo;\n"
+                     "RWTexture2D<float4> Output;\n"
+                     "float Shade(float2 UV)\n{\n\tfloat h = HeightMap.SampleLevel(LinearSampler, UV * 2.0, 0) * 100.0;\n"
+                     "\tOutput[uint2(UV)] = Albedo.Sample(LinearSampler, float2(UV.x, (UV.y))) * h;\n\treturn h;\n}\n";
+  HarnessKernel k = build_harness_kernel(Lang::hlsl, text, "Shade", false);
+  ASSERT_EQ(k.problem, "");
+  const Leaf* height = find_leaf(k.inputs, "lwc_texel_HeightMap");
+  ASSERT_NE(height, nullptr);
+  EXPECT_EQ(height->type, "float");
+  const Leaf* albedo = find_leaf(k.inputs, "lwc_texel_Albedo");
+  ASSERT_NE(albedo, nullptr);
+  EXPECT_EQ(albedo->components, 4);
+  EXPECT_NE(find_leaf(k.outputs, "lwc_texel_Output"), nullptr);  // a RW texture is written
+  EXPECT_EQ(find_leaf(k.outputs, "lwc_texel_Albedo"), nullptr);
+  EXPECT_EQ(k.declarations.find("SampleLevel"), std::string::npos) << k.declarations;
+  EXPECT_EQ(k.declarations.find("SamplerState"), std::string::npos) << k.declarations;
+  EXPECT_NE(k.declarations.find("lwc_texel_Output = lwc_texel_Albedo * h;"), std::string::npos) << k.declarations;
+}
+
+TEST(KernelBuilder, GlslSamplersAndImagesBecomeOneValuePerInvocation) {
+  std::string text = "#version 450\nuniform sampler2D heightMap;\nlayout(rgba32f) uniform image2D outImage;\n"
+                     "float store(vec2 uv) {\n  vec4 h = texture(heightMap, uv * vec2(2.0, 1.0));\n"
+                     "  imageStore(outImage, ivec2(uv), h * 2.0);\n  return h.r;\n}\nvoid main() {}\n";
+  HarnessKernel k = build_harness_kernel(Lang::glsl, text, "store", false);
+  ASSERT_EQ(k.problem, "");
+  EXPECT_NE(find_leaf(k.inputs, "lwc_texel_heightMap"), nullptr);
+  EXPECT_NE(find_leaf(k.outputs, "lwc_texel_outImage"), nullptr);
+  EXPECT_NE(k.declarations.find("vec4 h = lwc_texel_heightMap;"), std::string::npos) << k.declarations;
+  EXPECT_NE(k.declarations.find("(lwc_texel_outImage =  h * 2.0);"), std::string::npos) << k.declarations;
+  // The reference's copy is double.
+  HarnessKernel reference = build_harness_kernel(Lang::glsl, promote_to_double(Lang::glsl, text), "store", true);
+  ASSERT_EQ(reference.problem, "");
+  EXPECT_EQ(find_leaf(reference.inputs, "lwc_texel_heightMap")->type, "dvec4");
+}
+
+}  // namespace
+}  // namespace lwc
