@@ -329,11 +329,12 @@ int lint(const Options& o, std::ostream& out, std::ostream& err) {
   return o.fail_on && writer.failed(*o.fail_on) ? 1 : 0;
 }
 
-// The engine era an Unreal file was written for: 504 (DoubleFloat), 500 (tile/offset) or 427.
+// The engine era an Unreal file was written for: 500 (tile/offset, even beside DoubleFloat values:
+// the 5.1-5.3 files that convert with DFFromTileOffset_Hack), 504 (DoubleFloat only) or 427.
 int unreal_era(const std::string& text) {
   static const std::regex df(R"(\bFDF\w+|\bDF[A-Z]\w*\s*\()"), lwc(R"(\bFLWC\w+|\bLWC[A-Z]\w*\s*\()");
-  if (std::regex_search(text, df)) return 504;
   if (std::regex_search(text, lwc)) return 500;
+  if (std::regex_search(text, df)) return 504;
   return 427;
 }
 
