@@ -11,7 +11,7 @@ namespace {
 class HackMarker : public Check {
  public:
   explicit HackMarker(const RuleInfo& rule)
-      : markers_(rule.data.at("markers")), demotions_(string_list(rule.data, "demotions")) {}
+      : markers_(rule.data.at("markers")), demotions_(string_list(rule.data, "demotions")), conversions_(rule.data.at("conversions")) {}
 
   void run(const CheckContext& ctx) const override {
     const SyntaxTree& t = ctx.tree;
@@ -21,6 +21,7 @@ class HackMarker : public Check {
       if (!markers_.contains(name) || is_definition_name(t, id)) continue;
       Finding& f = ctx.report(t.span(id), {{"marker", name}, {"loss", markers_.at(name).get<std::string>()}});
       if (matches_any(demotions_, name)) offer_fix(ctx, f, id);
+      if (conversions_.contains(name)) offer_drop(ctx, f, id, conversions_.at(name).get<std::string>());
     }
   }
 
@@ -78,6 +79,26 @@ class HackMarker : public Check {
                                      t.text(value), t.text(other), line_of(t, parent)));
   }
 
+  // A tile/offset <-> DoubleFloat conversion whose argument already has the target type (a
+  // function whose return the fix moved to DoubleFloat, a variable declared so): the call goes.
+  void offer_drop(const CheckContext& ctx, Finding& f, int marker, const std::string& target) const {
+    const SyntaxTree& t = ctx.tree;
+    int call = t.at(marker).parent;
+    if (!t.is(call, "call_expression")) return;
+    std::vector<int> args = call_arguments(t, call);
+    if (args.size() != 1) return;
+    std::string type;
+    if (t.is(args[0], "identifier")) {
+      if (int v = ctx.world.variable_at(args[0]); v >= 0) type = ctx.world.variables()[static_cast<size_t>(v)].type;
+    } else if (t.is(args[0], "call_expression")) {
+      auto returns = ctx.world.summary().function_return_types;
+      if (auto it = returns.find(std::string(call_name(t, args[0]))); it != returns.end()) type = it->second;
+    }
+    if (!type.starts_with(target)) return;
+    std::string text(t.text(args[0]));
+    ctx.fix(f, "drop", {{"marker", std::string(t.text(marker))}, {"text", text}, {"type", type}}, {{t.span(call), text}});
+  }
+
   // The pre-view translation, demoted or not (it has no twin of its own: it is the translation).
   bool is_pre_view(const CheckContext& ctx, int node) const {
     int inner = demoted(ctx.tree, node);
@@ -86,6 +107,7 @@ class HackMarker : public Check {
 
   nlohmann::json markers_;               // marker -> what it loses
   std::vector<std::string> demotions_;  // markers that demote one value to float
+  nlohmann::json conversions_;          // conversion marker -> the type prefix it converts to
 };
 
 }  // namespace
