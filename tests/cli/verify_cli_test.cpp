@@ -94,6 +94,9 @@ TEST(VerifyCli, TheWholeCorpusIsVerified) {
       }
       // Textures are one value per invocation, `out` parameters results: these run and compare.
       if (f["function"] == "SampleHeight" || f["function"] == "MainPS") EXPECT_TRUE(v["measured"].get<bool>()) << status;
+      // Interface blocks are filled; `high`/`low` halves get the two float parts of one position.
+      if (f["file"].get<std::string>().ends_with("cull.comp")) EXPECT_TRUE(v["measured"].get<bool>()) << status;
+      if (f["function"] == "translateRelativeToEye") EXPECT_LT(v["maxError"].get<double>(), 1.0) << v["worst"];
       // Culling returns a decision: counted, never measured in ULPs.
       if (f["function"] == "IsInstanceVisible" && v["measured"].get<bool>()) EXPECT_EQ(v["maxUlps"].get<double>(), 0.0);
     }

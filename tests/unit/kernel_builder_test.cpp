@@ -63,5 +63,30 @@ TEST(KernelBuilder, GlslSamplersAndImagesBecomeOneValuePerInvocation) {
   EXPECT_EQ(find_leaf(reference.inputs, "lwc_texel_heightMap")->type, "dvec4");
 }
 
+// Interface blocks become private variables the kernel fills (a block left as written would
+// alias the kernel's own buffers); runtime-sized arrays hold one element, read at index 0.
+TEST(KernelBuilder, GlslInterfaceBlocksAndUniformArraysAreFilled) {
+  std::string text = "#version 450\nstruct Bounds { vec4 centerRadius; };\n"
+                     "layout(std430, binding = 0) readonly buffer In { Bounds bounds[]; };\n"
+                     "layout(std430, binding = 1) buffer Out { uint visible[]; };\n"
+                     "layout(std140, binding = 2) uniform View { mat4 viewProjection; vec3 cameraPosition; } view;\n"
+                     "uniform vec4 planes[6];\n"
+                     "void main() {\n  uint i = gl_GlobalInvocationID.x;\n"
+                     "  vec3 d = bounds[i].centerRadius.xyz - view.cameraPosition;\n"
+                     "  visible[i] = dot(planes[2].xyz, d) > 0.0 ? 1u : 0u;\n}\n";
+  HarnessKernel k = build_harness_kernel(Lang::glsl, text, "main", false);
+  ASSERT_EQ(k.problem, "");
+  EXPECT_NE(find_leaf(k.inputs, "bounds[0].centerRadius"), nullptr);
+  EXPECT_NE(find_leaf(k.inputs, "view.cameraPosition"), nullptr);
+  EXPECT_NE(find_leaf(k.inputs, "view.viewProjection"), nullptr);
+  EXPECT_NE(find_leaf(k.inputs, "planes[5]"), nullptr);
+  EXPECT_EQ(find_leaf(k.inputs, "planes[6]"), nullptr);
+  EXPECT_NE(find_leaf(k.outputs, "visible[0]"), nullptr);          // a writable buffer's members are results
+  EXPECT_EQ(find_leaf(k.outputs, "bounds[0].centerRadius"), nullptr);  // a readonly one's are not
+  EXPECT_NE(k.declarations.find("bounds[0].centerRadius.xyz"), std::string::npos) << k.declarations;
+  EXPECT_NE(k.declarations.find("visible[0] = "), std::string::npos) << k.declarations;
+  EXPECT_EQ(k.declarations.find("binding"), std::string::npos) << k.declarations;
+}
+
 }  // namespace
 }  // namespace lwc

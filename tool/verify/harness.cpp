@@ -8,6 +8,7 @@
 #include <cctype>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <random>
@@ -321,6 +322,16 @@ Role role_of(const std::string& raw, int components) {
   return Role::other;
 }
 
+// A value split by hand into float halves: `cameraHigh` / `cameraLow`, `positionHigh`, `high`.
+enum class Half { none, high, low };
+std::pair<std::string, Half> split_half(const std::string& name, Encoding encoding) {
+  if (encoding != Encoding::plain) return {name, Half::none};
+  std::string n = lower(name);
+  for (auto [word, half] : {std::pair{"high", Half::high}, std::pair{"low", Half::low}})
+    if (n.ends_with(word)) return {name.substr(0, name.size() - std::strlen(word)), half};
+  return {name, Half::none};
+}
+
 bool world_units(Role r) {
   return r == Role::camera || r == Role::translated_camera || r == Role::pre_view_translation || r == Role::world_position ||
          r == Role::translated_position || r == Role::object_origin || r == Role::local_position;
@@ -622,14 +633,26 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     std::vector<double> record(k.in_stride), scratch(k.in_stride);
     std::vector<double> all64;
     std::vector<float> all32;
-    std::vector<std::pair<Role, uint64_t>> roles;  // per leaf, once: names are slow to read
-    for (const Leaf& leaf : k.inputs) roles.emplace_back(role_of(leaf.name, leaf.components), hash_name(leaf.name));
+    struct LeafRole {
+      Role role;
+      uint64_t hash;
+      Half half;
+    };
+    std::vector<LeafRole> roles;  // per leaf, once: names are slow to read
+    for (const Leaf& leaf : k.inputs) {
+      auto [base, half] = split_half(leaf.name, leaf.encoding);
+      Role role = role_of(base, leaf.components);
+      if (half != Half::none && role == Role::other) role = Role::world_position;  // a bare `high`/`low` pair
+      roles.push_back({role, hash_name(leaf.name), half});
+    }
     if (rounding) rounding->assign(k.inputs.size(), 0.0);
     for (size_t i = 0; i < n; ++i) {
       std::fill(record.begin(), record.end(), 0.0);
       for (size_t l = 0; l < k.inputs.size(); ++l) {
         const Leaf& leaf = k.inputs[l];
-        std::vector<double> value = role_value(roles[l].first, leaf.components, states[i], roles[l].second, i);
+        std::vector<double> value = role_value(roles[l].role, leaf.components, states[i], roles[l].hash, i);
+        if (roles[l].half != Half::none)
+          for (double& x : value) x = roles[l].half == Half::high ? static_cast<float>(x) : x - static_cast<float>(x);
         if (l < as_float32.size() && as_float32[l]) {
           encode(leaf, value, false, states[i].oversized_offset, scratch.data());
           std::vector<double> seen = decode(leaf, scratch.data());

@@ -96,7 +96,17 @@ std::optional<std::pair<Encoding, int>> special_encoding(const std::string& type
 // Leaves of a value of `type` at `path`; false when some part cannot be filled (arrays, unknown types).
 bool collect_leaves(const Structs& structs, const std::string& type, const std::string& path, const std::string& name,
                     const std::string& semantic, std::vector<Leaf>& out, int& offset, int depth = 0) {
-  if (depth > 8 || type.find('[') != std::string::npos) return false;
+  if (depth > 8) return false;
+  if (size_t bracket = type.find('['); bracket != std::string::npos) {
+    // A fixed-size array, element by element; a runtime-sized one (`T x[]`) has one element here.
+    std::string count = type.substr(bracket + 1, type.find(']') - bracket - 1);
+    int n = count.empty() ? 1 : std::atoi(count.c_str());
+    if (n < 1 || n > 64 || type.find('[', bracket + 1) != std::string::npos) return false;
+    for (int i = 0; i < n; ++i)
+      if (!collect_leaves(structs, type.substr(0, bracket), fmt::format("{}[{}]", path, i), name, semantic, out, offset, depth + 1))
+        return false;
+    return true;
+  }
   Leaf leaf{path, name, type, semantic};
   if (auto special = special_encoding(type)) {
     leaf.encoding = special->first;
@@ -213,6 +223,14 @@ struct Global {
   std::string name, type;
 };
 
+// A GLSL interface block (`uniform View { ... } view;`, `buffer Bounds { T bounds[]; };`): the
+// kernel gets it as a private struct variable (named instance) or private globals (anonymous).
+struct Block {
+  std::string name, instance;   // instance "" when the members are used directly
+  std::string members;          // the member declarations, as written
+  bool writable = false;        // a `buffer` not declared readonly: its members are results too
+};
+
 // glslang's HLSL has `mul` and `transpose` for float matrices only: the double reference gets
 // its own, row by row as HLSL defines them (row vectors on the left, rows of the matrix).
 std::string hlsl_double_matrix_functions() {
@@ -231,6 +249,13 @@ std::string hlsl_double_matrix_functions() {
         out += fmt::format("double{0}x{2} mul(double{0}x{1} a, double{1}x{2} b) {{ double{0}x{2} r; for (int i = 0; i < {0}; ++i) "
                            "r[i] = mul(a[i], b); return r; }}\n", n, k, m);
   return out;
+}
+
+// The `[N]` after a declared name (`uniform vec4 planes[6];`), or "".
+std::string array_suffix(const std::string& declaration, const std::string& name) {
+  std::smatch m;
+  if (std::regex_search(declaration, m, std::regex("\\b" + name + R"(\s*(\[\s*\w*\s*\]))"))) return std::regex_replace(m[1].str(), std::regex(R"(\s)"), "");
+  return "";
 }
 
 // Replaces each call or index that `head` matches (from the match through the bracket closing the
@@ -341,6 +366,30 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
   std::vector<Global> globals;
   std::vector<int> top;
   for (int c = t.at(0).first_child; c >= 0; c = t.at(c).next_sibling) top.push_back(c);
+  std::map<int, Block> blocks;  // declaration node -> block
+  auto add_block = [&](int decl) {
+    Block b;
+    int list = -1;
+    bool buffer = false, readonly = false;
+    for (int d = t.at(decl).first_child; d >= 0; d = t.at(d).next_sibling) {
+      if (t.is(d, "field_declaration_list")) list = d;
+      else if (t.is(d, "identifier")) (list < 0 ? b.name : b.instance) = std::string(t.text(d));
+      buffer |= t.is(d, "buffer");
+      readonly |= t.is(d, "readonly");
+    }
+    std::string body = slice(text, list);
+    b.members = body.substr(1, body.size() - 2);
+    b.writable = buffer && !readonly;
+    std::string block_struct = "lwc_block_" + b.name;
+    for (const auto& [struct_name, fields] : read_structs("struct " + block_struct + " {" + b.members + "}")) {
+      structs[struct_name] = fields;
+      if (b.instance.empty())
+        for (const Field& f : fields) globals.push_back({decl, f.name, f.type});
+      else
+        globals.push_back({decl, b.instance, block_struct});
+    }
+    blocks[decl] = b;
+  };
   auto add_globals = [&](int decl) {
     int type = t.child_by_field(decl, "type");
     for (int d = t.at(decl).first_child; d >= 0; d = t.at(d).next_sibling) {
@@ -355,7 +404,10 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
       int id = declared_identifier(t, t.child_by_field(c, "declarator"));
       if (id >= 0) functions[std::string(t.text(id))].push_back(c);
     } else if (t.is(c, "declaration")) {
-      add_globals(c);
+      bool block = false;
+      for (int d = t.at(c).first_child; d >= 0; d = t.at(d).next_sibling) block |= t.is(d, "field_declaration_list");
+      if (block && lang == Lang::glsl) add_block(c);
+      else add_globals(c);
     } else if (t.is(c, "linkage_specification")) {
       for_subtree(t, c, [&](int i) { if (t.is(i, "declaration")) add_globals(i); });
     }
@@ -393,6 +445,7 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
   static const std::regex hlsl_sampler(R"(^\s*(SamplerState|SamplerComparisonState|sampler\w*)\b)");
   static const std::regex glsl_texture(R"(\b([iu]?)(sampler|image)\w*\s+\w+\s*;)");
   std::vector<std::string> textures;  // globals whose accesses become `lwc_texel_NAME`
+  std::vector<std::pair<std::string, std::string>> runtime_arrays;  // `x[]` block members: pattern, x[0]
   std::vector<std::pair<std::string, std::string>> env_inputs, env_outputs;  // name, type
   auto global_text = [&](const Global& g) -> std::string {
     std::string original = slice(text, g.node);
@@ -418,12 +471,28 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
       std::string masked_decl = slice(masked, g.node);
       static const std::regex constant(R"(^\s*(static|const)\b)");
       if (std::regex_search(masked_decl, constant)) return masked_decl;
-      env_inputs.push_back({g.name, g.type});
+      env_inputs.push_back({g.name, g.type + array_suffix(original, g.name)});
       return "static " + masked_decl;
     }
-    if (original.find('{') != std::string::npos) {
-      k.problem = fmt::format("`{}` is declared in an interface block: not filled by the harness", g.name);
-      return "";
+    if (auto block = blocks.find(g.node); block != blocks.end()) {
+      const Block& b = block->second;
+      // Runtime-sized arrays hold one element: every index of them reads element 0.
+      std::string members = std::regex_replace(b.members, std::regex(R"(\[\s*\])"), "[1]");
+      std::string text_out;
+      if (b.instance.empty()) {
+        for (const Global& member : globals)
+          if (member.node == g.node) {
+            env_inputs.push_back({member.name, member.type});
+            if (b.writable) env_outputs.push_back({member.name, member.type});
+            if (member.type.ends_with("[]")) runtime_arrays.push_back({member.name, member.name + "[0]"});
+          }
+        return members;
+      }
+      env_inputs.push_back({b.instance, g.type});
+      if (b.writable) env_outputs.push_back({b.instance, g.type});
+      for (const Field& f : structs[g.type])
+        if (f.type.ends_with("[]")) runtime_arrays.push_back({b.instance + R"(\s*\.\s*)" + f.name, b.instance + "." + f.name + "[0]"});
+      return fmt::format("struct {} {{{}}};\n{} {};", g.type, members, g.type, b.instance);
     }
     if (std::regex_search(original, m, glsl_texture)) {
       std::string kind = m[1].str(), type = kind == "i" ? "ivec4" : kind == "u" ? "uvec4" : float64 ? "dvec4" : "vec4";
@@ -435,7 +504,7 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
     static const std::regex constant(R"(^\s*const\b)"), stage_output(R"(\b(out|varying)\b)");
     if (std::regex_search(original, constant)) return original;
     bool output = std::regex_search(original, stage_output);
-    (output ? env_outputs : env_inputs).push_back({g.name, g.type});
+    (output ? env_outputs : env_inputs).push_back({g.name, g.type + array_suffix(original, g.name)});
     return std::regex_replace(original, glsl_qualifiers, "");
   };
   for (size_t i = 0; i < top.size(); ++i) {
@@ -451,6 +520,9 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
       item = slice(text, c);
       if (keep && glsl_main && name == "main")
         item.replace(t.at(id).begin - t.at(c).begin, 4, "lwc_entry");
+      // Blocks come before the functions that use them: their runtime-sized arrays are known.
+      for (const auto& [pattern, first] : runtime_arrays)
+        replace_bracketed(item, std::regex("\\b" + pattern + R"(\s*\[)"), [&](const std::string&) { return first; });
     } else if (t.is(c, "declaration") || t.is(c, "linkage_specification")) {
       std::vector<const Global*> mine;
       for (const Global& g : globals)
@@ -476,6 +548,7 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
   }
   if (!k.problem.empty()) return k;
   for (const std::string& name : textures) replace_texture_accesses(lang, decl, name);
+
 
   // GLSL stage built-ins become private globals.
   static const std::map<std::string, std::pair<std::string, bool>> builtins = {
