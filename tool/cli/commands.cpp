@@ -391,6 +391,26 @@ std::vector<std::string> functions_with_findings(const Source& source, const Ana
   return names;
 }
 
+// The functions whose text a fix changed (a rewrite can follow a value into a function that holds
+// no finding of its own): the original's lines each hunk of the diff removes or inserts before.
+std::vector<std::string> functions_a_fix_changes(Lang lang, const std::string& original, const std::string& fixed) {
+  Source source("original", original);
+  std::vector<uint32_t> offsets;
+  std::istringstream diff(unified_diff("f", original, fixed, 0));
+  static const std::regex hunk(R"(^@@ -(\d+))");
+  int line = 0;
+  for (std::string row; std::getline(diff, row);) {
+    std::smatch m;
+    if (std::regex_search(row, m, hunk)) line = std::stoi(m[1]);
+    else if (row.starts_with("-") && !row.starts_with("---")) offsets.push_back(source.offset({std::min(std::max(line++, 1), source.line_count()), 1}));
+    else if (row.starts_with("+") && !row.starts_with("+++")) offsets.push_back(source.offset({std::min(std::max(line, 1), source.line_count()), 1}));
+  }
+  std::vector<std::string> names;
+  for (const std::string& name : enclosing_functions(lang, original, offsets))
+    if (!name.empty() && std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  return names;
+}
+
 // How the harness compiles one file: its language, stage, scene, and includes resolved as lint
 // resolves them (lwcport's library from memory, Unreal's engine headers from the stub).
 // A fixed text as a harness variant (UE 5.4 era), with the lines whose findings have no automatic fix.
@@ -432,7 +452,9 @@ std::string verify_fix(Verifier& verifier, const InputFile& file, const LoadedFi
                        IncludeSummaries& includes, std::vector<std::string>& verified) {
   const Source& source = *f.source;
   std::vector<std::string> names = functions_with_findings(source, f.options, lang);
-  if (names.empty()) return "no function of the file holds a finding, so there is nothing to run";
+  for (const std::string& name : functions_a_fix_changes(lang, source.text(), fixed.text))
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  if (names.empty()) return "no function of the file holds a finding or is changed by the fix, so there is nothing to run";
   HarnessSetup setup = harness_setup(file, f, lang, includes);
   std::vector<FileVariant> variants = {{"original (float32)", source.text(), unreal_era(source.text()), {}}, fixed_variant("fixed", fixed)};
   for (const std::string& name : names) {
@@ -655,7 +677,6 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
     std::optional<Lang> lang = language_for(source, f.options);
     if (!lang) continue;
     std::vector<std::string> names = functions_with_findings(source, f.options, *lang);
-    if (names.empty()) continue;
     std::vector<FileVariant> variants = {{"original (float32)", source.text(), unreal_era(source.text()), {}}};
     for (auto [strategy, label] : {std::pair{Strategy::translated, "translated world"}, std::pair{Strategy::df, "DoubleFloat"}}) {
       AnalyzeOptions a = f.options;
@@ -663,8 +684,12 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
       FixOutcome fixed = fix_source(source, a, true);
       bool seen = false;
       for (const FileVariant& v : variants) seen |= v.text == fixed.text;
-      if (!seen) variants.push_back(fixed_variant(label, fixed));
+      if (seen) continue;
+      variants.push_back(fixed_variant(label, fixed));
+      for (const std::string& name : functions_a_fix_changes(*lang, source.text(), fixed.text))
+        if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
     }
+    if (names.empty()) continue;
     if (variants.size() == 2 && variants[1].label != "original (float32)") variants[1].label = "fixed";
     for (size_t i = 0, n = variants.size(); i < n; ++i)
       if (std::string fast = fast_double_float_form(variants[i].text); fast != variants[i].text)
