@@ -439,8 +439,9 @@ void encode(const Leaf& leaf, const std::vector<double>& v, bool float64, bool o
         for (int r = 0; r < 3; ++r) m3[c * 3 + r] = v[c * 4 + r];
       Vec origin = neg(Vec{v[12], v[13], v[14]});
       Vec world_origin{};  // M^-1's translation is -R^-1 T: recover T = -R (translation part)
+      std::array<double, 9> m3_inverse = inverse3(m3);
       for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) world_origin[r] += inverse3(m3)[c * 3 + r] * origin[c];
+        for (int c = 0; c < 3; ++c) world_origin[r] += m3_inverse[c * 3 + r] * origin[c];
       Vec post{};
       for (int r = 0; r < 3; ++r)
         post[r] = leaf.encoding == Encoding::lwc_inverse_matrix ? -tiles(world_origin[r]) * kTile
@@ -707,11 +708,12 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
   };
   std::map<std::vector<bool>, Oracle> oracles;
   auto oracle_for = [&](const HarnessKernel& k) -> const Oracle* {
+    std::map<std::string, const Leaf*> by_path;
+    for (const Leaf& v : k.inputs) by_path[v.path] = &v;
     std::vector<bool> inherited(ref_inputs.size(), false);
     for (size_t l = 0; l < ref_inputs.size(); ++l)
-      for (const Leaf& v : k.inputs)
-        inherited[l] = inherited[l] || (v.path == ref_inputs[l].path && v.name == ref_inputs[l].name &&
-                                        promote_to_double(setup.lang, v.type) == ref_inputs[l].type);
+      if (auto v = by_path.find(ref_inputs[l].path); v != by_path.end())
+        inherited[l] = v->second->name == ref_inputs[l].name && promote_to_double(setup.lang, v->second->type) == ref_inputs[l].type;
     auto it = oracles.find(inherited);
     if (it == oracles.end()) {
       Oracle o;
