@@ -89,7 +89,7 @@ TEST(VerifyCli, TheWholeCorpusIsVerified) {
       // `View.ScreenToWorld` on line 34 has no automatic fix: the rewrite is incomplete, not wrong.
       if (f["function"] == "CalculateHeightFog" && v["variant"] == "fixed")
       {
-        EXPECT_EQ(status.rfind("incomplete: line 34 still needs a fix by hand (no automatic fix for ", 0), 0u) << status;
+        EXPECT_EQ(status.rfind("incomplete: line 34 is in code lwcport could not port (no automatic fix for ", 0), 0u) << status;
         EXPECT_NE(status.find("lwc-primary-view"), std::string::npos) << status;
       }
       // Textures are one value per invocation, `out` parameters results: these run and compare.
@@ -97,6 +97,9 @@ TEST(VerifyCli, TheWholeCorpusIsVerified) {
       // Interface blocks are filled; `high`/`low` halves get the two float parts of one position.
       if (f["file"].get<std::string>().ends_with("cull.comp")) EXPECT_TRUE(v["measured"].get<bool>()) << status;
       if (f["function"] == "translateRelativeToEye") EXPECT_LT(v["maxError"].get<double>(), 1.0) << v["worst"];
+      // UE4's `mul(Position, Primitive.LocalToWorld)` has no rewrite (its function keeps a finding).
+      if (f["function"] == "CalcWorldPosition" && v["variant"] == "fixed")
+        EXPECT_EQ(status.rfind("incomplete: line 22 is in code lwcport could not port", 0), 0u) << status;
       // Culling returns a decision: counted, never measured in ULPs.
       if (f["function"] == "IsInstanceVisible" && v["measured"].get<bool>()) EXPECT_EQ(v["maxUlps"].get<double>(), 0.0);
     }

@@ -413,15 +413,23 @@ std::vector<std::string> functions_a_fix_changes(Lang lang, const std::string& o
 
 // How the harness compiles one file: its language, stage, scene, and includes resolved as lint
 // resolves them (lwcport's library from memory, Unreal's engine headers from the stub).
-// A fixed text as a harness variant (UE 5.4 era), with the lines whose findings have no automatic fix.
-FileVariant fixed_variant(const std::string& label, const FixOutcome& fixed) {
+// A fixed text as a harness variant (UE 5.4 era), with the lines of every top-level item (a
+// function, a declaration) that still holds a finding with no automatic fix: a compile error there
+// is a site lwcport could not port, as the fix goldens count it.
+FileVariant fixed_variant(const std::string& label, const FixOutcome& fixed, Lang lang) {
   FileVariant v{label, fixed.text, 504, {}};
   Source text("fixed", fixed.text);
-  for (const Finding& f : fixed.remaining)
-    if (f.fixes.empty() && !f.not_needed) {
-      std::string& rules = v.hand_fixes[text.position(f.span.begin).line];
+  SyntaxTree tree = parse(text, lang);
+  for (const Finding& f : fixed.remaining) {
+    if (!f.fixes.empty() || f.not_needed) continue;
+    Span item = f.span;
+    for (const Node& n : tree.nodes)
+      if (n.depth == 1 && n.begin <= f.span.begin && f.span.end <= n.end) item = {n.begin, n.end};
+    for (int line = text.position(item.begin).line; line <= text.position(item.end).line; ++line) {
+      std::string& rules = v.hand_fixes[line];
       if (rules.find(f.rule) == std::string::npos) rules += (rules.empty() ? "" : ", ") + f.rule;
     }
+  }
   return v;
 }
 
@@ -456,7 +464,7 @@ std::string verify_fix(Verifier& verifier, const InputFile& file, const LoadedFi
     if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
   if (names.empty()) return "no function of the file holds a finding or is changed by the fix, so there is nothing to run";
   HarnessSetup setup = harness_setup(file, f, lang, includes);
-  std::vector<FileVariant> variants = {{"original (float32)", source.text(), unreal_era(source.text()), {}}, fixed_variant("fixed", fixed)};
+  std::vector<FileVariant> variants = {{"original (float32)", source.text(), unreal_era(source.text()), {}}, fixed_variant("fixed", fixed, lang)};
   for (const std::string& name : names) {
     FunctionResult r = verify_function(*verifier.device, verifier.probes, setup, name, variants);
     const VariantResult &v = r.variants.back(), &original = r.variants.front();
@@ -685,7 +693,7 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
       bool seen = false;
       for (const FileVariant& v : variants) seen |= v.text == fixed.text;
       if (seen) continue;
-      variants.push_back(fixed_variant(label, fixed));
+      variants.push_back(fixed_variant(label, fixed, *lang));
       for (const std::string& name : functions_a_fix_changes(*lang, source.text(), fixed.text))
         if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
     }

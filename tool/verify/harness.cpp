@@ -583,8 +583,8 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
         k.problem = "does not compile: " + format_messages(whole);
         for (const CompileMessage& m : whole.messages)
           if (auto hand = v.hand_fixes.find(m.line); m.source == setup.display && hand != v.hand_fixes.end()) {
-            k.problem = fmt::format("incomplete: line {} still needs a fix by hand (no automatic fix for {} there), and the file "
-                                    "does not compile until it has one: {}", m.line, hand->second, format_messages(whole));
+            k.problem = fmt::format("incomplete: line {} is in code lwcport could not port (no automatic fix for {} there), and "
+                                    "the file does not compile until it is fixed by hand: {}", m.line, hand->second, format_messages(whole));
             break;
           }
         return k;

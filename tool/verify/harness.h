@@ -22,8 +22,9 @@ struct FileVariant {
   std::string label;     // "original (float32)", "translated world", "DoubleFloat"
   std::string text;
   int ue_version = 504;  // LWCPORT_UE_VERSION for Unreal files
-  // Lines (1-based) of a fixed text that still hold a finding with no automatic fix, and its rule:
-  // a compile error there means the rewrite is incomplete, not wrong.
+  // Lines (1-based) of a fixed text in a top-level item (a function, a declaration) that still
+  // holds a finding with no automatic fix, and its rules: a compile error there means the rewrite
+  // is incomplete, not wrong.
   std::map<int, std::string> hand_fixes;
 };
 
