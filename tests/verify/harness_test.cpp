@@ -14,29 +14,49 @@
 namespace lwc {
 namespace {
 
-TEST(HarnessOnLavapipe, ForwardVertexShaderOriginalFailsAndTheRewriteIsFarCloser) {
-  std::string error;
-  auto device = WorkerDevice::start(error);
-  ASSERT_NE(device, nullptr) << error;
+// A small harness set-up (8,192 invocations, 2 timed dispatches): lwcport's library from memory,
+// Unreal's engine headers from the stub.
+HarnessSetup small_setup(Lang lang, const std::string& display) {
+  HarnessSetup setup;
+  setup.lang = lang;
+  setup.display = display;
+  setup.stage = Stage::fragment;
+  setup.invocations = 8192;
+  setup.repeats = 2;
+  setup.include = [lang](const std::string& name, const std::string&) -> std::optional<std::string> {
+    if (name == library_file_name(lang)) return full_library_text(lang);
+    if (name.rfind("/Engine/", 0) == 0) return std::string();
+    return std::nullopt;
+  };
+  return setup;
+}
+HarnessSetup glsl_setup() { return small_setup(Lang::glsl, "test.frag"); }
+
+struct Driver {
+  std::unique_ptr<WorkerDevice> device;
   DriverProbes probes;
-  ASSERT_EQ(probe_driver(*device, probes), "");
+};
+Driver start_driver() {
+  Driver d;
+  std::string error;
+  d.device = WorkerDevice::start(error);
+  EXPECT_NE(d.device, nullptr) << error;
+  if (d.device) EXPECT_EQ(probe_driver(*d.device, d.probes), "");
+  return d;
+}
+
+TEST(HarnessOnLavapipe, ForwardVertexShaderOriginalFailsAndTheRewriteIsFarCloser) {
+  Driver d = start_driver();
+  ASSERT_NE(d.device, nullptr);
   std::string path = "corpus/glsl/forward.vert";
   Source source(path, test::read(test::source_dir() + "/" + path));
   AnalyzeOptions options;
   options.lang = Lang::glsl;
   std::string fixed = fix_source(source, options, true).text;
   ASSERT_NE(fixed, source.text());
-  HarnessSetup setup;
-  setup.lang = Lang::glsl;
-  setup.display = path;
+  HarnessSetup setup = small_setup(Lang::glsl, path);
   setup.stage = Stage::vertex;
-  setup.invocations = 8192;
-  setup.repeats = 2;
-  setup.include = [](const std::string& name, const std::string&) -> std::optional<std::string> {
-    if (name == library_file_name(Lang::glsl)) return full_library_text(Lang::glsl);
-    return std::nullopt;
-  };
-  FunctionResult r = verify_function(*device, probes, setup, "main", {{"original (float32)", source.text()}, {"fixed", fixed}});
+  FunctionResult r = verify_function(*d.device, d.probes, setup, "main", {{"original (float32)", source.text()}, {"fixed", fixed}});
   ASSERT_EQ(r.variants.size(), 2u);
   EXPECT_NE(r.reference.find("float64"), std::string::npos) << r.reference;
   const VariantResult &original = r.variants[0], &rewrite = r.variants[1];
@@ -51,34 +71,6 @@ TEST(HarnessOnLavapipe, ForwardVertexShaderOriginalFailsAndTheRewriteIsFarCloser
   EXPECT_GT(rewrite.spirv_instructions, 0);
 }
 
-
-// A small harness set-up for hand-written GLSL variants.
-HarnessSetup glsl_setup() {
-  HarnessSetup setup;
-  setup.lang = Lang::glsl;
-  setup.display = "test.frag";
-  setup.stage = Stage::fragment;
-  setup.invocations = 8192;
-  setup.repeats = 2;
-  setup.include = [](const std::string& name, const std::string&) -> std::optional<std::string> {
-    if (name == library_file_name(Lang::glsl)) return full_library_text(Lang::glsl);
-    return std::nullopt;
-  };
-  return setup;
-}
-
-struct Driver {
-  std::unique_ptr<WorkerDevice> device;
-  DriverProbes probes;
-};
-Driver start_driver() {
-  Driver d;
-  std::string error;
-  d.device = WorkerDevice::start(error);
-  EXPECT_NE(d.device, nullptr) << error;
-  if (d.device) EXPECT_EQ(probe_driver(*d.device, d.probes), "");
-  return d;
-}
 
 TEST(HarnessOnLavapipe, EveryEdgeCaseOfTheBriefIsNamed) {
   std::vector<std::string> names = harness_case_names();
@@ -157,17 +149,8 @@ TEST(HarnessOnLavapipe, DoubleFloatMatrixRewriteOfATileOffsetFactoryIsSubCentime
   AnalyzeOptions options;
   std::string fixed = fix_source(source, options, true).text;
   ASSERT_NE(fixed, source.text());
-  HarnessSetup setup;
-  setup.lang = Lang::hlsl;
-  setup.display = path;
+  HarnessSetup setup = small_setup(Lang::hlsl, path);
   setup.unreal = true;
-  setup.invocations = 8192;
-  setup.repeats = 2;
-  setup.include = [](const std::string& name, const std::string&) -> std::optional<std::string> {
-    if (name == library_file_name(Lang::hlsl)) return full_library_text(Lang::hlsl);
-    if (name.rfind("/Engine/", 0) == 0) return std::string();
-    return std::nullopt;
-  };
   FunctionResult r = verify_function(*d.device, d.probes, setup, "TransformLocalToWorld",
                                      {{"original (float32)", source.text(), 500}, {"fixed", fixed, 504}});
   ASSERT_EQ(r.variants.size(), 2u);
