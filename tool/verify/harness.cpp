@@ -324,11 +324,15 @@ Role role_of(const std::string& raw, int components) {
 
 // A value split by hand into float halves: `cameraHigh` / `cameraLow`, `positionHigh`, `high`.
 enum class Half { none, high, low };
+// A whole word only: `high`, `cameraHigh`, `position_low`, never `Yellow` or `Flow`.
 std::pair<std::string, Half> split_half(const std::string& name, Encoding encoding) {
   if (encoding != Encoding::plain) return {name, Half::none};
-  std::string n = lower(name);
-  for (auto [word, half] : {std::pair{"high", Half::high}, std::pair{"low", Half::low}})
-    if (n.ends_with(word)) return {name.substr(0, name.size() - std::strlen(word)), half};
+  for (auto [words, half] : {std::pair{std::array{"high", "High", "_high"}, Half::high}, std::pair{std::array{"low", "Low", "_low"}, Half::low}})
+    for (const char* word : words) {
+      size_t base = name.size() - std::min(name.size(), std::strlen(word));
+      bool whole_name_only = std::islower(static_cast<unsigned char>(word[0]));  // `high`, not `thigh`
+      if (name.ends_with(word) && (base == 0 || !whole_name_only)) return {name.substr(0, base), half};
+    }
   return {name, Half::none};
 }
 
@@ -643,7 +647,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     for (const Leaf& leaf : k.inputs) {
       auto [base, half] = split_half(leaf.name, leaf.encoding);
       Role role = role_of(base, leaf.components);
-      if (half != Half::none && role == Role::other) role = Role::world_position;  // a bare `high`/`low` pair
+      if (half != Half::none && base.empty()) role = Role::world_position;  // a bare `high`/`low` pair
       roles.push_back({role, hash_name(leaf.name), half});
     }
     if (rounding) rounding->assign(k.inputs.size(), 0.0);
@@ -736,10 +740,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     double error = 0, ulps = 0;
     bool bad = false, off_screen = false;
     std::string what;  // set for a wrong decision or finiteness
-    double score(double precision, bool world_or_clip) const {
-      double s = !what.empty() ? std::numeric_limits<double>::max() : world_or_clip ? error / precision : ulps / 16;
-      return std::isfinite(s) ? s : std::numeric_limits<double>::max();
-    }
+    double score = 0;  // error over the target (ULPs over 16 where not world units); max when `what` is set
   };
   auto judge = [&](const std::vector<double>& got, const std::vector<double>& want, const State& s, bool integer, bool clip,
                    bool world) {
@@ -764,6 +765,8 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
       }
       v.bad = (world || clip) ? !(v.error <= setup.scene.precision) : !(v.ulps <= 16);
     }
+    v.score = !v.what.empty() ? std::numeric_limits<double>::max() : (world || clip) ? v.error / setup.scene.precision : v.ulps / 16;
+    if (!std::isfinite(v.score)) v.score = std::numeric_limits<double>::max();
     return v;
   };
 
@@ -818,21 +821,20 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
           for (int c = 0; c < 3 && c < static_cast<int>(got.size()); ++c) got[c] += (translated ? 1 : -1) * s.camera[c];
         Verdict v = judge(got, want, s, integer, clip, world);
         if (v.off_screen) continue;
-        double score = v.score(setup.scene.precision, world || clip);
         if (s.edge) {
           if (!v.bad || is_original) continue;  // edge cases say nothing about precision; the original is their baseline
           if (original_leaf) {
             std::vector<double> before = decode(*original_leaf, &original_run->out[i * original_kernel->code.out_stride]);
             Verdict o = judge(before, want, s, integer, clip, world);
-            if (o.bad && o.score(setup.scene.precision, world || clip) >= score) continue;  // no worse than the original
+            if (o.bad && o.score >= v.score) continue;  // no worse than the original
           }
         }
         cmp.failed |= v.bad;
         if (integer) cmp.mismatches += v.bad;
         if ((world || clip) && !s.non_finite && !integer) cmp.errors.push_back(v.error);
         cmp.max_ulps = std::max(cmp.max_ulps, v.ulps);
-        if (score > cmp.worst_score) {
-          cmp.worst_score = score;
+        if (v.score > cmp.worst_score) {
+          cmp.worst_score = v.score;
           std::string amount = !v.what.empty()    ? v.what
                                : (world || clip) ? fmt::format("error {:.3g} cm", v.error)
                                                  : fmt::format("error {:.3g} ({:.3g} ULPs)", v.error, v.ulps);
