@@ -51,7 +51,8 @@ commands:
                       Vulkan device (lavapipe) against a float64 reference: error and run time
   verify --shaderlib  run every DoubleFloat operation on the Vulkan device (lavapipe) against a
                       double-double reference and check the published error bounds
-  parse [PATHS...]    parse only and count syntax errors (the benchmark's baseline)
+  parse [PATHS...]    parse only and count syntax errors (the benchmark's baseline); with
+                      --verbose, each error's position and the text around it
   rules               list the rules
 
 lint and fix options:
@@ -106,6 +107,7 @@ struct Options {
   bool diff = false, unsafe_fixes = false;
   bool shaderlib = false;
   bool verify = false;  // fix: apply only the rewrites that pass on the device
+  bool verbose = false;  // parse: list each syntax error with the text around it
   double timeout_seconds = 60;  // per kernel on the device
 };
 
@@ -176,6 +178,7 @@ Options parse_options(const std::vector<std::string>& args) {
     else if (a == "--unsafe-fixes") o.unsafe_fixes = true;
     else if (a == "--shaderlib") o.shaderlib = true;
     else if (a == "--verify") o.verify = true;
+    else if (a == "--verbose" || a == "-v") o.verbose = true;
     else if (a == "--timeout") {
       std::string n = get();
       char* end = nullptr;
@@ -269,6 +272,7 @@ LoadedFile load(const InputFile& file, const Options& o, IncludeSummaries& inclu
   a.ignore.insert(config.ignore.begin(), config.ignore.end());
   a.severity = config.severity;
   a.world_sources = config.world_sources;
+  a.macros = config.macros;
   a.max_bytes = config.max_file_bytes;
   a.strategy = o.strategy;
   if (o.scene) a.scene = o.scene->for_path(file.display);
@@ -647,9 +651,30 @@ int fix(const Options& o, std::ostream& out, std::ostream& err) {
   return o.fail_on && writer->failed(*o.fail_on) ? 1 : 0;
 }
 
+// Where the parser gave up: each outermost ERROR node or MISSING token, with its line and a caret.
+std::string syntax_error_lines(const SyntaxTree& tree) {
+  const Source& src = *tree.source;
+  std::string out;
+  for (int id = 0; id < static_cast<int>(tree.nodes.size()); ++id) {
+    const Node& n = tree.at(id);
+    if (!n.error) continue;
+    bool nested = false;
+    for (int a = n.parent; a >= 0 && !nested; a = tree.at(a).parent) nested = tree.at(a).error;
+    if (nested) continue;
+    Position pos = src.position(n.begin);
+    std::string what = std::string_view(n.type) == "ERROR" ? "cannot parse this" : fmt::format("missing `{}`", n.type);
+    std::string line(src.line_text(pos.line));
+    for (char& c : line) if (c == '\t') c = ' ';
+    out += fmt::format("{}:{}:{}: syntax error: {}\n  {}\n  {}^\n", src.path(), pos.line, pos.column, what, line,
+                       std::string(pos.column - 1, ' '));
+  }
+  return out;
+}
+
 int parse_only(const Options& o, std::ostream& out) {
   std::vector<InputFile> files = input_files(o);
   std::vector<int> errors(files.size());
+  std::vector<std::string> details(files.size());
   std::atomic<size_t> bytes{0};
   parallel_for(files.size(), job_count(o), [&](size_t i) {
     ReadResult r = read_file(files[i].path, files[i].config->max_file_bytes);
@@ -657,13 +682,19 @@ int parse_only(const Options& o, std::ostream& out) {
     if (!r.error.empty() || r.too_large || !lang) return;
     bytes += r.text.size();
     Source src(files[i].display, std::move(r.text));
-    errors[i] = parse(src, *lang).error_count;
+    MaskOptions mask{&known_macros(*lang), 0};
+    for (int variants = 1; mask.variant < variants; ++mask.variant) {
+      SyntaxTree tree = parse(src, *lang, mask);
+      variants = tree.variants;
+      errors[i] += tree.error_count;
+      if (o.verbose && tree.error_count) details[i] += syntax_error_lines(tree);
+    }
   });
   size_t with_errors = 0;
   for (size_t i = 0; i < files.size(); ++i)
     if (errors[i]) {
       ++with_errors;
-      out << fmt::format("{}: {} syntax error node(s)\n", files[i].display, errors[i]);
+      out << fmt::format("{}: {} syntax error node(s)\n", files[i].display, errors[i]) << details[i];
     }
   out << fmt::format("Parsed {} file(s), {} bytes; {} with syntax errors.\n", files.size(), bytes.load(), with_errors);
   return with_errors ? 1 : 0;

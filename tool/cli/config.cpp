@@ -77,7 +77,7 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
     if (!find_rule(id)) fail(fmt::format("unknown rule id \"{}\"", id));
   };
   for (auto& [key, value] : j.items()) {
-    static const char* known[] = {"severity", "select", "ignore", "include-dirs", "virtual-roots", "exclude", "world-sources", "max-file-bytes"};
+    static const char* known[] = {"severity", "select", "ignore", "include-dirs", "virtual-roots", "exclude", "world-sources", "max-file-bytes", "macros"};
     if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) == std::end(known))
       fail(fmt::format("unknown key \"{}\"", key));
     (void)value;
@@ -118,6 +118,7 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
     if (!j.at("max-file-bytes").is_number_unsigned()) fail("\"max-file-bytes\" must be a positive integer");
     c.max_file_bytes = j.at("max-file-bytes").get<size_t>();
   }
+  if (j.contains("macros")) add_macros(j.at("macros"), file.string(), c.macros);
   return c;
 }
 

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/finding.h"
+#include "lang/macros.h"
 
 namespace lwc {
 
@@ -22,6 +23,7 @@ struct ProjectConfig {
   std::vector<std::string> exclude;  // .gitignore-style patterns, relative to dir
   nlohmann::json world_sources = nlohmann::json::array();
   size_t max_file_bytes = 16u << 20;
+  MacroTable macros;  // macros used as syntax, by use (lang/macros.h)
 
   // Parses a config's text; throws std::runtime_error naming the file and the problem.
   static ProjectConfig parse(const std::filesystem::path& file, const std::string& text);

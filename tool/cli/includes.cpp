@@ -14,6 +14,7 @@ void merge(FileSummary& into, const FileSummary& from) {
   into.globals.insert(from.globals.begin(), from.globals.end());
   into.function_returns.insert(from.function_returns.begin(), from.function_returns.end());
   into.function_return_types.insert(from.function_return_types.begin(), from.function_return_types.end());
+  into.macros.insert(from.macros.begin(), from.macros.end());
 }
 }  // namespace
 
@@ -24,6 +25,20 @@ std::optional<fs::path> IncludeSummaries::resolve(const std::string& include, co
     if (include.rfind(prefix, 0) == 0) {
       fs::path p = folder / include.substr(prefix.size());
       if (fs::is_regular_file(p, ec)) return p;
+    }
+  }
+  // Unreal's virtual paths with no root configured: `/Engine/Private/X` and `/Plugin/Name/Private/X`
+  // are `Private/X` under the nearest `Shaders` folder above the including file, as the engine
+  // and each plugin lay out their shaders.
+  if (include.rfind("/Engine/", 0) == 0 || include.rfind("/Plugin/", 0) == 0) {
+    size_t rest = include.rfind("/Engine/", 0) == 0 ? 8 : include.find('/', 8);
+    if (rest != std::string::npos) {
+      for (fs::path dir = from.parent_path(); !dir.empty() && dir != dir.root_path(); dir = dir.parent_path()) {
+        if (dir.filename() != "Shaders") continue;
+        fs::path p = dir / include.substr(rest == 8 ? 8 : rest + 1);
+        if (fs::is_regular_file(p, ec)) return p;
+        break;
+      }
     }
   }
   if (!include.empty() && include[0] != '/') {
@@ -56,6 +71,7 @@ std::shared_ptr<const FileSummary> IncludeSummaries::own_summary(const fs::path&
     SyntaxTree tree = parse(src, lang.value_or(Lang::hlsl));
     WorldModel model(tree, world_data(tree.lang, config.world_sources));
     *summary = model.summary();
+    learn_macros(r.text, known_macros(tree.lang), summary->macros);
     text = r.text;
   }
   std::lock_guard lock(mutex_);

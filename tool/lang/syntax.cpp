@@ -5,7 +5,6 @@
 #include <cstring>
 #include <memory>
 
-#include "lang/hlsl_mask.h"
 
 extern "C" const TSLanguage* tree_sitter_cpp(void);
 extern "C" const TSLanguage* tree_sitter_glsl(void);
@@ -139,12 +138,14 @@ void flatten(TSTree* tree, SyntaxTree& out) {
 
 }  // namespace
 
-SyntaxTree parse(const Source& source, Lang lang) {
+SyntaxTree parse(const Source& source, Lang lang, const MaskOptions& options) {
   SyntaxTree out;
   out.lang = lang;
   out.source = &source;
-  MaskResult masked = lang == Lang::hlsl ? mask_hlsl(source.text()) : mask_glsl(source.text());
+  MaskResult masked = mask_source(source.text(), lang, options);
   out.unterminated_comment = masked.unterminated_comment;
+  out.variants = masked.variants;
+  out.resolved_conditionals = std::move(masked.resolved_conditionals);
   std::unique_ptr<TSTree, TreeDeleter> tree(ts_parser_parse_string(
       thread_parser(lang), nullptr, masked.text.data(), static_cast<uint32_t>(masked.text.size())));
   flatten(tree.get(), out);

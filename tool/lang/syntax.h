@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/source.h"
+#include "lang/mask.h"
 
 namespace lwc {
 
@@ -35,6 +36,8 @@ class SyntaxTree {
   int error_count = 0;
   uint32_t first_error = 0;
   std::optional<uint32_t> unterminated_comment;  // offset of a `/*` that never ends
+  int variants = 1;  // how many variants the file's preprocessor groups need (lang/conditionals.h)
+  std::vector<Span> resolved_conditionals;  // groups resolved per variant: no rewrite touches them
 
   const Node& at(int id) const { return nodes[id]; }
   bool is(int id, std::string_view type) const { return id >= 0 && type == nodes[id].type; }
@@ -48,8 +51,8 @@ class SyntaxTree {
   int ancestor(int id, std::string_view type) const;
 };
 
-// Parses a source in the given language. HLSL is parsed with the C++ grammar after masking
-// (see hlsl_mask.h); byte offsets always match the original text.
-SyntaxTree parse(const Source& source, Lang lang);
+// Parses one variant of a source in the given language, after masking (lang/mask.h): HLSL with
+// the C++ grammar, GLSL with its own; byte offsets always match the original text.
+SyntaxTree parse(const Source& source, Lang lang, const MaskOptions& options = {});
 
 }  // namespace lwc

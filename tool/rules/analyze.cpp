@@ -2,8 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <mutex>
+#include <tuple>
 
+#include "lang/macros.h"
 #include "rules/rule.h"
 #include "shaderlib/shaderlib.h"
 
@@ -150,10 +153,9 @@ Fix remove_suppression(const RuleInfo& rule, const Suppression& s, const SyntaxT
   return make_fix(rule, "remove", {{"what", "the comment"}}, {{cut, ""}});
 }
 
-void apply_suppressions(const SyntaxTree& tree, const AnalyzeOptions& options, std::vector<Finding>& findings) {
-  std::vector<Suppression> sups = find_suppressions(tree);
+// Drops the findings a suppression covers, marking the suppressions used.
+void suppress(std::vector<Suppression>& sups, const Source& src, std::vector<Finding>& findings) {
   if (sups.empty()) return;
-  const Source& src = *tree.source;
   std::vector<Finding> kept;
   for (Finding& f : findings) {
     int line = src.position(f.span.begin).line;
@@ -164,6 +166,10 @@ void apply_suppressions(const SyntaxTree& tree, const AnalyzeOptions& options, s
     if (!suppressed) kept.push_back(std::move(f));
   }
   findings = std::move(kept);
+}
+
+void report_unused(const std::vector<Suppression>& sups, const SyntaxTree& tree, const AnalyzeOptions& options,
+                   std::vector<Finding>& findings) {
   const RuleInfo* unused = find_rule(kUnusedSuppressionRule);
   if (!unused || !options.enabled(unused->id)) return;
   for (const Suppression& s : sups) {
@@ -177,6 +183,92 @@ void apply_suppressions(const SyntaxTree& tree, const AnalyzeOptions& options, s
     f.fixes.push_back(remove_suppression(*unused, s, tree));
     findings.push_back(std::move(f));
   }
+}
+
+bool overlaps(Span a, Span b) { return a.begin < b.end && b.begin < a.end; }
+bool inside(Span inner, Span outer) { return outer.begin <= inner.begin && inner.end <= outer.end; }
+
+// What a syntax error leaves untrustworthy: a finding inside a part the parser could not read
+// is dropped, and no rewrite is offered in a top-level declaration that holds an error.
+void drop_what_errors_touch(const SyntaxTree& tree, std::vector<Finding>& findings) {
+  if (tree.error_count == 0) return;
+  std::vector<Span> errors, broken;
+  for (int id = 0; id < static_cast<int>(tree.nodes.size()); ++id) {
+    const Node& n = tree.at(id);
+    if (!n.error) continue;
+    if (std::string_view(n.type) == "ERROR") errors.push_back(tree.span(id));
+    int top = id;
+    while (top >= 0 && tree.at(top).parent > 0) top = tree.at(top).parent;
+    broken.push_back(tree.span(top >= 0 ? top : id));
+  }
+  std::vector<Finding> kept;
+  for (Finding& f : findings) {
+    if (std::any_of(errors.begin(), errors.end(), [&](Span e) { return inside(f.span, e); })) continue;
+    if (!f.fixes.empty() && std::any_of(broken.begin(), broken.end(), [&](Span b) { return overlaps(f.span, b) || inside(f.span, b); })) {
+      f.fixes.clear();
+      f.withheld.push_back("any: the declaration around it has a syntax error (see `lwcport parse --verbose`), so a rewrite "
+                           "could land in the wrong place");
+    }
+    kept.push_back(std::move(f));
+  }
+  findings = std::move(kept);
+}
+
+// The variants of a file (lang/conditionals.h) report the same finding once. A rewrite is kept
+// only where every variant proposes exactly it and it touches no resolved preprocessor group:
+// a rewrite seen through one arm could miss what another arm holds.
+class VariantMerge {
+ public:
+  explicit VariantMerge(std::vector<Span> regions) : regions_(std::move(regions)) {}
+
+  void add(std::vector<Finding> found) {
+    ++variants_;
+    for (Finding& f : found) {
+      auto key = std::make_tuple(f.rule, f.span.begin, f.span.end);
+      auto it = index_.find(key);
+      if (it == index_.end()) {
+        index_.emplace(key, merged_.size());
+        votes_.push_back(f.fixes.empty() ? 0 : 1);
+        merged_.push_back(std::move(f));
+        continue;
+      }
+      Finding& m = merged_[it->second];
+      bool same = !f.fixes.empty() && !m.fixes.empty() && f.fixes.front().edits == m.fixes.front().edits;
+      if (same) ++votes_[it->second];
+    }
+  }
+
+  std::vector<Finding> take() {
+    for (size_t i = 0; i < merged_.size(); ++i) {
+      Finding& f = merged_[i];
+      if (f.fixes.empty()) continue;
+      bool touches = false;
+      for (const Fix& fix : f.fixes)
+        for (const Edit& e : fix.edits)
+          for (Span r : regions_) touches = touches || overlaps(e.span, r) || (e.span.begin == e.span.end && r.begin < e.span.begin && e.span.begin < r.end);
+      if (votes_[i] == variants_ && !touches) continue;
+      f.fixes.clear();
+      f.withheld.push_back("any: the code around it depends on preprocessor branches that lwcport reads one at a time "
+                           "(an #if inside a parameter list, a call or an expression), so no rewrite is sure to fit every branch");
+    }
+    return std::move(merged_);
+  }
+
+ private:
+  std::vector<Span> regions_;
+  int variants_ = 0;
+  std::vector<Finding> merged_;
+  std::vector<int> votes_;
+  std::map<std::tuple<std::string, uint32_t, uint32_t>, size_t> index_;
+};
+
+// The macros a file is read with: the built-in table, what its includes define, the project's.
+MacroTable macro_table(Lang lang, const AnalyzeOptions& options) {
+  MacroTable table = known_macros(lang);
+  if (options.includes)
+    for (const auto& [name, use] : options.includes->macros) table[name] = use;
+  for (const auto& [name, use] : options.macros) table[name] = use;
+  return table;
 }
 
 }  // namespace
@@ -222,32 +314,59 @@ std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options
     findings.push_back(input_finding(Severity::note, 0, "empty file; nothing to analyse", ""));
     return finish();
   }
-  SyntaxTree tree = parse(source, *lang);
-  if (tree.unterminated_comment) {
-    findings.push_back(input_finding(Severity::error, *tree.unterminated_comment,
+  MacroTable macros = macro_table(*lang, options);
+  const WorldData& data = world_data(*lang, options.world_sources);
+  std::vector<Suppression> sups;
+  std::optional<VariantMerge> merge;
+  int errors = 0, too_deep = 0;
+  std::optional<uint32_t> first_error, first_too_deep;
+  std::optional<SyntaxTree> first;  // variant 0, kept for the suppressions' own fixes
+  for (int variant = 0, variants = 1; variant < variants; ++variant) {
+    SyntaxTree tree = parse(source, *lang, {&macros, variant});
+    variants = tree.variants;
+    if (tree.error_count > 0) {
+      errors += tree.error_count;
+      if (!first_error) first_error = tree.first_error;
+    }
+    WorldModel world(tree, data, options.includes);
+    std::vector<Finding> found;
+    for (const auto& [rule, check] : checks()) {
+      if (rule->applies_to(*lang) && options.enabled(rule->id)) check->run(CheckContext{tree, world, *rule, found});
+    }
+    drop_what_errors_touch(tree, found);
+    if (!world.too_deep().empty()) {
+      too_deep += static_cast<int>(world.too_deep().size());
+      if (!first_too_deep) first_too_deep = tree.at(world.too_deep().front()).begin;
+    }
+    if (variant == 0) {
+      sups = find_suppressions(tree);
+      merge.emplace(tree.resolved_conditionals);
+    }
+    suppress(sups, source, found);
+    merge->add(std::move(found));
+    if (variant == 0) first.emplace(std::move(tree));
+  }
+  std::vector<Finding> found = merge->take();
+  findings.insert(findings.end(), std::make_move_iterator(found.begin()), std::make_move_iterator(found.end()));
+  if (first->unterminated_comment) {
+    findings.push_back(input_finding(Severity::error, *first->unterminated_comment,
                                      "unterminated block comment: everything after it is a comment",
                                      "close the comment with */ (no fixes are offered in this file until then)"));
-  } else if (tree.error_count > 0) {
-    findings.push_back(input_finding(Severity::note, tree.first_error,
-                                     fmt::format("{} syntax error(s) the parser could not place; findings next to them may be missed",
-                                                 tree.error_count),
-                                     "lwcport does not expand macros: a macro used as syntax can cause this; no fixes are offered in this file until it parses"));
-  }
-  WorldModel world(tree, world_data(*lang, options.world_sources), options.includes);
-  for (const auto& [rule, check] : checks()) {
-    if (rule->applies_to(*lang) && options.enabled(rule->id)) check->run(CheckContext{tree, world, *rule, findings});
-  }
-  // Where the parser lost its way, a rewrite may land in the wrong place: none is offered.
-  if (tree.unterminated_comment || tree.error_count > 0) {
     for (Finding& f : findings) f.fixes.clear();
+  } else if (errors > 0) {
+    findings.push_back(input_finding(Severity::note, *first_error,
+                                     fmt::format("{} syntax error(s) the parser could not place; findings next to them may be missed",
+                                                 errors),
+                                     "run `lwcport parse --verbose` on this file to see where; a macro used as syntax can cause "
+                                     "this (declare it in .lwcport.json \"macros\"); no fixes are offered in the declarations "
+                                     "that hold an error"));
   }
-  if (!world.too_deep().empty()) {
-    findings.push_back(input_finding(Severity::note, tree.at(world.too_deep().front()).begin,
-                                     fmt::format("expression nested too deeply to analyse ({} place(s)); it was skipped",
-                                                 world.too_deep().size()),
+  if (too_deep > 0) {
+    findings.push_back(input_finding(Severity::note, *first_too_deep,
+                                     fmt::format("expression nested too deeply to analyse ({} place(s)); it was skipped", too_deep),
                                      "split the expression"));
   }
-  apply_suppressions(tree, options, findings);
+  report_unused(sups, *first, options, findings);
   return finish();
 }
 

@@ -22,6 +22,7 @@ struct AnalyzeOptions {
   std::map<std::string, Severity> severity;  // per-rule overrides
   nlohmann::json world_sources = nlohmann::json::array();  // the project's extra sources
   const FileSummary* includes = nullptr;  // what the file's #includes declare
+  MacroTable macros;                      // the project's macros (.lwcport.json "macros")
   size_t max_bytes = 16u << 20;          // larger files are skipped with a diagnostic
   SceneNumbers scene;                    // what the scene needs (the default: Unreal's full world)
   Strategy strategy = Strategy::automatic;

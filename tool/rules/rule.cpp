@@ -56,6 +56,7 @@ const Loaded& loaded() {
     for (const EmbeddedFile& f : embedded_rule_files()) {
       nlohmann::json j = nlohmann::json::parse(f.text);
       if (j.contains("world-space")) l.world_space = j.at("world-space");
+      else if (j.contains("macros")) continue;  // lang/macros.cpp reads it
       else l.rules.push_back(parse_rule(f.name, j));
     }
     std::sort(l.rules.begin(), l.rules.end(), [](const RuleInfo& a, const RuleInfo& b) { return a.id < b.id; });

@@ -7,7 +7,7 @@
 #include <regex>
 #include <set>
 
-#include "lang/hlsl_mask.h"
+#include "lang/mask.h"
 
 namespace lwc {
 
@@ -357,7 +357,7 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
   std::string text = std::regex_replace(input_text, std::regex(R"((^|\n)[ \t]*#[ \t]*version[^\n]*)"), "$1");
   Source source("kernel", text);
   SyntaxTree t = parse(source, lang);
-  std::string masked = lang == Lang::hlsl ? mask_hlsl(text).text : text;
+  std::string masked = lang == Lang::hlsl ? mask_source(text, lang).text : text;
   auto slice = [&](const std::string& s, int id) { return s.substr(t.at(id).begin, t.at(id).end - t.at(id).begin); };
   Structs structs = read_structs(text);
 

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "lang/macros.h"
 #include "lang/syntax.h"
 #include "world/pattern.h"
 
@@ -97,6 +98,7 @@ struct FileSummary {
   std::map<std::string, Kind> globals;
   std::map<std::string, Kind> function_returns;
   std::map<std::string, std::string> function_return_types;
+  MacroTable macros;  // what its #define lines teach about macros used as syntax
 };
 
 // Classifies every value of one parsed file. Function parameters and returns are followed within

@@ -1,0 +1,132 @@
+#include "lang/conditionals.h"
+
+#include <algorithm>
+
+namespace lwc {
+
+namespace {
+
+struct Group {
+  std::vector<size_t> directives;  // token indices: #if..., #elif/#else..., #endif
+  bool closed = false;
+  bool has_else = false;
+  std::vector<bool> zero;          // per arm: its condition is a literal 0
+};
+
+std::string_view word(std::string_view text, const Token& t) { return text.substr(t.begin, t.end - t.begin); }
+
+// `0` as the whole condition, comments aside.
+bool literal_zero(std::string_view rest) {
+  size_t c = std::min(rest.find("//"), rest.find("/*"));
+  rest = rest.substr(0, c);
+  size_t b = rest.find_first_not_of(" \t\r\n\\"), e = rest.find_last_not_of(" \t\r\n\\");
+  return b != std::string_view::npos && rest.substr(b, e - b + 1) == "0";
+}
+
+}  // namespace
+
+ConditionalPlan plan_conditionals(std::string_view text, const std::vector<Token>& tokens, int variant) {
+  ConditionalPlan plan;
+  const size_t n = tokens.size();
+  plan.dropped.assign(n, false);
+
+  std::vector<Group> groups;
+  std::vector<size_t> open;
+  bool any = false;
+  for (size_t i = 0; i < n; ++i) {
+    if (tokens[i].kind != Tok::directive) continue;
+    Directive d = read_directive(word(text, tokens[i]));
+    if (d.keyword == "if" || d.keyword == "ifdef" || d.keyword == "ifndef") {
+      open.push_back(groups.size());
+      groups.push_back({{i}, false, false, {d.keyword == "if" && literal_zero(d.rest)}});
+      any = true;
+    } else if ((d.keyword == "elif" || d.keyword == "else") && !open.empty()) {
+      Group& g = groups[open.back()];
+      g.directives.push_back(i);
+      g.zero.push_back(d.keyword == "elif" && literal_zero(d.rest));
+      if (d.keyword == "else") g.has_else = true;
+    } else if (d.keyword == "endif" && !open.empty()) {
+      Group& g = groups[open.back()];
+      g.directives.push_back(i);
+      g.closed = true;
+      open.pop_back();
+    }
+  }
+  if (!any) return plan;
+
+  // Per token: bracket depth before it (parentheses and square brackets), whether it lies in an
+  // initialiser's braces, and the nearest code token before and after each directive.
+  std::vector<int> depth(n, 0);
+  std::vector<bool> in_init(n, false);
+  std::vector<bool> brace_init;  // the open braces, innermost last: an initialiser's?
+  int d = 0;
+  std::string_view prev_word;
+  for (size_t i = 0; i < n; ++i) {
+    depth[i] = d;
+    in_init[i] = !brace_init.empty() && brace_init.back();
+    if (tokens[i].kind == Tok::directive) continue;
+    std::string_view w = word(text, tokens[i]);
+    if (w == "(" || w == "[") ++d;
+    else if ((w == ")" || w == "]") && d > 0) --d;
+    else if (w == "{") {
+      bool init = prev_word == "=" || prev_word == "," || prev_word == "(" || prev_word == "return" ||
+                  (prev_word == "{" && !brace_init.empty() && brace_init.back());
+      brace_init.push_back(init || (!brace_init.empty() && brace_init.back()));
+    } else if (w == "}" && !brace_init.empty()) {
+      brace_init.pop_back();
+    }
+    prev_word = w;
+  }
+  auto code_before = [&](size_t i) -> std::string_view {
+    while (i-- > 0)
+      if (tokens[i].kind != Tok::directive) return word(text, tokens[i]);
+    return {};
+  };
+  auto code_after = [&](size_t i) -> std::string_view {
+    while (++i < n)
+      if (tokens[i].kind != Tok::directive) return word(text, tokens[i]);
+    return {};
+  };
+  // The grammar reads a directive between whole statements or declarations only.
+  auto readable_at = [&](size_t i) {
+    std::string_view before = code_before(i);
+    bool boundary = before.empty() || before == ";" || before == "{" || before == "}";
+    return boundary && depth[i] == 0 && !in_init[i] && code_after(i) != "else";
+  };
+  auto balanced = [&](size_t from, size_t to) {
+    int paren = 0, bracket = 0, brace = 0;
+    for (size_t i = from + 1; i < to; ++i) {
+      if (tokens[i].kind != Tok::punct) continue;
+      std::string_view w = word(text, tokens[i]);
+      paren += w == "(" ? 1 : w == ")" ? -1 : 0;
+      bracket += w == "[" ? 1 : w == "]" ? -1 : 0;
+      brace += w == "{" ? 1 : w == "}" ? -1 : 0;
+      if (paren < 0 || bracket < 0 || brace < 0) return false;
+    }
+    return paren == 0 && bracket == 0 && brace == 0;
+  };
+
+  for (const Group& g : groups) {
+    if (!g.closed) continue;
+    bool resolve = std::find(g.zero.begin(), g.zero.end(), true) != g.zero.end();
+    for (size_t k = 0; k < g.directives.size() && !resolve; ++k) resolve = !readable_at(g.directives[k]);
+    for (size_t k = 0; k + 1 < g.directives.size() && !resolve; ++k) resolve = !balanced(g.directives[k], g.directives[k + 1]);
+    if (!resolve) continue;
+    size_t arms = g.directives.size() - 1;
+    std::vector<size_t> choices;
+    for (size_t k = 0; k < arms; ++k)
+      if (!g.zero[k]) choices.push_back(k);
+    if (!g.has_else) choices.push_back(arms);  // the empty arm of an absent #else
+    if (choices.empty()) choices.push_back(arms);
+    plan.variants = std::max(plan.variants, std::min<int>(kMaxVariants, static_cast<int>(choices.size())));
+    size_t keep = choices[std::min<size_t>(static_cast<size_t>(variant), choices.size() - 1)];
+    for (size_t k = 0; k < g.directives.size(); ++k) plan.dropped[g.directives[k]] = true;
+    for (size_t k = 0; k < arms; ++k)
+      if (k != keep)
+        for (size_t i = g.directives[k] + 1; i < g.directives[k + 1]; ++i) plan.dropped[i] = true;
+    plan.regions.push_back({tokens[g.directives.front()].begin, tokens[g.directives.back()].end});
+  }
+  return plan;
+}
+
+}  // namespace lwc
