@@ -240,3 +240,34 @@ TEST(Macros, NiagaraPlaceholdersAndBlanksAfterAContinuation) {
 
 }  // namespace
 }  // namespace lwc
+
+namespace lwc {
+namespace {
+
+TEST(GlslFrontEnd, WhatTheGrammarReadsBadlyIsMasked) {
+  std::string code = R"(#version 310 es
+precision highp float;
+const float weights[] = float[](0.25, 0.5, 0.25);
+highp float decode(highp vec4 rgba) { return rgba.x; }
+float conv(in float[9] kernel, in float[9] data) { return kernel[0] * data[0]; }
+layout(std140) uniform Cascades { mat4[4] cascadeViewProj; } ubo;
+const float ALBEDO = float(${GROUND_ALBEDO}) / 3.14;
+void main() {
+  float n = 4.0;
+  float scale = 1.0 - 0.5 * (float(n) / float(n - 1.0));
+  #pragma unroll_loop
+  for (int i = 0; i < 3; i++) { scale += 1.0; }
+}
+)";
+  Source src("t.frag", code);
+  SyntaxTree tree = parse(src, Lang::glsl);
+  EXPECT_EQ(tree.error_count, 0) << mask_source(code, Lang::glsl).text;
+  // The constructor's name is still read from the file.
+  bool seen = false;
+  for (int id = 0; id < static_cast<int>(tree.nodes.size()); ++id)
+    if (tree.is(id, "call_expression") && tree.text(tree.child_by_field(id, "function")) == "float") seen = true;
+  EXPECT_TRUE(seen);
+}
+
+}  // namespace
+}  // namespace lwc

@@ -173,7 +173,7 @@ class Masker {
     if (auto use = macro_use(w)) {
       if (size_t j = apply_macro(i, *use); j != kNone) return j;
     }
-    if (lang_ == Lang::glsl) return i;
+    if (lang_ == Lang::glsl) return glsl_identifier(i);
     if (is(i + 1, Tok::ident) && !is_keyword_like(i + 1)) {
       if (one_of(w, kModifiers)) { mask(i, i); return i; }
       size_t p = prev_code(i);
@@ -202,6 +202,27 @@ class Masker {
            word(n) == "}";
   }
 
+  // What the GLSL grammar (0.2.0) reads badly and lwcport does not need: precision qualifiers on
+  // declarations, a scalar constructor after `(` (`(float(n) * p)` reads as a cast), and array
+  // types written on the type (`float[9] kernel`, `float[](...)`), whose brackets become spaces.
+  size_t glsl_identifier(size_t i) {
+    std::string_view w = word(i);
+    if (w == "highp" || w == "mediump" || w == "lowp") {
+      mask(i, i);
+      return i;
+    }
+    size_t j = i;
+    if (word(j + 1) == "[") {
+      size_t close = matching(j + 1);
+      if (close < t_.size() && (is(close + 1, Tok::ident) || word(close + 1) == "(")) {
+        mask(j + 1, close);
+        j = close;
+      }
+    }
+    if ((w == "float" || w == "int" || w == "bool" || w == "double") && word(j + 1) == "(")
+      out_.replace(t_[i].begin, w.size(), std::string(w.size(), '_'));
+    return j;
+  }
   std::optional<MacroUse> macro_use(std::string_view w) const {
     if (auto it = learnt_.find(w); it != learnt_.end()) return it->second;
     if (auto it = table_.find(w); it != table_.end()) return it->second;
@@ -298,7 +319,9 @@ class Masker {
     if (!is(i + 1, Tok::ident) || word(i + 2) != "}" || !tight(i, i + 1) || !tight(i + 1, i + 2)) return kNone;
     size_t p = prev_code(i);
     std::string_view pw = p == kNone ? std::string_view() : word(p);
-    if (pw == "=" || pw == "," || pw == "(" || pw == "{" || pw == "[") return kNone;
+    std::string_view after = word(i + 3);
+    bool used = after == "[" || after == "." || after == "(";  // an initialiser list is never indexed or called
+    if (!used && (pw == "=" || pw == "," || pw == "(" || pw == "{" || pw == "[")) return kNone;
     out_[t_[i].begin] = '_';
     out_[t_[i + 2].begin] = '_';
     return i + 2;
@@ -353,6 +376,18 @@ class Masker {
   int parens_ = 0;
 };
 
+// A JavaScript template substitution (`${GROUND_ALBEDO}`, in shader files that JavaScript fills in
+// and in GLSL inside template literals) becomes one identifier of its length.
+void mask_substitutions(std::string& text) {
+  for (size_t at = text.find("${"); at != std::string::npos; at = text.find("${", at + 1)) {
+    size_t k = at + 2;
+    for (int depth = 1; k < text.size() && depth > 0; ++k) depth += text[k] == '{' ? 1 : text[k] == '}' ? -1 : 0;
+    for (size_t c = at; c < k; ++c)
+      if (text[c] != '\n' && text[c] != '\r') text[c] = '_';
+    at = k - 1;
+  }
+}
+
 // Statements the GLSL grammar (0.2.0) does not parse and lwcport does not need:
 // `precision highp float;` and interface defaults such as `layout(local_size_x = 64) in;`.
 void mask_glsl_statements(std::string_view text, const std::vector<Token>& t, std::string& out) {
@@ -387,7 +422,8 @@ MaskResult mask_source(std::string_view original, Lang lang, const MaskOptions& 
   result.text.assign(original);
   std::string& text = result.text;
   if (text.size() >= 3 && text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.replace(0, 3, "   ");
-  const std::string source = text;  // what the tokens index: the file with its BOM blanked
+  mask_substitutions(text);
+  const std::string source = text;  // what the tokens index: the file with its BOM and substitutions masked
   LexResult lexed = lex(source);
   result.unterminated_comment = lexed.unterminated_comment;
 
@@ -406,8 +442,15 @@ MaskResult mask_source(std::string_view original, Lang lang, const MaskOptions& 
   }
 
   // A continuation with blanks after its backslash: the grammar wants the backslash last.
+  // Pragmas and the like carry nothing lwcport reads, and the GLSL grammar rejects them in code.
   for (const Token& t : kept) {
     if (t.kind != Tok::directive) continue;
+    std::string_view keyword = read_directive(std::string_view(source).substr(t.begin, t.end - t.begin)).keyword;
+    if (keyword == "pragma" || keyword == "line" || keyword == "error" || keyword == "warning") {
+      for (uint32_t k = t.begin; k < t.end; ++k)
+        if (text[k] != '\n' && text[k] != '\r') text[k] = ' ';
+      continue;
+    }
     for (uint32_t k = t.begin; k < t.end; ++k) {
       size_t after = continuation_end(source, k);
       size_t eol = after - (source[after - 2] == '\r' ? 2 : 1);
