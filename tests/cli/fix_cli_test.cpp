@@ -18,8 +18,16 @@ namespace {
 
 const std::string kBom = "\xEF\xBB\xBF";
 
+// A scratch project that builds against UE 5.4, where `View.WorldCameraOrigin` must move to
+// PrimaryView (without the setting, UE4 code is taken as built against UE4, and that rewrite is unsafe).
+std::string ue54_project(const std::string& name) {
+  std::string dir = test::scratch(name);
+  test::write(dir + "/.lwcport.json", "{\"unreal\": \"5.4\"}\n");
+  return dir;
+}
+
 TEST(FixCli, RewritesInPlaceKeepingBomLineEndingsModeAndEverythingOutsideTheEdits) {
-  std::string dir = test::scratch("fix-form");
+  std::string dir = ue54_project("fix-form");
   std::string original = kBom + "// A comment stays.\r\nfloat3 F(float3 P)\r\n{\r\n\treturn P - View.WorldCameraOrigin;  // and this\r\n}\r\n";
   test::write(dir + "/a.usf", original);
   ::chmod((dir + "/a.usf").c_str(), 0640);
@@ -30,12 +38,12 @@ TEST(FixCli, RewritesInPlaceKeepingBomLineEndingsModeAndEverythingOutsideTheEdit
   struct stat st;
   ASSERT_EQ(::stat((dir + "/a.usf").c_str(), &st), 0);
   EXPECT_EQ(st.st_mode & 07777, 0640u);
-  // No temporary file is left behind.
-  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+  // No temporary file is left behind (the project's settings and the shader only).
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);
 }
 
 TEST(FixCli, ReadOnlyFileGetsAClearErrorAndTheOtherFilesAreStillFixed) {
-  std::string dir = test::scratch("fix-readonly");
+  std::string dir = ue54_project("fix-readonly");
   std::string code = "float3 F(float3 P) { return P - View.WorldCameraOrigin; }\n";
   test::write(dir + "/a_locked.usf", code);
   test::write(dir + "/b_open.usf", code);
@@ -57,7 +65,7 @@ TEST(FixCli, ReplaceFileRefusesAFileThatChangedSinceItWasRead) {
 }
 
 TEST(FixCli, ASymlinkStaysALinkAndItsTargetIsFixed) {
-  std::string dir = test::scratch("fix-symlink");
+  std::string dir = ue54_project("fix-symlink");
   fs::create_directories(dir + "/real");
   test::write(dir + "/real/a.usf", "float3 F(float3 P) { return P - View.WorldCameraOrigin; }\n");
   fs::create_symlink("real/a.usf", dir + "/link.usf");
@@ -68,7 +76,7 @@ TEST(FixCli, ASymlinkStaysALinkAndItsTargetIsFixed) {
 }
 
 TEST(FixCli, DiffPrintsTheChangeAndWritesNothing) {
-  std::string dir = test::scratch("fix-diff");
+  std::string dir = ue54_project("fix-diff");
   std::string code = "float3 F(float3 P)\n{\n\treturn P - View.WorldCameraOrigin;\n}\n";
   test::write(dir + "/a.usf", code);
   auto r = test::run("cd " + dir + " && " + test::binary() + " fix a.usf --diff --select lwc-primary-view");
@@ -90,7 +98,17 @@ TEST(FixCli, UnsafeFixesWaitForTheFlag) {
 
 TEST(FixCli, FixesAreLabelledInJsonAndSarif) {
   std::string code = "float3 F(float3 P) { return P - View.WorldCameraOrigin; }\n";
-  std::string dir = test::scratch("fix-formats");
+  // UE4 code, with no engine named: taken as built against UE4, where PrimaryView and
+  // DFSubtractDemote do not exist, so the rewrite is unsafe and says why.
+  std::string ue4 = test::scratch("fix-formats-ue4");
+  test::write(ue4 + "/a.usf", code);
+  auto inferred = nlohmann::json::parse(test::run("cd " + ue4 + " && " + test::binary() + " lint a.usf --format json --select lwc-primary-view").out);
+  EXPECT_EQ(inferred["findings"][0]["fix"]["applicability"], "unsafe");
+  EXPECT_EQ(inferred["findings"][0]["fix"]["reason"],
+            "it needs UE 5.4+ (`DFSubtractDemote`, `PrimaryView`), and this file builds against UE4 (inferred from the code it "
+            "uses; set \"unreal\" in .lwcport.json to name the engine the project builds against)");
+  // The same code in a project that builds against UE 5.4: the rewrite is what makes it compile.
+  std::string dir = ue54_project("fix-formats");
   test::write(dir + "/a.usf", code);
   auto json = nlohmann::json::parse(test::run("cd " + dir + " && " + test::binary() + " lint a.usf --format json --select lwc-primary-view").out);
   const auto& fix = json["findings"][0]["fix"];

@@ -85,3 +85,79 @@ TEST(SyntaxErrors, OnlyTheBrokenDeclarationLosesItsRewrites) {
 
 }  // namespace
 }  // namespace lwc
+
+namespace lwc {
+namespace {
+
+std::vector<Finding> lint_unreal(const std::string& code, std::optional<UnrealEra> era, const std::string& rule = "") {
+  AnalyzeOptions o;
+  o.unreal = era;
+  if (!rule.empty()) o.select = {rule};
+  return analyze(Source("Test.usf", code), o);
+}
+
+TEST(UnrealEras, ARewriteCallsOnlyWhatTheEngineDefines) {
+  // UE 5.4's DoubleFloat.ush has no DFDivideDemote (lwcport's own library does): no rewrite.
+  std::string divide = "float3 F(FDFVector3 A, float3 B) { return DFDemote(DFDivide(A, B)); }\n";
+  auto f = lint_unreal(divide, UnrealEra::ue5_4, "lwc-demote-fusion");
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_TRUE(f[0].fixes.empty());
+  ASSERT_FALSE(f[0].withheld.empty());
+  EXPECT_NE(f[0].withheld.back().find("`DFDivideDemote`, which Unreal does not define"), std::string::npos) << f[0].withheld.back();
+  // DFAddDemote is the engine's own.
+  std::string add = "float3 F(FDFVector3 A, float3 B) { return DFDemote(DFAdd(A, B)); }\n";
+  auto g = lint_unreal(add, UnrealEra::ue5_4, "lwc-demote-fusion");
+  ASSERT_EQ(g.size(), 1u);
+  ASSERT_EQ(g[0].fixes.size(), 1u);
+  EXPECT_EQ(g[0].fixes[0].applicability, Applicability::safe);
+}
+
+TEST(UnrealEras, MessagesNameTheEngineEraAndItsTypes) {
+  std::string code = "float3 F(float3 P) { return P - View.WorldCameraOrigin; }\n";
+  auto ue50 = lint_unreal(code, UnrealEra::ue5_0, "lwc-primary-view");
+  ASSERT_EQ(ue50.size(), 1u);
+  EXPECT_NE(ue50[0].message.find("a tile/offset `FLWCVector3` member"), std::string::npos) << ue50[0].message;
+  EXPECT_NE(ue50[0].message.find("does not compile in UE 5.0-5.3"), std::string::npos);
+  // The DoubleFloat rewrite needs UE 5.4: unsafe in a 5.0-5.3 project.
+  ASSERT_EQ(ue50[0].fixes.size(), 1u);
+  EXPECT_EQ(ue50[0].fixes[0].applicability, Applicability::unsafe);
+  EXPECT_NE(ue50[0].fixes[0].reason.find("it needs UE 5.4+ (`DFSubtractDemote`)"), std::string::npos) << ue50[0].fixes[0].reason;
+  auto ue4 = lint_unreal(code, std::nullopt, "lwc-primary-view");
+  ASSERT_EQ(ue4.size(), 1u);
+  EXPECT_NE(ue4[0].message.find("stops compiling when this code moves to UE5"), std::string::npos) << ue4[0].message;
+  auto ue54 = lint_unreal("float3 F(float3 P) { return P - View.ClipToWorld[3].xyz; }\n", UnrealEra::ue5_4, "lwc-primary-view");
+  ASSERT_EQ(ue54.size(), 1u);
+  EXPECT_NE(ue54[0].message.find("a DoubleFloat `FDFMatrix` member"), std::string::npos) << ue54[0].message;
+}
+
+TEST(UnrealEras, SettingsAndInference) {
+  EXPECT_EQ(parse_unreal_era("4"), UnrealEra::ue4);
+  EXPECT_EQ(parse_unreal_era("4.27"), UnrealEra::ue4);
+  EXPECT_EQ(parse_unreal_era("5.0"), UnrealEra::ue5_0);
+  EXPECT_EQ(parse_unreal_era("5.3"), UnrealEra::ue5_0);
+  EXPECT_EQ(parse_unreal_era("5.4"), UnrealEra::ue5_4);
+  EXPECT_EQ(parse_unreal_era("5.6"), UnrealEra::ue5_4);
+  EXPECT_FALSE(parse_unreal_era("6").has_value());
+  EXPECT_FALSE(parse_unreal_era("5.x").has_value());
+  EXPECT_EQ(infer_unreal_era("FLWCVector3 P; FDFVector3 Q = DFFromTileOffset_Hack(P);"), UnrealEra::ue5_0);
+  EXPECT_EQ(infer_unreal_era("float3 P = DFDemote(PrimaryView.WorldCameraOrigin);"), UnrealEra::ue5_4);
+  EXPECT_EQ(infer_unreal_era("// LWCHackToFloat(X) in a comment\nfloat3 P = View.WorldCameraOrigin;"), UnrealEra::ue4);
+}
+
+TEST(LibraryDefinitions, TheLibrariesOwnDefinitionsAreNotDebt) {
+  std::string library =
+      "FLWCVector3 LWCAddOffset(FLWCVector3 V, float3 O) { return MakeLWCVector3(V.Tile, V.Offset + O); }\n"
+      "float3 DFHackToFloatHelper(FDFVector3 V) { return V.High + V.Low; }\n";
+  EXPECT_TRUE(lint_unreal(library, UnrealEra::ue5_4).empty());
+  std::string user = library + "float3 UserCode(FLWCVector3 P) { return LWCToFloat(P); }\n";
+  auto f = lint_unreal(user, UnrealEra::ue5_4, "lwc-tile-offset");
+  ASSERT_EQ(f.size(), 2u);  // FLWCVector3 and LWCToFloat in UserCode only
+  AnalyzeOptions lint_it;
+  lint_it.unreal = UnrealEra::ue5_4;
+  lint_it.lint_library = true;
+  lint_it.select = {"lwc-tile-offset"};
+  EXPECT_GT(analyze(Source("Test.usf", user), lint_it).size(), 2u);
+}
+
+}  // namespace
+}  // namespace lwc

@@ -273,6 +273,8 @@ LoadedFile load(const InputFile& file, const Options& o, IncludeSummaries& inclu
   a.severity = config.severity;
   a.world_sources = config.world_sources;
   a.macros = config.macros;
+  a.unreal = config.unreal;
+  a.lint_library = config.lint_library;
   a.max_bytes = config.max_file_bytes;
   a.strategy = o.strategy;
   if (o.scene) a.scene = o.scene->for_path(file.display);
@@ -333,14 +335,8 @@ int lint(const Options& o, std::ostream& out, std::ostream& err) {
   return o.fail_on && writer.failed(*o.fail_on) ? 1 : 0;
 }
 
-// The engine era an Unreal file was written for: 500 (tile/offset, even beside DoubleFloat values:
-// the 5.1-5.3 files that convert with DFFromTileOffset_Hack), 504 (DoubleFloat only) or 427.
-int unreal_era(const std::string& text) {
-  static const std::regex df(R"(\bFDF\w+|\bDF[A-Z]\w*\s*\()"), lwc(R"(\bFLWC\w+|\bLWC[A-Z]\w*\s*\()");
-  if (std::regex_search(text, lwc)) return 500;
-  if (std::regex_search(text, df)) return 504;
-  return 427;
-}
+// The engine era an Unreal file was written for (its stub's LWCPORT_UE_VERSION).
+int unreal_era(const std::string& text) { return static_cast<int>(infer_unreal_era(text)); }
 
 // The same code with each accurate DoubleFloat addition replaced by its DFFast* twin: fewer flops,
 // exact only within their preconditions (same signs, |a| >= |b|), which the harness's cases probe.

@@ -77,7 +77,7 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
     if (!find_rule(id)) fail(fmt::format("unknown rule id \"{}\"", id));
   };
   for (auto& [key, value] : j.items()) {
-    static const char* known[] = {"severity", "select", "ignore", "include-dirs", "virtual-roots", "exclude", "world-sources", "max-file-bytes", "macros"};
+    static const char* known[] = {"severity", "select", "ignore", "include-dirs", "virtual-roots", "exclude", "world-sources", "max-file-bytes", "macros", "unreal", "library-definitions"};
     if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) == std::end(known))
       fail(fmt::format("unknown key \"{}\"", key));
     (void)value;
@@ -119,6 +119,16 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
     c.max_file_bytes = j.at("max-file-bytes").get<size_t>();
   }
   if (j.contains("macros")) add_macros(j.at("macros"), file.string(), c.macros);
+  if (j.contains("unreal")) {
+    const auto& u = j.at("unreal");
+    c.unreal = u.is_string() ? parse_unreal_era(u.get<std::string>()) : std::nullopt;
+    if (!c.unreal) fail("\"unreal\" must name the engine version the project builds against: \"4\", \"5.0\" (to 5.3) or \"5.4\" (and later)");
+  }
+  if (j.contains("library-definitions")) {
+    const auto& l = j.at("library-definitions");
+    if (!l.is_string() || (l != "skip" && l != "lint")) fail("\"library-definitions\" must be \"skip\" (the default) or \"lint\"");
+    c.lint_library = l == "lint";
+  }
   return c;
 }
 

@@ -10,6 +10,7 @@
 
 #include "core/finding.h"
 #include "lang/macros.h"
+#include "world/era.h"
 
 namespace lwc {
 
@@ -24,6 +25,8 @@ struct ProjectConfig {
   nlohmann::json world_sources = nlohmann::json::array();
   size_t max_file_bytes = 16u << 20;
   MacroTable macros;  // macros used as syntax, by use (lang/macros.h)
+  std::optional<UnrealEra> unreal;  // the engine the project builds against (else inferred per file)
+  bool lint_library = false;        // report inside the LWC libraries' own definitions
 
   // Parses a config's text; throws std::runtime_error naming the file and the problem.
   static ProjectConfig parse(const std::filesystem::path& file, const std::string& text);

@@ -59,6 +59,16 @@ int SyntaxTree::ancestor(int id, std::string_view type) const {
   return -1;
 }
 
+int SyntaxTree::declarator_name(int d) const {
+  while (d >= 0) {
+    std::string_view type = nodes[d].type;
+    if (type == "identifier" || type == "field_identifier") return d;
+    int inner = child_by_field(d, "declarator");
+    d = inner >= 0 ? inner : named_child(d);
+  }
+  return -1;
+}
+
 namespace {
 
 struct ParserDeleter {

@@ -49,6 +49,9 @@ class SyntaxTree {
   std::vector<int> named_children(int id) const;
   // Nearest ancestor (or self) of the given type, or -1.
   int ancestor(int id, std::string_view type) const;
+  // The identifier a declarator declares (through arrays, pointers, references, initialisers,
+  // function declarators), or -1.
+  int declarator_name(int declarator) const;
 };
 
 // Parses one variant of a source in the given language, after masking (lang/mask.h): HLSL with

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <mutex>
+#include <set>
 #include <tuple>
 
+#include "lang/lexer.h"
 #include "lang/macros.h"
 #include "rules/rule.h"
 #include "shaderlib/shaderlib.h"
@@ -206,12 +208,23 @@ void drop_what_errors_touch(const SyntaxTree& tree, std::vector<Finding>& findin
     if (std::any_of(errors.begin(), errors.end(), [&](Span e) { return inside(f.span, e); })) continue;
     if (!f.fixes.empty() && std::any_of(broken.begin(), broken.end(), [&](Span b) { return overlaps(f.span, b) || inside(f.span, b); })) {
       f.fixes.clear();
-      f.withheld.push_back("any: the declaration around it has a syntax error (see `lwcport parse --verbose`), so a rewrite "
+      f.withheld.push_back("the declaration around it has a syntax error (see `lwcport parse --verbose`), so a rewrite "
                            "could land in the wrong place");
     }
     kept.push_back(std::move(f));
   }
   findings = std::move(kept);
+}
+
+// The LWC libraries' own definitions are not migration debt: only the rules about error-free
+// transformations look inside them.
+void drop_library_findings(const std::vector<Span>& library, const WorldData& data, std::vector<Finding>& findings) {
+  if (library.empty()) return;
+  std::erase_if(findings, [&](const Finding& f) {
+    if (std::find(data.library.still_checked.begin(), data.library.still_checked.end(), f.rule) != data.library.still_checked.end())
+      return false;
+    return std::any_of(library.begin(), library.end(), [&](Span s) { return inside(f.span, s); });
+  });
 }
 
 // The variants of a file (lang/conditionals.h) report the same finding once. A rewrite is kept
@@ -248,7 +261,7 @@ class VariantMerge {
           for (Span r : regions_) touches = touches || overlaps(e.span, r) || (e.span.begin == e.span.end && r.begin < e.span.begin && e.span.begin < r.end);
       if (votes_[i] == variants_ && !touches) continue;
       f.fixes.clear();
-      f.withheld.push_back("any: the code around it depends on preprocessor branches that lwcport reads one at a time "
+      f.withheld.push_back("the code around it depends on preprocessor branches that lwcport reads one at a time "
                            "(an #if inside a parameter list, a call or an expression), so no rewrite is sure to fit every branch");
     }
     return std::move(merged_);
@@ -261,6 +274,66 @@ class VariantMerge {
   std::vector<int> votes_;
   std::map<std::tuple<std::string, uint32_t, uint32_t>, size_t> index_;
 };
+
+std::set<std::string, std::less<>> identifiers(std::string_view text) {
+  std::set<std::string, std::less<>> out;
+  for (size_t i = 0; i < text.size();) {
+    if (!ident_start(text[i])) {
+      ++i;
+      continue;
+    }
+    size_t b = i;
+    while (i < text.size() && ident_char(text[i])) ++i;
+    out.emplace(text.substr(b, i - b));
+  }
+  return out;
+}
+
+std::string quoted_list(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "`" : ", `") + n + "`";
+  return out;
+}
+
+// A rewrite of Unreal code may call only what the engine it builds against defines: one that
+// needs a later era is unsafe and says so; one that needs a name Unreal does not define at all
+// (only lwcport's own library does) is not offered.
+void fit_fixes_to_engine(std::vector<Finding>& findings, const Source& source, const UnrealTarget& unreal, const UnrealApi& api) {
+  for (Finding& f : findings) {
+    std::vector<Fix> kept;
+    for (Fix& fix : f.fixes) {
+      std::set<std::string, std::less<>> introduced;
+      for (const Edit& e : fix.edits) {
+        auto before = identifiers(source.slice(e.span));
+        for (const std::string& name : identifiers(e.text))
+          if (!before.count(name) && api.looks_like_api(name)) introduced.insert(name);
+      }
+      std::vector<std::string> foreign, later;
+      UnrealEra needs = UnrealEra::ue4;
+      for (const std::string& name : introduced) {
+        std::optional<UnrealEra> era = api.first_era(name);
+        if (!era) {
+          foreign.push_back(name);
+        } else if (static_cast<int>(*era) > static_cast<int>(unreal.era)) {
+          later.push_back(name);
+          if (static_cast<int>(*era) > static_cast<int>(needs)) needs = *era;
+        }
+      }
+      if (!foreign.empty()) {
+        f.withheld.push_back(fmt::format("{} would call {}, which Unreal does not define (only lwcport's own library does)",
+                                         fix.title, quoted_list(foreign)));
+        continue;
+      }
+      if (!later.empty()) {
+        std::string why = fmt::format("it needs {} ({}), and this file builds against {}", era_name(needs), quoted_list(later), unreal.describe());
+        fix.reason = fix.applicability == Applicability::safe ? why : fix.reason + "; " + why;
+        fix.applicability = Applicability::unsafe;
+      }
+      kept.push_back(std::move(fix));
+    }
+    f.fixes = std::move(kept);
+  }
+}
 
 // The macros a file is read with: the built-in table, what its includes define, the project's.
 MacroTable macro_table(Lang lang, const AnalyzeOptions& options) {
@@ -316,6 +389,9 @@ std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options
   }
   MacroTable macros = macro_table(*lang, options);
   const WorldData& data = world_data(*lang, options.world_sources);
+  std::optional<UnrealTarget> unreal;
+  if (*lang == Lang::hlsl && is_unreal_source(source.path(), text))
+    unreal = options.unreal ? UnrealTarget{*options.unreal, false} : UnrealTarget{infer_unreal_era(text), true};
   std::vector<Suppression> sups;
   std::optional<VariantMerge> merge;
   int errors = 0, too_deep = 0;
@@ -331,9 +407,10 @@ std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options
     WorldModel world(tree, data, options.includes);
     std::vector<Finding> found;
     for (const auto& [rule, check] : checks()) {
-      if (rule->applies_to(*lang) && options.enabled(rule->id)) check->run(CheckContext{tree, world, *rule, found});
+      if (rule->applies_to(*lang) && options.enabled(rule->id)) check->run(CheckContext{tree, world, *rule, found, unreal});
     }
     drop_what_errors_touch(tree, found);
+    if (!options.lint_library) drop_library_findings(library_definitions(tree, data), data, found);
     if (!world.too_deep().empty()) {
       too_deep += static_cast<int>(world.too_deep().size());
       if (!first_too_deep) first_too_deep = tree.at(world.too_deep().front()).begin;
@@ -347,6 +424,7 @@ std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options
     if (variant == 0) first.emplace(std::move(tree));
   }
   std::vector<Finding> found = merge->take();
+  if (unreal) fit_fixes_to_engine(found, source, *unreal, data.unreal_api);
   findings.insert(findings.end(), std::make_move_iterator(found.begin()), std::make_move_iterator(found.end()));
   if (first->unterminated_comment) {
     findings.push_back(input_finding(Severity::error, *first->unterminated_comment,

@@ -23,6 +23,8 @@ struct AnalyzeOptions {
   nlohmann::json world_sources = nlohmann::json::array();  // the project's extra sources
   const FileSummary* includes = nullptr;  // what the file's #includes declare
   MacroTable macros;                      // the project's macros (.lwcport.json "macros")
+  bool lint_library = false;              // report in the LWC libraries' own definitions too
+  std::optional<UnrealEra> unreal;        // the engine the project builds against (else inferred per file)
   size_t max_bytes = 16u << 20;          // larger files are skipped with a diagnostic
   SceneNumbers scene;                    // what the scene needs (the default: Unreal's full world)
   Strategy strategy = Strategy::automatic;

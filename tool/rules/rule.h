@@ -53,6 +53,7 @@ struct CheckContext {
   const WorldModel& world;
   const RuleInfo& rule;
   std::vector<Finding>& out;
+  std::optional<UnrealTarget> unreal;  // Unreal code: the engine era it builds against
 
   // Reports the rule at a span, its message and hint filled from vars.
   Finding& report(Span span, const Vars& vars) const;

@@ -192,6 +192,10 @@ WorldData WorldData::load(const nlohmann::json& ws, const nlohmann::json& extra_
   d.twins.objects = twins.at("objects").get<std::vector<std::string>>();
   d.twins.members = twins.at("members").get<std::map<std::string, std::string>>();
   d.twins.functions = twins.at("functions").get<std::map<std::string, std::string>>();
+  const auto& library = ws.at("library-definitions");
+  d.library = {library.at("functions").get<std::vector<std::string>>(), library.at("types").get<std::vector<std::string>>(),
+               library.at("still-checked").get<std::vector<std::string>>()};
+  d.unreal_api = UnrealApi::load(ws.at("unreal-api"));
   return d;
 }
 
@@ -199,6 +203,33 @@ bool WorldData::is_float_type(std::string_view type) const {
   for (const auto& g : float_types)
     if (glob_match(g, type)) return true;
   return false;
+}
+
+std::vector<Span> library_definitions(const SyntaxTree& tree, const WorldData& data) {
+  auto any = [](const std::vector<std::string>& globs, std::string_view name) {
+    return std::any_of(globs.begin(), globs.end(), [&](const std::string& g) { return glob_match(g, name); });
+  };
+  std::vector<Span> out;
+  size_t functions = 0, library_functions = 0;
+  for (int id = 0; id < static_cast<int>(tree.nodes.size()); ++id) {
+    std::string_view type = tree.at(id).type;
+    if (type == "function_definition") {
+      ++functions;
+      int name = tree.declarator_name(tree.child_by_field(id, "declarator"));
+      if (name >= 0 && any(data.library.functions, tree.text(name))) {
+        ++library_functions;
+        out.push_back(tree.span(id));
+      }
+    } else if (type == "struct_specifier" && tree.child_by_field(id, "body") >= 0) {
+      int name = tree.child_by_field(id, "name");
+      if (name >= 0 && any(data.library.types, tree.text(name))) out.push_back(tree.span(id));
+    } else if (type == "type_definition") {
+      int name = tree.child_by_field(id, "declarator");
+      if (name >= 0 && any(data.library.types, tree.text(name))) out.push_back(tree.span(id));
+    }
+  }
+  if (functions > 0 && library_functions == functions) return {tree.span(0)};
+  return out;
 }
 
 std::vector<std::string_view> leading_words(const SyntaxTree& tree, int declaration) {
@@ -274,16 +305,7 @@ class Analyzer {
     return type >= 0 ? t_.text(type) : std::string_view();
   }
 
-  // The identifier inside a declarator (through arrays, pointers, references, initialisers).
-  int declarator_name(int d) const {
-    while (d >= 0) {
-      std::string_view type = t_.at(d).type;
-      if (type == "identifier" || type == "field_identifier") return d;
-      int inner = t_.child_by_field(d, "declarator");
-      d = inner >= 0 ? inner : t_.named_child(d);
-    }
-    return -1;
-  }
+  int declarator_name(int d) const { return t_.declarator_name(d); }
 
   int new_variable(Variable v) {
     auto it = decl_var_.find(v.decl);

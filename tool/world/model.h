@@ -11,6 +11,7 @@
 
 #include "lang/macros.h"
 #include "lang/syntax.h"
+#include "world/era.h"
 #include "world/pattern.h"
 
 namespace lwc {
@@ -58,6 +59,11 @@ struct WorldData {
   std::vector<Source> sources;
   std::vector<Function> functions;
   Twins twins;
+  // The LWC libraries' own names: a definition under one of them is the library, not debt.
+  struct Library {
+    std::vector<std::string> functions, types, still_checked;
+  } library;
+  UnrealApi unreal_api;  // which engine era defines each large-world name
 
   // `world_space` is the "world-space" object; `extra_sources` is the config's list of
   // {"match", "kind", "languages"?}. Throws std::runtime_error naming a bad entry.
@@ -137,6 +143,11 @@ class WorldModel {
   std::map<std::string, Kind> returns_;
   std::map<std::string, std::string> return_types_;
 };
+
+// Where a file defines the LWC libraries themselves (rules/world-space.json "library-definitions"):
+// each function or type defined under a library name, or the whole file when every function it
+// defines is one.
+std::vector<Span> library_definitions(const SyntaxTree& tree, const WorldData& data);
 
 // Words written before a declaration's type: qualifiers and modifiers (`static const`,
 // `uniform`, `precise`, `out`...), read from the original text so HLSL's masked words count.

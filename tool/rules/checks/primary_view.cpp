@@ -26,6 +26,7 @@ class PrimaryView : public Check {
       const auto& twins = ctx.world.data().twins.members;
       std::string twin = twins.count(member) ? std::string(t.text(base)) + "." + twins.at(member) : "";
       Vars vars{{"object", std::string(t.text(base))}, {"member", member}, {"twin", twin.empty() ? "" : " (or, better, its translated twin `" + twin + "`)"}};
+      describe_era(ctx, id, vars);
       Finding& f = ctx.report(t.span(id), vars);
       offer_fix(ctx, f, id, member, vars);
     }
@@ -52,6 +53,21 @@ class PrimaryView : public Check {
     f.withheld.push_back("in UE 5.4 `PrimaryView." + member + "` is a DoubleFloat value and this use (`" +
                          std::string(t.text(parent)) + "`) needs a float: the surrounding computation must move " +
                          "to translated world or DoubleFloat first (lwc-float-world-position)");
+  }
+
+  // The member's large-world type in the era the code builds against, and what that means for it.
+  static void describe_era(const CheckContext& ctx, int id, Vars& vars) {
+    Kind kind = ctx.world.kind(id);
+    std::string shape = kind == Kind::world_matrix ? "Matrix" : kind == Kind::from_world_matrix ? "InverseMatrix" : "Vector3";
+    UnrealEra era = ctx.unreal ? ctx.unreal->era : UnrealEra::ue5_4;
+    std::string object = vars["object"] + "." + vars["member"];
+    if (era == UnrealEra::ue4) {
+      vars["era-type"] = "a tile/offset `FLWC" + shape + "` (UE 5.0-5.3) or DoubleFloat `FDF" + shape + "` (UE 5.4+)";
+      vars["consequence"] = ", so `" + object + "` stops compiling when this code moves to UE5";
+    } else {
+      vars["era-type"] = era == UnrealEra::ue5_0 ? "a tile/offset `FLWC" + shape + "`" : "a DoubleFloat `FDF" + shape + "`";
+      vars["consequence"] = ", so `" + object + "` does not compile in " + std::string(era_name(era));
+    }
   }
 
   std::vector<std::string> objects_, members_, positions_, lwc_calls_;
