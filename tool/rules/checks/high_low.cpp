@@ -264,25 +264,6 @@ std::string stem(const std::string& name) {
 }
 
 // The file's top-level `#version` directive, or -1.
-int version_directive(const SyntaxTree& t) {
-  for (int c : t.named_children(0))
-    if (t.is(c, "preproc_call") && t.text(c).starts_with("#version")) return c;
-  return -1;
-}
-
-// "300 es" when the file's #version has no `precise` (before 4.00, or ES 3.20), else "".
-std::string glsl_without_precise(const SyntaxTree& t) {
-  if (!glsl(t)) return {};
-  int directive = version_directive(t);
-  if (directive < 0) return "110";  // no #version: GLSL 1.10
-  std::string version(t.text(directive).substr(8));
-  version.erase(0, version.find_first_not_of(" \t"));
-  version.erase(version.find_last_not_of(" \t\r\n") + 1);
-  int number = std::atoi(version.c_str());
-  bool es = version.find("es") != std::string::npos;
-  return number < (es ? 320 : 400) ? version : std::string();
-}
-
 }  // namespace
 
 RewritePlan plan_high_low(const CheckContext& ctx, int var, const CameraNames& camera) {
@@ -354,7 +335,7 @@ RewritePlan plan_high_low(const CheckContext& ctx, int var, const CameraNames& c
                                  "(lwc::host::split in tool/shaderlib/lwc_host.h) and upload `{}` and `{}` as .High/.Low; the "
                                  "shader subtracts them under `precise`",
                                  translation, camera_name)});
-  if (std::string version = glsl_without_precise(t); !version.empty())
+  if (std::string version = glsl_version_without_precise(t); !version.empty())
     plan.notes.push_back(fmt::format("GLSL {} has no `precise`: the library's subtraction keeps its low part only where the driver "
                                      "does not reassociate float arithmetic; check the target driver",
                                      version));

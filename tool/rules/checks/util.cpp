@@ -148,4 +148,22 @@ std::string escape(const SyntaxTree& tree, int use) {
   return fmt::format("it is used as `{}` (line {})", tree.text(parent), line);
 }
 
+int version_directive(const SyntaxTree& t) {
+  for (int c : t.named_children(0))
+    if (t.is(c, "preproc_call") && t.text(c).starts_with("#version")) return c;
+  return -1;
+}
+
+std::string glsl_version_without_precise(const SyntaxTree& t) {
+  if (t.lang != Lang::glsl) return {};
+  int directive = version_directive(t);
+  if (directive < 0) return "110";  // no #version: GLSL 1.10
+  std::string version(t.text(directive).substr(8));
+  version.erase(0, version.find_first_not_of(" \t"));
+  version.erase(version.find_last_not_of(" \t\r\n") + 1);
+  int number = std::atoi(version.c_str());
+  bool es = version.find("es") != std::string::npos;
+  return number < (es ? 320 : 400) ? version : std::string();
+}
+
 }  // namespace lwc::checks

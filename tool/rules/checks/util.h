@@ -59,5 +59,10 @@ int subtraction_partner(const SyntaxTree& tree, int use);
 // Why a use of a world position cannot be followed, for the withheld message.
 std::string escape(const SyntaxTree& tree, int use);
 int line_of(const SyntaxTree& tree, int node);
+// The `#version` directive of a GLSL file, or -1.
+int version_directive(const SyntaxTree& tree);
+// The GLSL version written (e.g. "300 es"; "110" when there is no #version) when it has no
+// `precise` (before 4.00, or ES 3.20), else "".
+std::string glsl_version_without_precise(const SyntaxTree& tree);
 
 }  // namespace lwc::checks
