@@ -271,3 +271,30 @@ void main() {
 
 }  // namespace
 }  // namespace lwc
+
+namespace lwc {
+namespace {
+
+TEST(Macros, OnlyAForWhoseHeaderIsTheParametersIsALoop) {
+  MacroTable learnt;
+  learn_macros("#define MY_FOR(X,Y,Z) [loop] for(X;Y;Z)\n"
+               "#define MY_LOOP(F, G) /* whole loop */ for (int i = 0; i < 4; ++i) { F(i); G(i); }\n",
+               {}, learnt);
+  EXPECT_EQ(learnt.at("MY_FOR"), MacroUse::loop);
+  EXPECT_EQ(learnt.count("MY_LOOP"), 0u);  // a statement macro: its call reads as a call
+}
+
+TEST(Macros, AMacroThatDefinesAFunctionIsReadAsOne) {
+  std::string code =
+      "#define LONG_LINE_MACRO(a, b) a + \\\n  /* a comment // with slashes */ \\\n  b\n"
+      "RAY_TRACING_ENTRY_MISS(MainMS, FPayload, Payload)\n{\n\tfloat3 WorldPosition = TranslatedWorldRayOrigin();\n}\n";
+  Source src("t.usf", code);
+  SyntaxTree tree = parse(src, Lang::hlsl);
+  EXPECT_EQ(tree.error_count, 0);
+  int functions = 0;
+  for (const Node& n : tree.nodes) functions += std::string_view(n.type) == "function_definition";
+  EXPECT_EQ(functions, 1);
+}
+
+}  // namespace
+}  // namespace lwc

@@ -15,6 +15,7 @@ void merge(FileSummary& into, const FileSummary& from) {
   into.function_returns.insert(from.function_returns.begin(), from.function_returns.end());
   into.function_return_types.insert(from.function_return_types.begin(), from.function_return_types.end());
   into.macros.insert(from.macros.begin(), from.macros.end());
+  into.field_types.insert(from.field_types.begin(), from.field_types.end());
 }
 }  // namespace
 
@@ -69,7 +70,7 @@ std::shared_ptr<const FileSummary> IncludeSummaries::own_summary(const fs::path&
   if (r.error.empty() && !r.too_large && !find_binary_marker(r.text)) {
     Source src(file.string(), r.text);
     SyntaxTree tree = parse(src, lang.value_or(Lang::hlsl));
-    WorldModel model(tree, world_data(tree.lang, config.world_sources));
+    WorldModel model(tree, world_data(tree.lang, config.world_sources), nullptr, names_as_evidence(src, tree.lang));
     *summary = model.summary();
     learn_macros(r.text, known_macros(tree.lang), summary->macros);
     text = r.text;

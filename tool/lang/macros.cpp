@@ -60,12 +60,20 @@ std::string clean_body(std::string_view rest) {
   return b == std::string::npos ? std::string() : out.substr(b, e - b + 1);
 }
 
-std::optional<MacroUse> classify(bool function_like, std::string_view body, const MacroTable& known, const MacroTable& learnt) {
+std::optional<MacroUse> classify(bool function_like, const std::vector<std::string>& parameters, std::string_view body,
+                                 const MacroTable& known, const MacroTable& learnt) {
   auto lookup = [&](std::string_view w) -> std::optional<MacroUse> {
     if (auto it = learnt.find(w); it != learnt.end()) return it->second;
     if (auto it = known.find(w); it != known.end()) return it->second;
     return std::nullopt;
   };
+  if (function_like && !body.empty() && body[0] == '[') {
+    // `[loop] for (X; Y; Z)`: a loop with its attribute.
+    size_t close = body.find(']');
+    std::string_view after = close == std::string_view::npos ? std::string_view() : body.substr(close + 1);
+    while (!after.empty() && after[0] == ' ') after.remove_prefix(1);
+    if (after.rfind("for", 0) == 0) return classify(function_like, parameters, after, known, learnt);
+  }
   if (!body.empty() && body[0] == '[') return MacroUse::attribute;
   // An optional parameter (`, in FIsFrontFace bIsFrontFace : SV_IsFrontFace`) reads as nothing.
   if (!function_like && !body.empty() && body[0] == ',') return MacroUse::qualifier;
@@ -85,8 +93,16 @@ std::optional<MacroUse> classify(bool function_like, std::string_view body, cons
     }
   }
   if (function_like) {
-    if (!words.empty() && words[0] == "for") return MacroUse::loop;
-    if (body.rfind("for", 0) == 0 && body.size() > 3 && (body[3] == '(' || body[3] == ' ')) return MacroUse::loop;
+    // `for (A; B; C)` made of the parameters: the header is written with commas at the call.
+    if (body.rfind("for", 0) == 0 && body.size() > 3 && (body[3] == '(' || body[3] == ' ')) {
+      size_t open = body.find('('), close = body.find(')');
+      std::string header(body.substr(open + 1, close == std::string_view::npos ? 0 : close - open - 1));
+      std::string want;
+      for (const std::string& p : parameters) want += (want.empty() ? "" : ";") + p;
+      header.erase(std::remove(header.begin(), header.end(), ' '), header.end());
+      if (!parameters.empty() && header == want) return MacroUse::loop;
+      return std::nullopt;
+    }
     if (words.size() == 1 && !words[0].empty()) {
       if (auto use = lookup(words[0]); use && *use == MacroUse::attribute) return MacroUse::attribute;
     }
@@ -171,13 +187,22 @@ void learn_macros(std::string_view text, const MacroTable& known, MacroTable& in
     while (i < rest.size() && ident_char(rest[i])) ++i;
     std::string name(rest.substr(b, i - b));
     bool function_like = i < rest.size() && rest[i] == '(';
+    std::vector<std::string> parameters;
     if (function_like) {
       size_t close = rest.find(')', i);
       if (close == std::string_view::npos) continue;
+      std::string list(rest.substr(i + 1, close - i - 1));
+      for (size_t b = 0; b <= list.size();) {
+        size_t e = std::min(list.find(',', b), list.size());
+        std::string p = list.substr(b, e - b);
+        p.erase(std::remove_if(p.begin(), p.end(), [](char c) { return c == ' ' || c == '\t'; }), p.end());
+        if (!p.empty()) parameters.push_back(p);
+        b = e + 1;
+      }
       i = close + 1;
     }
     if (into.count(name) || known.count(name)) continue;
-    if (auto use = classify(function_like, clean_body(rest.substr(i)), known, into)) into.emplace(std::move(name), *use);
+    if (auto use = classify(function_like, parameters, clean_body(rest.substr(i)), known, into)) into.emplace(std::move(name), *use);
   }
 }
 

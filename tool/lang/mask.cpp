@@ -287,6 +287,13 @@ class Masker {
     }
     Scope scope = scopes_.back();
     bool start = at_boundary(i);
+    // A macro that defines a function (`RAY_TRACING_ENTRY_MISS(Name, FPayload, Payload) { ... }`):
+    // its name becomes `void ___...`, so the body is read as a function's.
+    if (scope == Scope::file && start && aw == "{" && word(i).size() >= 6) {
+      std::string name = "void " + std::string(word(i).size() - 5, '_');
+      out_.replace(t_[i].begin, name.size(), name);
+      return i;
+    }
     if ((scope == Scope::file || scope == Scope::decl) && start) {
       if (aw == ";") {
         mask(i, a);
@@ -443,13 +450,30 @@ MaskResult mask_source(std::string_view original, Lang lang, const MaskOptions& 
 
   // A continuation with blanks after its backslash: the grammar wants the backslash last.
   // Pragmas and the like carry nothing lwcport reads, and the GLSL grammar rejects them in code.
+  // Comments inside a directive go too: the grammar ends a macro at a `//` even inside `/* */`.
+  auto blank = [&](size_t from, size_t to) {
+    for (size_t k = from; k < to; ++k)
+      if (text[k] != '\n' && text[k] != '\r') text[k] = ' ';
+  };
   for (const Token& t : kept) {
     if (t.kind != Tok::directive) continue;
     std::string_view keyword = read_directive(std::string_view(source).substr(t.begin, t.end - t.begin)).keyword;
     if (keyword == "pragma" || keyword == "line" || keyword == "error" || keyword == "warning") {
-      for (uint32_t k = t.begin; k < t.end; ++k)
-        if (text[k] != '\n' && text[k] != '\r') text[k] = ' ';
+      blank(t.begin, t.end);
       continue;
+    }
+    for (size_t k = t.begin; k + 1 < t.end; ++k) {
+      if (source[k] == '/' && source[k + 1] == '*') {
+        size_t end = source.find("*/", k + 2);
+        end = end == std::string::npos || end + 2 > t.end ? t.end : end + 2;
+        blank(k, end);
+        k = end - 1;
+      } else if (source[k] == '/' && source[k + 1] == '/') {
+        size_t end = source.find('\n', k);
+        end = std::min<size_t>(end == std::string::npos ? source.size() : end, t.end);
+        blank(k, end);
+        k = end;
+      }
     }
     for (uint32_t k = t.begin; k < t.end; ++k) {
       size_t after = continuation_end(source, k);

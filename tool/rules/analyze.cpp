@@ -32,6 +32,10 @@ const WorldData& world_data(Lang lang, const nlohmann::json& extra_sources) {
   return *slot;
 }
 
+bool names_as_evidence(const Source& source, Lang lang) {
+  return lang == Lang::glsl || !is_unreal_source(source.path(), source.text()) || infer_unreal_era(source.text()) == UnrealEra::ue4;
+}
+
 std::vector<std::string> include_paths(std::string_view text) {
   std::vector<std::string> out;
   size_t i = 0;
@@ -388,10 +392,11 @@ std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options
     return finish();
   }
   MacroTable macros = macro_table(*lang, options);
-  const WorldData& data = world_data(*lang, options.world_sources);
   std::optional<UnrealTarget> unreal;
   if (*lang == Lang::hlsl && is_unreal_source(source.path(), text))
     unreal = options.unreal ? UnrealTarget{*options.unreal, false} : UnrealTarget{infer_unreal_era(text), true};
+  const WorldData& data = world_data(*lang, options.world_sources);
+  bool names = names_as_evidence(source, *lang);
   std::vector<Suppression> sups;
   std::optional<VariantMerge> merge;
   int errors = 0, too_deep = 0;
@@ -404,7 +409,7 @@ std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options
       errors += tree.error_count;
       if (!first_error) first_error = tree.first_error;
     }
-    WorldModel world(tree, data, options.includes);
+    WorldModel world(tree, data, options.includes, names);
     std::vector<Finding> found;
     for (const auto& [rule, check] : checks()) {
       if (rule->applies_to(*lang) && options.enabled(rule->id)) check->run(CheckContext{tree, world, *rule, found, unreal});

@@ -41,6 +41,10 @@ std::optional<Lang> language_for(const Source& source, const AnalyzeOptions& opt
 
 // World-space data for a language plus extra sources, built once per distinct extra list.
 const WorldData& world_data(Lang lang, const nlohmann::json& extra_sources);
+// Naming conventions count as evidence in plain code and in Unreal code written for UE4 (what
+// its own code uses, whatever engine it now builds against): UE5-era code says what is large
+// through the engine's large-world types.
+bool names_as_evidence(const Source& source, Lang lang);
 
 // The paths a file #includes, in order, as written (a scan of its directive lines).
 std::vector<std::string> include_paths(std::string_view text);

@@ -175,7 +175,7 @@ WorldData WorldData::load(const nlohmann::json& ws, const nlohmann::json& extra_
         throw std::runtime_error(std::string(where) + ": a world source needs \"match\" and \"kind\": " + s.dump());
       auto kind = parse_kind(s.at("kind").get<std::string>());
       if (!kind) throw std::runtime_error(std::string(where) + ": unknown world-space kind " + s.at("kind").dump());
-      if (applies_to(s, lang)) d.sources.push_back({PathPattern(s.at("match").get<std::string>()), *kind});
+      if (applies_to(s, lang)) d.sources.push_back({PathPattern(s.at("match").get<std::string>()), *kind, s.value("by-name", false)});
     }
   };
   // The project's sources come first so they can override the built-in ones.
@@ -196,7 +196,21 @@ WorldData WorldData::load(const nlohmann::json& ws, const nlohmann::json& extra_
   d.library = {library.at("functions").get<std::vector<std::string>>(), library.at("types").get<std::vector<std::string>>(),
                library.at("still-checked").get<std::vector<std::string>>()};
   d.unreal_api = UnrealApi::load(ws.at("unreal-api"));
+  const auto& names = ws.at("holder-names");
+  d.holder_names = {names.at("translated").get<std::vector<std::string>>(), names.at("local").get<std::vector<std::string>>()};
   return d;
+}
+
+Kind WorldData::named_kind(std::string_view name, Kind k) const {
+  auto any = [&](const std::vector<std::string>& globs) {
+    return std::any_of(globs.begin(), globs.end(), [&](const std::string& g) { return glob_match(g, name); });
+  };
+  bool position = k == Kind::absolute || k == Kind::camera_offset;
+  if (position && any(holder_names.translated)) return Kind::translated;
+  if (k == Kind::world_matrix && any(holder_names.translated)) return Kind::translated_world_matrix;
+  if (k == Kind::from_world_matrix && any(holder_names.translated)) return Kind::from_translated_matrix;
+  if (position && any(holder_names.local)) return Kind::local;
+  return k;
 }
 
 bool WorldData::is_float_type(std::string_view type) const {
@@ -307,6 +321,19 @@ class Analyzer {
 
   int declarator_name(int d) const { return t_.declarator_name(d); }
 
+  // A declaration whose HLSL semantic is SV_Position (masked out of the tree, read from the file):
+  // the value is in clip space, whatever its name says.
+  bool clip_semantic(int declaration) const {
+    if (t_.lang != Lang::hlsl) return false;
+    const std::string& src = t_.source->text();
+    size_t end = t_.at(declaration).end;
+    while (end < src.size() && src[end] != ';' && src[end] != ',' && src[end] != ')' && src[end] != '{') ++end;
+    std::string text = src.substr(t_.at(declaration).begin, end - t_.at(declaration).begin);
+    for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    size_t colon = text.rfind(':');
+    return colon != std::string::npos && text.find("SV_POSITION", colon) != std::string::npos;
+  }
+
   int new_variable(Variable v) {
     auto it = decl_var_.find(v.decl);
     if (it != decl_var_.end()) return it->second;
@@ -345,6 +372,7 @@ class Analyzer {
         if (n < 0) continue;
         Variable v = make_variable(std::string(t_.text(n)), std::string(type_of(f)), Variable::Role::field, n, f);
         v.owner = owner;
+        v.clip = clip_semantic(f);
         int var = new_variable(std::move(v));
         fields_[owner + "." + std::string(t_.text(n))] = var;
         fields_by_name_[std::string(t_.text(n))].push_back(var);
@@ -390,7 +418,7 @@ class Analyzer {
     v.block = block;
     v.uniform = uniform;
     v.precise = precise;
-    v.kind = source_kind(Path{{v.name, false}}).value_or(Kind::unknown);
+    v.kind = source_kind(Path{{v.name, false}}, true).value_or(Kind::unknown);
     int var = new_variable(std::move(v));
     globals_[m_.variables_[var].name] = var;
     // A GLSL varying named as a world position (`in vec3 vWorldPosition`) holds one.
@@ -423,6 +451,7 @@ class Analyzer {
         Variable v = make_variable(std::string(t_.text(n)), std::string(type_of(p)), Variable::Role::parameter, n, p, fn);
         v.output = has_word(words, "out") || has_word(words, "inout");
         v.precise = has_word(words, "precise");
+        v.clip = clip_semantic(p);
         int var = new_variable(std::move(v));
         Kind k = params.size() < args.size() ? args[params.size()] : Kind::unknown;
         frame.scope[m_.variables_[var].name] = var;
@@ -518,6 +547,7 @@ class Analyzer {
   // `var` now holds `k`: remember it, and report a float-typed holder of absolute data.
   void hold(int var, Kind k, int site) {
     Variable& v = m_.variables_[var];
+    k = v.clip ? Kind::local : d_.named_kind(v.name, k);
     if (frame_ && v.role != Variable::Role::global && v.role != Variable::Role::field) frame_->current[var] = k;
     v.kind = join(v.kind, k);
     if (!holds_absolute(k) || v.uniform || !d_.is_float_type(v.type)) return;
@@ -533,14 +563,18 @@ class Analyzer {
   }
 
   // ---- expressions --------------------------------------------------------------------------
-  std::optional<Kind> source_kind(const Path& path) {
-    std::string key;
+  // The kind a source pattern gives a path. Naming conventions ("by-name") count for a global
+  // the file declares (a uniform is named for what the host puts in it), and elsewhere only where
+  // names are evidence (plain and UE4-era code).
+  std::optional<Kind> source_kind(const Path& path, bool declared_global = false) {
+    bool names = declared_global || m_.names_as_evidence_;
+    std::string key = names ? "n:" : "s:";
     for (const auto& s : path) key += s.name + (s.call ? "()." : ".");
     auto it = source_cache_.find(key);
     if (it != source_cache_.end()) return it->second;
     std::optional<Kind> found;
     for (const auto& s : d_.sources)
-      if (s.pattern.matches(path)) {
+      if ((names || !s.by_name) && s.pattern.matches(path)) {
         found = s.kind;
         break;
       }
@@ -663,9 +697,32 @@ class Analyzer {
 
   // The struct type of a field access's base, when the base is a known variable.
   std::string owner_of(int base) const {
+    while (base >= 0 && t_.is(base, "parenthesized_expression")) base = t_.named_child(base);
+    if (base >= 0 && t_.is(base, "field_expression")) {  // a.b.c: the type of a.b
+      int field = t_.child_by_field(base, "field");
+      return field >= 0 ? field_type(owner_of(t_.child_by_field(base, "argument")), std::string(t_.text(field))) : std::string();
+    }
     if (base < 0 || !t_.is(base, "identifier")) return {};
     int var = lookup(t_.text(base));
     return var >= 0 ? m_.variables_[var].type : std::string();
+  }
+
+  // A struct field's declared type: in this file, else in an include; "" when unknown (an
+  // unknown owner matches a field name that only one struct declares).
+  std::string field_type(const std::string& owner, const std::string& name) const {
+    if (auto it = fields_.find(owner + "." + name); it != fields_.end()) return m_.variables_[it->second].type;
+    if (owner.empty())
+      if (auto f = fields_by_name_.find(name); f != fields_by_name_.end() && f->second.size() == 1) return m_.variables_[f->second[0]].type;
+    if (!inc_) return {};
+    if (auto it = inc_->field_types.find(owner + "." + name); it != inc_->field_types.end()) return it->second;
+    if (!owner.empty()) return {};
+    std::string found;
+    for (auto it = inc_->field_types.lower_bound(""); it != inc_->field_types.end(); ++it) {
+      if (!it->first.ends_with("." + name)) continue;
+      if (!found.empty() && found != it->second) return {};
+      found = it->second;
+    }
+    return found;
   }
 
   Kind eval_subscript(int id, int depth) {
@@ -681,6 +738,27 @@ class Analyzer {
     if (k == Kind::world_matrix) return Kind::absolute;
     if (k == Kind::translated_world_matrix) return Kind::translated;
     return Kind::unknown;
+  }
+
+  // An operand whose type is a matrix (`float4x4`, `mat4`, a matrix-typed variable or field).
+  bool matrix_typed(int n) const {
+    while (n >= 0 && t_.is(n, "parenthesized_expression")) n = t_.named_child(n);
+    if (n < 0) return false;
+    std::string type;
+    if (t_.is(n, "identifier")) {
+      int var = lookup(t_.text(n));
+      if (var >= 0) type = m_.variables_[var].type;
+    } else if (t_.is(n, "field_expression")) {
+      int field = t_.child_by_field(n, "field");
+      if (field >= 0) {
+        auto it = fields_.find(owner_of(t_.child_by_field(n, "argument")) + "." + std::string(t_.text(field)));
+        if (it != fields_.end()) type = m_.variables_[it->second].type;
+      }
+    } else if (t_.is(n, "call_expression") || t_.is(n, "cast_expression")) {
+      int f = t_.child_by_field(n, t_.is(n, "call_expression") ? "function" : "type");
+      if (f >= 0) type = std::string(t_.text(f));
+    }
+    return type.find('x') != std::string::npos ? d_.is_float_type(type) && type.back() != 'x' : type.rfind("mat", 0) == 0;
   }
 
   // A vector that a matrix transforms as a point (w = 1) rather than a direction (w = 0 or no w).
@@ -767,6 +845,8 @@ class Analyzer {
         if (is_matrix(a) && is_matrix(b)) return compose(a, b);
         if (is_matrix(b)) return transform(args[0], a, b, role == FunctionRole::transform_point);
         if (is_matrix(a)) return transform(args[1], b, a, role == FunctionRole::transform_point);
+        // A matrix lwcport does not know maps the value to a space it does not know either.
+        if (role == FunctionRole::transform && (matrix_typed(args[0]) || matrix_typed(args[1]))) return Kind::unknown;
         return scale(a, b);
       case FunctionRole::direction: return Kind::direction;
       case FunctionRole::local: return Kind::local;
@@ -816,10 +896,13 @@ class Analyzer {
   Kind binary(std::string_view op, int l, Kind a, int r, Kind b) {
     if (op == "+") return add(a, b);
     if (op == "-") return subtract(a, b);
-    if (op == "*" && t_.lang == Lang::glsl) {
-      if (is_matrix(a) && is_matrix(b)) return compose(b, a);  // column vectors: b applies first
-      if (is_matrix(a)) return transform(r, b, a);
-      if (is_matrix(b)) return transform(l, a, b);
+    if (op == "*" && (is_matrix(a) || is_matrix(b) || matrix_typed(l) || matrix_typed(r))) {
+      if (t_.lang == Lang::glsl) {
+        if (is_matrix(a) && is_matrix(b)) return compose(b, a);  // column vectors: b applies first
+        if (is_matrix(a)) return transform(r, b, a);
+        if (is_matrix(b)) return transform(l, a, b);
+      }
+      return Kind::unknown;  // a product with a matrix lwcport does not know (or HLSL's component-wise one)
     }
     if (op == "*" || op == "/") return scale(a, b);
     return Kind::local;  // comparisons, logic, bit operations
@@ -871,9 +954,14 @@ class Analyzer {
     else if (auto f = fields_by_name_.find(name); f != fields_by_name_.end() && f->second.size() == 1) var = f->second[0];
     if (var >= 0) {
       hold(var, k, -1);
-    } else if (holds_absolute(k) && lookup(name) < 0) {
-      report({AbsoluteHolder::What::field, lhs, std::string(t_.text(lhs)), std::string(), k});
+      return;
     }
+    // A field declared elsewhere: reported at the assignment, only when its declared type is
+    // known to be a float (a header's struct the summaries read); an unknown type is not guessed.
+    k = d_.named_kind(name, k);
+    std::string type = field_type(owner, name);
+    if (holds_absolute(k) && lookup(name) < 0 && !type.empty() && d_.is_float_type(type))
+      report({AbsoluteHolder::What::field, lhs, std::string(t_.text(lhs)), type, k});
   }
 
   WorldModel& m_;
@@ -895,8 +983,8 @@ class Analyzer {
   std::unordered_map<std::string, std::optional<Kind>> source_cache_;
 };
 
-WorldModel::WorldModel(const SyntaxTree& tree, const WorldData& data, const FileSummary* includes)
-    : tree_(tree), data_(data) {
+WorldModel::WorldModel(const SyntaxTree& tree, const WorldData& data, const FileSummary* includes, bool names_as_evidence)
+    : tree_(tree), data_(data), names_as_evidence_(names_as_evidence) {
   Analyzer(*this, includes).run();
 }
 
@@ -959,8 +1047,10 @@ std::vector<int> WorldModel::uses(int variable) const {
 
 FileSummary WorldModel::summary() const {
   FileSummary s;
-  for (const Variable& v : variables_)
+  for (const Variable& v : variables_) {
     if (v.role == Variable::Role::global && v.kind != Kind::unknown) s.globals[v.name] = v.kind;
+    if (v.role == Variable::Role::field) s.field_types[v.owner + "." + v.name] = v.type;
+  }
   s.function_returns = returns_;
   s.function_return_types = return_types_;
   return s;

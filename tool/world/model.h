@@ -44,6 +44,7 @@ struct WorldData {
   struct Source {
     PathPattern pattern;
     Kind kind;
+    bool by_name = false;  // a naming convention of plain code, not engine data
   };
   struct Function {
     PathPattern pattern;
@@ -65,10 +66,18 @@ struct WorldData {
   } library;
   UnrealApi unreal_api;  // which engine era defines each large-world name
 
+  // What a place's name says it holds (rules/world-space.json "holder-names").
+  struct HolderNames {
+    std::vector<std::string> translated, local;
+  } holder_names;
+
   // `world_space` is the "world-space" object; `extra_sources` is the config's list of
   // {"match", "kind", "languages"?}. Throws std::runtime_error naming a bad entry.
   static WorldData load(const nlohmann::json& world_space, const nlohmann::json& extra_sources, Lang lang);
   bool is_float_type(std::string_view type) const;
+  // The kind a value has once held by a place of this name: a translated name makes an absolute
+  // value translated, a local, relative or clip-space name makes a position small.
+  Kind named_kind(std::string_view name, Kind kind) const;
 };
 
 // A name the model tracks: a local, parameter, global (uniform, varying...) or struct field.
@@ -85,6 +94,7 @@ struct Variable {
   bool precise = false;
   bool uniform = false;
   bool output = false;    // an `out`/`inout` parameter
+  bool clip = false;      // declared with an SV_Position semantic: clip space
   std::string owner;      // for fields: the struct's name
   Kind kind = Kind::unknown;  // for uniforms: from the sources; otherwise the most absolute kind held
 };
@@ -105,6 +115,7 @@ struct FileSummary {
   std::map<std::string, Kind> function_returns;
   std::map<std::string, std::string> function_return_types;
   MacroTable macros;  // what its #define lines teach about macros used as syntax
+  std::map<std::string, std::string> field_types;  // "Struct.Field" -> declared type
 };
 
 // Classifies every value of one parsed file. Function parameters and returns are followed within
@@ -112,7 +123,10 @@ struct FileSummary {
 // function, no whole-tree fixpoint.
 class WorldModel {
  public:
-  WorldModel(const SyntaxTree& tree, const WorldData& data, const FileSummary* includes = nullptr);
+  // `names_as_evidence`: naming-convention sources count beyond the file's own globals (plain
+  // and UE4-era code; see rules/world-space.json "by-name").
+  WorldModel(const SyntaxTree& tree, const WorldData& data, const FileSummary* includes = nullptr,
+             bool names_as_evidence = true);
   ~WorldModel();
 
   // The kind recorded for an expression node (joined over every analysis of its function).
@@ -142,6 +156,7 @@ class WorldModel {
   std::vector<int> too_deep_;
   std::map<std::string, Kind> returns_;
   std::map<std::string, std::string> return_types_;
+  bool names_as_evidence_ = true;
 };
 
 // Where a file defines the LWC libraries themselves (rules/world-space.json "library-definitions"):
