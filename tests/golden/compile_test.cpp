@@ -31,23 +31,12 @@ int engine_version(const std::string& path) {
 
 // Compiles one corpus file's text against the given engine version's stub.
 CompileResult compile_corpus_file(const std::string& path, const std::string& text, int version) {
-  CompileInput in;
-  in.lang = *lang_from_path(path);
-  in.name = path;
-  in.text = text;
-  if (in.lang == Lang::hlsl) {
-    // Fragments and files with their own entry points alike: check every function through a
-    // do-nothing entry point appended after the file (line numbers unchanged).
-    in.stage = Stage::fragment;
-    in.entry = "lwcport_compile_check";
-    in.text += "\nvoid lwcport_compile_check() {}\n";
-    if (unreal_era(path))
-      in.preamble = "#define LWCPORT_UE_VERSION " + std::to_string(version) + "\n" + unreal_environment_text();
-  } else {
-    in.stage = stage_from_extension(path).value_or(Stage::fragment);
-  }
+  FileBuild build;
+  build.lang = *lang_from_path(path);
+  build.name = path;
+  if (unreal_era(path)) build.unreal_version = version;
   std::string dir = fs::path(test::source_dir() + "/" + path).parent_path().string();
-  in.include = [dir, lang = in.lang](const std::string& name, const std::string&) -> std::optional<std::string> {
+  build.include = [dir, lang = build.lang](const std::string& name, const std::string&) -> std::optional<std::string> {
     // The library `lwcport fix` writes beside fixed files (the whole of it: fix writes a subset).
     if (name == library_file_name(lang)) return full_library_text(lang);
     if (name.rfind("/Engine/", 0) == 0) {
@@ -58,7 +47,7 @@ CompileResult compile_corpus_file(const std::string& path, const std::string& te
     if (fs::exists(dir + "/" + name)) return test::read(dir + "/" + name);
     return std::nullopt;
   };
-  return compile_shader(in);
+  return compile_file(build, text);
 }
 
 TEST(CompileCorpus, EveryShaderCompilesAsWritten) {

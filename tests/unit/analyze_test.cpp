@@ -161,3 +161,29 @@ TEST(LibraryDefinitions, TheLibrariesOwnDefinitionsAreNotDebt) {
 
 }  // namespace
 }  // namespace lwc
+
+namespace lwc {
+namespace {
+
+TEST(UnrealEras, AnArmForAnOlderEngineIsThatEnginesCode) {
+  std::string code =
+      "float3 Reconstruct(float3 ScreenVector, float Depth)\n{\n"
+      "#if UE4_COMPAT\n\tfloat3 WorldPosition = ScreenVector * Depth + View.WorldCameraOrigin;\n"
+      "#else\n\tfloat3 WorldPosition = ScreenVector * Depth + LWCHackToFloat(PrimaryView.WorldCameraOrigin);\n#endif\n"
+      "\treturn WorldPosition;\n}\n";
+  auto findings = lint_unreal(code, UnrealEra::ue5_4);
+  for (const Finding& f : findings) EXPECT_NE(f.rule, "lwc-primary-view") << f.message;
+  EXPECT_TRUE(std::any_of(findings.begin(), findings.end(), [](const Finding& f) { return f.rule == "lwc-hack-marker"; }));
+  auto arms = era_guarded_arms(code);
+  ASSERT_EQ(arms.size(), 2u);
+  EXPECT_EQ(arms[0].era, UnrealEra::ue4);
+  EXPECT_EQ(arms[1].era, UnrealEra::ue5_0);
+  auto major = era_guarded_arms("#if ENGINE_MAJOR_VERSION >= 5\nA\n#else\nB\n#endif\n#ifndef UE5_ONLY\nC\n#endif\n");
+  ASSERT_EQ(major.size(), 3u);
+  EXPECT_EQ(major[0].era, UnrealEra::ue5_0);
+  EXPECT_EQ(major[1].era, UnrealEra::ue4);
+  EXPECT_EQ(major[2].era, UnrealEra::ue4);
+}
+
+}  // namespace
+}  // namespace lwc

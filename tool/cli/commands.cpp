@@ -77,6 +77,9 @@ fix options:
   --verify                          run each fixed file's functions on the Vulkan device against
                                     the float64 reference first; apply only the files whose
                                     rewrites all pass (the others are reported, unchanged)
+  --check-build                     compile each file before and after fixing (glslang; Unreal
+                                    code against its engine era's stub); a file whose original
+                                    compiled and whose fixed text does not is held back
 
 verify options:
   --format text|json                output format (default: text)
@@ -108,6 +111,7 @@ struct Options {
   bool shaderlib = false;
   bool verify = false;  // fix: apply only the rewrites that pass on the device
   bool verbose = false;  // parse: list each syntax error with the text around it
+  bool check_build = false;  // fix: a file whose fix would break its build is held back
   double timeout_seconds = 60;  // per kernel on the device
 };
 
@@ -179,6 +183,7 @@ Options parse_options(const std::vector<std::string>& args) {
     else if (a == "--shaderlib") o.shaderlib = true;
     else if (a == "--verify") o.verify = true;
     else if (a == "--verbose" || a == "-v") o.verbose = true;
+    else if (a == "--check-build") o.check_build = true;
     else if (a == "--timeout") {
       std::string n = get();
       char* end = nullptr;
@@ -494,6 +499,54 @@ std::string verify_fix(Verifier& verifier, const InputFile& file, const LoadedFi
   return "";
 }
 
+// `fix --check-build`: the fixed text must compile where the original did (glslang; Unreal code
+// against the stub of the era the project builds against, GLSL for OpenGL or else Vulkan).
+// Errors only in code that still holds a finding lwcport could not port make it incomplete, not
+// broken: that code needs a hand port whatever lwcport does. UE4 code built against UE 5.x does
+// not compile until then, so its original is also tried against the era it was written for.
+struct BuildCheck {
+  enum class Outcome { compiles, incomplete, breaks, unchecked } outcome;
+  std::string detail;  // where it was compiled, or the first error
+};
+
+BuildCheck check_build(const InputFile& file, const LoadedFile& f, Lang lang, const std::string& original,
+                       const FixOutcome& fixed, IncludeSummaries& includes) {
+  HarnessSetup setup = harness_setup(file, f, lang, includes);
+  FileBuild target{lang, file.display, std::nullopt, false, setup.include};
+  std::string where = "glslang";
+  std::optional<UnrealEra> written;
+  if (setup.unreal) {
+    written = infer_unreal_era(original);
+    UnrealEra era = f.options.unreal.value_or(*written);
+    target.unreal_version = static_cast<int>(era);
+    where += fmt::format(", against lwcport's {} stub", era_name(era));
+  }
+  auto first_error = [](const CompileResult& r) {
+    return r.messages.empty() ? std::string("no message") : fmt::format("line {}: {}", r.messages.front().line, r.messages.front().text);
+  };
+  CompileResult was = compile_file(target, original);
+  if (!was.ok && lang == Lang::glsl) {
+    target.vulkan = true;
+    if (CompileResult vulkan = compile_file(target, original); vulkan.ok) was = vulkan;
+    else target.vulkan = false;
+  }
+  if (!was.ok && written && static_cast<int>(*written) != *target.unreal_version) {
+    FileBuild own = target;
+    own.unreal_version = static_cast<int>(*written);
+    if (compile_file(own, original).ok) was.ok = true;
+  }
+  if (!was.ok) return {BuildCheck::Outcome::unchecked, first_error(was)};
+  if (lang == Lang::glsl) where += target.vulkan ? ", for Vulkan" : ", for OpenGL";
+  CompileResult now = compile_file(target, fixed.text);
+  if (now.ok) return {BuildCheck::Outcome::compiles, where};
+  std::map<int, std::string> by_hand = fixed_variant("fixed", fixed, lang).hand_fixes;
+  for (const CompileMessage& m : now.messages)
+    if (m.source == file.display && !by_hand.count(m.line)) return {BuildCheck::Outcome::breaks, where + ": " + first_error(now)};
+  int line = now.messages.front().line;
+  return {BuildCheck::Outcome::incomplete,
+          fmt::format("{}: line {} is in code lwcport could not port ({})", where, line, by_hand.count(line) ? by_hand[line] : "")};
+}
+
 struct FixedFile {
   std::filesystem::path path;
   FileReport report;   // what remains, plus any write problem
@@ -504,6 +557,7 @@ struct FixedFile {
   // The fixed text includes lwcport's library, which must then exist beside it with these names.
   std::optional<Lang> library_lang;
   std::set<std::string> library_names;
+  std::optional<BuildCheck::Outcome> build;  // --check-build
 };
 
 // The library file one folder of fixed files includes (lwc_doublefloat.hlsl / .glsl).
@@ -557,6 +611,19 @@ FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& in
       return out;
     }
     for (const std::string& line : verified) out.report.findings.push_back(locate(result, input_finding(Severity::note, 0, line, "")));
+  }
+  if (o.check_build && lang) {
+    BuildCheck check = check_build(file, f, *lang, source.text(), fixed, includes);
+    out.build = check.outcome;
+    if (check.outcome == BuildCheck::Outcome::breaks) {
+      keep_original(out, source, f.options, input_finding(Severity::warning, 0, "fix held back: the fixed file does not compile where the original did (" + check.detail + ")",
+                                                          "apply the fixes one by one (`lwcport fix --diff`) to see which one needs a hand port"));
+      return out;
+    }
+    std::string note = check.outcome == BuildCheck::Outcome::compiles     ? "build checked: the fixed file compiles as the original did (" + check.detail + ")"
+                       : check.outcome == BuildCheck::Outcome::incomplete ? "build checked: the fixed file compiles except where lwcport could not port the code (" + check.detail + "); port that by hand"
+                                                                          : "build not checked: the original does not compile on its own with glslang (" + check.detail + ")";
+    out.report.findings.push_back(locate(result, input_finding(Severity::note, 0, note, "")));
   }
   if (lang && fixed.text.find("\"" + library_file_name(*lang) + "\"") != std::string::npos) {
     out.library_lang = lang;
@@ -619,6 +686,7 @@ int fix(const Options& o, std::ostream& out, std::ostream& err) {
   if (!o.diff) writer.emplace(*target.stream, ro);
   IncludeSummaries includes;
   int applied = 0, changed_files = 0, unsafe_left = 0;
+  std::map<BuildCheck::Outcome, int> builds;
   std::map<std::string, LibraryFile> libraries;  // by path
   run_in_order<FixedFile>(
       files.size(), verifier ? 1 : job_count(o), [&](size_t i) { return fix_file(files[i], o, includes, verifier ? &*verifier : nullptr); },
@@ -626,6 +694,7 @@ int fix(const Options& o, std::ostream& out, std::ostream& err) {
         applied += r.applied;
         changed_files += r.changed;
         unsafe_left += r.unsafe_left;
+        if (r.build) ++builds[*r.build];
         if (r.library_lang) {
           std::string name = library_file_name(*r.library_lang);
           std::filesystem::path dir = std::filesystem::path(r.path).parent_path();
@@ -638,6 +707,11 @@ int fix(const Options& o, std::ostream& out, std::ostream& err) {
       });
   for (const auto& [path, lib] : libraries) write_library(lib, o, *target.stream, err);
   std::string unsafe = unsafe_left ? fmt::format(" {} more fix(es) are unsafe: rerun with --unsafe-fixes.", unsafe_left) : "";
+  if (o.check_build)
+    err << fmt::format("Build check: {} fixed file(s) compile as their originals did, {} compile except in code left to port by hand, "
+                       "{} held back (the fix broke the build), {} not checked (the original does not compile on its own).\n",
+                       builds[BuildCheck::Outcome::compiles], builds[BuildCheck::Outcome::incomplete],
+                       builds[BuildCheck::Outcome::breaks], builds[BuildCheck::Outcome::unchecked]);
   if (o.diff) {
     err << fmt::format("Would fix {} finding(s) in {} file(s).{}\n", applied, changed_files, unsafe);
     return changed_files && o.fail_on ? 1 : 0;  // like a linter: changes to make fail the run

@@ -231,6 +231,16 @@ void drop_library_findings(const std::vector<Span>& library, const WorldData& da
   });
 }
 
+// Code in an arm written for UE4 in a file that builds against UE5 (`#if UE4_COMPAT`) is that
+// engine's code path: as for library definitions, only the error-free-transformation rules
+// look inside it.
+void drop_older_engine_arms(std::string_view text, const UnrealTarget& unreal, const WorldData& data, std::vector<Finding>& findings) {
+  std::vector<Span> older;
+  for (const EraArm& arm : era_guarded_arms(text))
+    if (arm.era == UnrealEra::ue4 && unreal.era != UnrealEra::ue4) older.push_back({arm.begin, arm.end});
+  drop_library_findings(older, data, findings);
+}
+
 // The variants of a file (lang/conditionals.h) report the same finding once. A rewrite is kept
 // only where every variant proposes exactly it and it touches no resolved preprocessor group:
 // a rewrite seen through one arm could miss what another arm holds.
@@ -429,7 +439,10 @@ std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options
     if (variant == 0) first.emplace(std::move(tree));
   }
   std::vector<Finding> found = merge->take();
-  if (unreal) fit_fixes_to_engine(found, source, *unreal, data.unreal_api);
+  if (unreal) {
+    drop_older_engine_arms(text, *unreal, data, found);
+    fit_fixes_to_engine(found, source, *unreal, data.unreal_api);
+  }
   findings.insert(findings.end(), std::make_move_iterator(found.begin()), std::make_move_iterator(found.end()));
   if (first->unterminated_comment) {
     findings.push_back(input_finding(Severity::error, *first->unterminated_comment,

@@ -9,6 +9,8 @@
 #include <regex>
 #include <sstream>
 
+#include "shaderlib/shaderlib.h"
+
 namespace lwc {
 namespace {
 
@@ -25,6 +27,17 @@ EShLanguage to_glslang(Stage stage) {
     case Stage::vertex: return EShLangVertex;
     case Stage::fragment: return EShLangFragment;
     case Stage::compute: return EShLangCompute;
+    case Stage::geometry: return EShLangGeometry;
+    case Stage::tess_control: return EShLangTessControl;
+    case Stage::tess_evaluation: return EShLangTessEvaluation;
+    case Stage::task: return EShLangTask;
+    case Stage::mesh: return EShLangMesh;
+    case Stage::ray_generation: return EShLangRayGen;
+    case Stage::closest_hit: return EShLangClosestHit;
+    case Stage::any_hit: return EShLangAnyHit;
+    case Stage::miss: return EShLangMiss;
+    case Stage::intersection: return EShLangIntersect;
+    case Stage::callable: return EShLangCallable;
   }
   return EShLangFragment;
 }
@@ -98,10 +111,11 @@ CompileResult compile_shader(const CompileInput& input) {
   glslang::TShader shader(stage);
   SourceStrings strings(input);
   bool hlsl = input.lang == Lang::hlsl;
-  set_source(shader, input, strings, stage, input.spirv || hlsl);
+  bool vulkan = input.spirv || input.vulkan;
+  set_source(shader, input, strings, stage, vulkan || hlsl);
   shader.setEntryPoint(hlsl ? input.entry.c_str() : "main");
   auto messages = static_cast<EShMessages>(EShMsgDefault | (hlsl ? EShMsgReadHlsl : EShMsgDefault) |
-                                           (input.spirv ? EShMsgSpvRules | EShMsgVulkanRules : EShMsgDefault));
+                                           (vulkan ? EShMsgSpvRules | EShMsgVulkanRules : EShMsgDefault));
   Includer includer(input);
   if (!shader.parse(GetDefaultResources(), hlsl ? 500 : 110, false, messages, includer)) {
     read_log(shader.getInfoLog(), result.messages);
@@ -145,11 +159,35 @@ std::string format_messages(const CompileResult& result) {
 }
 
 std::optional<Stage> stage_from_extension(const std::string& path) {
-  auto ends = [&](const char* ext) { return path.size() >= 5 && path.compare(path.size() - 5, 5, ext) == 0; };
-  if (ends(".vert")) return Stage::vertex;
-  if (ends(".frag")) return Stage::fragment;
-  if (ends(".comp")) return Stage::compute;
+  static const std::pair<const char*, Stage> stages[] = {
+      {".vert", Stage::vertex},         {".frag", Stage::fragment},     {".comp", Stage::compute},
+      {".geom", Stage::geometry},       {".tesc", Stage::tess_control}, {".tese", Stage::tess_evaluation},
+      {".task", Stage::task},           {".mesh", Stage::mesh},         {".rgen", Stage::ray_generation},
+      {".rchit", Stage::closest_hit},   {".rahit", Stage::any_hit},     {".rmiss", Stage::miss},
+      {".rint", Stage::intersection},   {".rcall", Stage::callable},    {".vsh", Stage::vertex},
+      {".fsh", Stage::fragment}};
+  for (auto [ext, stage] : stages)
+    if (path.ends_with(ext)) return stage;
   return std::nullopt;
+}
+
+CompileResult compile_file(const FileBuild& build, const std::string& text) {
+  CompileInput in;
+  in.lang = build.lang;
+  in.name = build.name;
+  in.text = text;
+  in.include = build.include;
+  in.vulkan = build.vulkan;
+  if (build.lang == Lang::hlsl) {
+    in.stage = Stage::fragment;
+    in.entry = "lwcport_compile_check";
+    in.text += "\nvoid lwcport_compile_check() {}\n";
+    if (build.unreal_version)
+      in.preamble = "#define LWCPORT_UE_VERSION " + std::to_string(*build.unreal_version) + "\n" + unreal_environment_text();
+  } else {
+    in.stage = stage_from_extension(build.name).value_or(Stage::fragment);
+  }
+  return compile_shader(in);
 }
 
 }  // namespace lwc

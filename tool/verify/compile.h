@@ -9,7 +9,8 @@
 
 namespace lwc {
 
-enum class Stage { vertex, fragment, compute };
+enum class Stage { vertex, fragment, compute, geometry, tess_control, tess_evaluation, task, mesh,
+                   ray_generation, closest_hit, any_hit, miss, intersection, callable };
 
 // A glslang diagnostic, positioned in the named source it came from.
 struct CompileMessage {
@@ -28,6 +29,7 @@ struct CompileInput {
   // Resolves `#include "name"` from the including source's name; nullopt when not found.
   std::function<std::optional<std::string>(const std::string& name, const std::string& from)> include;
   bool spirv = false;  // also generate Vulkan SPIR-V (GLSL then needs a Vulkan-legal shader)
+  bool vulkan = false; // GLSL for Vulkan (descriptor sets, push constants) rather than OpenGL
 };
 
 struct CompileResult {
@@ -51,7 +53,21 @@ struct PreprocessResult {
 };
 PreprocessResult preprocess_shader(const CompileInput& input);
 
-// The stage a GLSL file's extension names (.vert, .frag, .comp), if any.
+// The stage a GLSL file's extension names (.vert, .frag, .comp, .geom, .tesc, .tese, .task,
+// .mesh, .rgen, .rchit, .rahit, .rmiss, .rint, .rcall), if any.
 std::optional<Stage> stage_from_extension(const std::string& path);
+
+// A whole file compiled on its own, as `fix --check-build` and the corpus tests check it: HLSL
+// through a do-nothing entry point appended after it (every function is type-checked; line
+// numbers unchanged), Unreal code after the engine stub of an era (LWCPORT_UE_VERSION 427, 500,
+// 504), GLSL as the stage its extension names, for OpenGL or for Vulkan.
+struct FileBuild {
+  Lang lang = Lang::hlsl;
+  std::string name;
+  std::optional<int> unreal_version;  // Unreal code: the era's stub comes first
+  bool vulkan = false;                // GLSL: compile for Vulkan
+  std::function<std::optional<std::string>(const std::string& name, const std::string& from)> include;
+};
+CompileResult compile_file(const FileBuild& build, const std::string& text);
 
 }  // namespace lwc

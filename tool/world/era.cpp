@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cctype>
 #include <stdexcept>
 
@@ -49,6 +50,65 @@ UnrealEra infer_unreal_era(std::string_view text) {
 bool is_unreal_source(std::string_view path, std::string_view text) {
   if (path.ends_with(".usf") || path.ends_with(".ush")) return true;
   return text.find("\"/Engine/") != std::string_view::npos;
+}
+
+namespace {
+
+// The engine an #if condition selects when true: UE4, UE5 (as 5.0), or nothing it says.
+std::optional<UnrealEra> condition_era(std::string_view keyword, std::string_view condition) {
+  bool negated = keyword == "ifndef";
+  std::string c;
+  for (char ch : condition)
+    if (ch != ' ' && ch != '\t' && ch != '(' && ch != ')') c += ch;
+  if (c.rfind("!", 0) == 0) {
+    negated = !negated;
+    c.erase(0, 1);
+  }
+  std::optional<UnrealEra> era;
+  if (c.rfind("ENGINE_MAJOR_VERSION", 0) == 0) {
+    std::string_view rest = std::string_view(c).substr(20);
+    if (rest == "==4" || rest == "<5" || rest == "<=4") era = UnrealEra::ue4;
+    else if (rest == "==5" || rest == ">=5" || rest == ">4") era = UnrealEra::ue5_0;
+  } else if (std::all_of(c.begin(), c.end(), [](char ch) { return ident_char(ch); })) {
+    if (c.find("UE4") != std::string::npos) era = UnrealEra::ue4;
+    else if (c.find("UE5") != std::string::npos) era = UnrealEra::ue5_0;
+  }
+  if (era && negated) era = *era == UnrealEra::ue4 ? UnrealEra::ue5_0 : UnrealEra::ue4;
+  return era;
+}
+
+}  // namespace
+
+std::vector<EraArm> era_guarded_arms(std::string_view text) {
+  struct Open {
+    std::optional<UnrealEra> era;  // of the first arm
+    uint32_t arm_begin;
+    int arm = 0;
+  };
+  std::vector<EraArm> out;
+  std::vector<Open> stack;
+  for (const Token& t : lex(text).tokens) {
+    if (t.kind != Tok::directive) continue;
+    Directive d = read_directive(text.substr(t.begin, t.end - t.begin));
+    auto close_arm = [&](Open& g) {
+      if (!g.era) return;
+      UnrealEra era = g.arm == 0 ? *g.era : (*g.era == UnrealEra::ue4 ? UnrealEra::ue5_0 : UnrealEra::ue4);
+      out.push_back({g.arm_begin, t.begin, era});
+    };
+    if (d.keyword == "if" || d.keyword == "ifdef" || d.keyword == "ifndef") {
+      stack.push_back({condition_era(d.keyword, d.rest), t.end});
+    } else if ((d.keyword == "elif" || d.keyword == "else") && !stack.empty()) {
+      Open& g = stack.back();
+      close_arm(g);
+      if (d.keyword == "elif") g.era.reset();  // an #elif chain says more than one engine: not read
+      ++g.arm;
+      g.arm_begin = t.end;
+    } else if (d.keyword == "endif" && !stack.empty()) {
+      close_arm(stack.back());
+      stack.pop_back();
+    }
+  }
+  return out;
 }
 
 std::string UnrealTarget::describe() const {

@@ -1,9 +1,11 @@
 #pragma once
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <set>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -33,6 +35,15 @@ struct UnrealTarget {
   // "UE 5.4+", plus how it was decided, for messages.
   std::string describe() const;
 };
+
+// Preprocessor arms that say which engine they are for: `#if UE4_COMPAT` / `#else`,
+// `#if ENGINE_MAJOR_VERSION >= 5`, `#ifdef UE5_...`. Each arm guarded so, with its era (UE4, or
+// ue5_0 standing for any UE5): a UE4 arm of code built against UE5 is UE4's, not debt.
+struct EraArm {
+  uint32_t begin, end;
+  UnrealEra era;
+};
+std::vector<EraArm> era_guarded_arms(std::string_view text);
 
 // Which Unreal era first defines each large-world API name (rules/world-space.json "unreal-api"):
 // the engine's own DoubleFloat.ush, LargeWorldCoordinates.ush, LWCOperations.ush and
