@@ -67,14 +67,21 @@ std::optional<MacroUse> classify(bool function_like, const std::vector<std::stri
     if (auto it = known.find(w); it != known.end()) return it->second;
     return std::nullopt;
   };
-  if (function_like && !body.empty() && body[0] == '[') {
-    // `[loop] for (X; Y; Z)`: a loop with its attribute.
-    size_t close = body.find(']');
-    std::string_view after = close == std::string_view::npos ? std::string_view() : body.substr(close + 1);
+  if (!body.empty() && body[0] == '[') {
+    // An attribute is the whole body: `[unroll]`, `[[vk::push_constant]]`. After one, a `for`
+    // with the parameters as header is a loop; anything else (`[shader("raygeneration")] void
+    // name()`) is a declaration the masker reads by its shape.
+    size_t close = 0;
+    for (int depth = 0; close < body.size(); ++close) {
+      depth += body[close] == '[' ? 1 : body[close] == ']' ? -1 : 0;
+      if (depth == 0) break;
+    }
+    std::string_view after = close < body.size() ? body.substr(close + 1) : std::string_view();
     while (!after.empty() && after[0] == ' ') after.remove_prefix(1);
-    if (after.rfind("for", 0) == 0) return classify(function_like, parameters, after, known, learnt);
+    if (after.empty()) return MacroUse::attribute;
+    if (function_like && after.rfind("for", 0) == 0) return classify(function_like, parameters, after, known, learnt);
+    return std::nullopt;
   }
-  if (!body.empty() && body[0] == '[') return MacroUse::attribute;
   // An optional parameter (`, in FIsFrontFace bIsFrontFace : SV_IsFrontFace`) reads as nothing.
   if (!function_like && !body.empty() && body[0] == ',') return MacroUse::qualifier;
   if (!function_like && body.size() > 1 && body[0] == '.' && is_swizzle(body.substr(1))) return MacroUse::suffix;

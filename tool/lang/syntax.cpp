@@ -1,5 +1,7 @@
 #include "lang/syntax.h"
 
+#include "lang/formats.h"
+
 #include <tree_sitter/api.h>
 
 #include <cstring>
@@ -20,16 +22,8 @@ std::optional<Lang> parse_lang(std::string_view name) {
 }
 
 std::optional<Lang> lang_from_path(std::string_view path) {
-  size_t dot = path.rfind('.');
-  size_t slash = path.rfind('/');
-  if (dot == std::string_view::npos || (slash != std::string_view::npos && dot < slash)) return std::nullopt;
-  std::string ext(path.substr(dot + 1));
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  for (const char* e : {"usf", "ush", "hlsl", "hlsli", "fx"})
-    if (ext == e) return Lang::hlsl;
-  for (const char* e : {"glsl", "vert", "frag", "comp", "geom", "tesc", "tese"})
-    if (ext == e) return Lang::glsl;
-  return std::nullopt;
+  auto format = FormatTable::defaults().for_path(path);
+  return format ? std::optional<Lang>(format->lang) : std::nullopt;
 }
 
 std::string_view SyntaxTree::text(int id) const { return source->slice(span(id)); }
@@ -67,6 +61,13 @@ int SyntaxTree::declarator_name(int d) const {
     d = inner >= 0 ? inner : named_child(d);
   }
   return -1;
+}
+
+int SyntaxTree::subscript_index(int subscript) const {
+  int index = child_by_field(subscript, "index");  // GLSL
+  if (index >= 0) return index;
+  int list = child_by_field(subscript, "indices");  // the C++ grammar: a subscript_argument_list
+  return list >= 0 ? named_child(list) : -1;
 }
 
 namespace {

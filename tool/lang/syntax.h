@@ -13,7 +13,7 @@ namespace lwc {
 enum class Lang { hlsl, glsl };
 std::string_view lang_name(Lang lang);
 std::optional<Lang> parse_lang(std::string_view name);
-// By extension: .usf .ush .hlsl .hlsli .fx are HLSL; .glsl .vert .frag .comp .geom .tesc .tese GLSL.
+// The language of a path by the default extensions (lang/formats.h); GLSL for a script.
 std::optional<Lang> lang_from_path(std::string_view path);
 
 // One tree-sitter node, flattened: the tree is a pre-order array so analyses walk it without
@@ -52,6 +52,8 @@ class SyntaxTree {
   // The identifier a declarator declares (through arrays, pointers, references, initialisers,
   // function declarators), or -1.
   int declarator_name(int declarator) const;
+  // The index expression of a subscript (`M[3]`: the `3`), in both grammars, or -1.
+  int subscript_index(int subscript) const;
 };
 
 // Parses one variant of a source in the given language, after masking (lang/mask.h): HLSL with

@@ -7,6 +7,7 @@
 #include <set>
 #include <tuple>
 
+#include "lang/embedded.h"
 #include "lang/lexer.h"
 #include "lang/macros.h"
 #include "rules/rule.h"
@@ -19,8 +20,14 @@ bool AnalyzeOptions::enabled(const std::string& rule) const {
   return select.empty() || select.count(rule);
 }
 
+std::optional<FileFormat> format_for(const Source& source, const AnalyzeOptions& options) {
+  if (options.lang) return FileFormat{*options.lang, Container::shader};
+  return (options.formats ? *options.formats : FormatTable::defaults()).for_path(source.path());
+}
+
 std::optional<Lang> language_for(const Source& source, const AnalyzeOptions& options) {
-  return options.lang ? options.lang : lang_from_path(source.path());
+  auto format = format_for(source, options);
+  return format ? std::optional<Lang>(format->lang) : std::nullopt;
 }
 
 const WorldData& world_data(Lang lang, const nlohmann::json& extra_sources) {
@@ -349,6 +356,20 @@ void fit_fixes_to_engine(std::vector<Finding>& findings, const Source& source, c
   }
 }
 
+// GLSL in a script: a rewrite that edits outside the template literals (a library include at the
+// top of the file) would break the script, and is not offered.
+void keep_fixes_inside(const std::vector<Span>& literals, std::vector<Finding>& findings) {
+  for (Finding& f : findings) {
+    std::erase_if(f.fixes, [&](const Fix& fix) {
+      bool outside = std::any_of(fix.edits.begin(), fix.edits.end(), [&](const Edit& e) {
+        return std::none_of(literals.begin(), literals.end(), [&](Span l) { return l.begin <= e.span.begin && e.span.end <= l.end; });
+      });
+      if (outside) f.withheld.push_back(fix.title + ": it would edit the script outside the shader's template literal");
+      return outside;
+    });
+  }
+}
+
 // The macros a file is read with: the built-in table, what its includes define, the project's.
 MacroTable macro_table(Lang lang, const AnalyzeOptions& options) {
   MacroTable table = known_macros(lang);
@@ -375,45 +396,57 @@ std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options
     plan_fixes(kept, options.scene, options.strategy);
     return kept;
   };
-  std::optional<Lang> lang = language_for(source, options);
-  if (!lang) {
+  std::optional<FileFormat> format = format_for(source, options);
+  if (!format) {
     findings.push_back(input_finding(Severity::error, 0, "not a shader file lwcport knows (by its extension)",
-                                     "pass --lang hlsl or --lang glsl to choose the language"));
+                                     "pass --lang hlsl or --lang glsl, or map the extension in .lwcport.json \"extensions\""));
     return finish();
   }
-  const std::string& text = source.text();
-  if (text.size() > options.max_bytes) {
-    findings.push_back(too_large_finding(text.size(), options.max_bytes));
+  std::optional<Lang> lang = format->lang;
+  const std::string& file_text = source.text();
+  if (file_text.size() > options.max_bytes) {
+    findings.push_back(too_large_finding(file_text.size(), options.max_bytes));
     return finish();
   }
-  if (auto nul = find_binary_marker(text)) {
+  if (auto nul = find_binary_marker(file_text)) {
     findings.push_back(input_finding(Severity::error, *nul, "binary file (a NUL byte); skipped",
                                      "exclude it in .lwcport.json (\"exclude\") if it is not a shader"));
     return finish();
   }
-  if (auto bad = find_invalid_utf8(text)) {
+  if (auto bad = find_invalid_utf8(file_text)) {
     findings.push_back(input_finding(Severity::warning, *bad,
                                      fmt::format("invalid UTF-8 (byte 0x{:02X}); analysed as bytes, columns on this line may be off",
-                                                 static_cast<unsigned char>(text[*bad])),
+                                                 static_cast<unsigned char>(file_text[*bad])),
                                      "save the file as UTF-8"));
   }
+  // GLSL in a script is read in place: everything outside its literals becomes blank, so every
+  // offset is the script's; a rewrite may only edit inside the literals.
+  std::vector<Span> literals;
+  std::optional<Source> view;
+  if (format->container == Container::javascript) {
+    literals = glsl_template_literals(source.path(), file_text);
+    if (literals.empty()) return finish();  // no shader code in this script
+    view.emplace(source.path(), glsl_view(file_text, literals));
+  }
+  const Source& code = view ? *view : source;
+  const std::string& text = code.text();
   if (text.find_first_not_of(" \t\r\n\xEF\xBB\xBF") == std::string::npos) {
     findings.push_back(input_finding(Severity::note, 0, "empty file; nothing to analyse", ""));
     return finish();
   }
   MacroTable macros = macro_table(*lang, options);
   std::optional<UnrealTarget> unreal;
-  if (*lang == Lang::hlsl && is_unreal_source(source.path(), text))
+  if (*lang == Lang::hlsl && is_unreal_source(code.path(), text))
     unreal = options.unreal ? UnrealTarget{*options.unreal, false} : UnrealTarget{infer_unreal_era(text), true};
   const WorldData& data = world_data(*lang, options.world_sources);
-  bool names = names_as_evidence(source, *lang);
+  bool names = names_as_evidence(code, *lang);
   std::vector<Suppression> sups;
   std::optional<VariantMerge> merge;
   int errors = 0, too_deep = 0;
   std::optional<uint32_t> first_error, first_too_deep;
   std::optional<SyntaxTree> first;  // variant 0, kept for the suppressions' own fixes
   for (int variant = 0, variants = 1; variant < variants; ++variant) {
-    SyntaxTree tree = parse(source, *lang, {&macros, variant});
+    SyntaxTree tree = parse(code, *lang, {&macros, variant});
     variants = tree.variants;
     if (tree.error_count > 0) {
       errors += tree.error_count;
@@ -434,15 +467,16 @@ std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options
       sups = find_suppressions(tree);
       merge.emplace(tree.resolved_conditionals);
     }
-    suppress(sups, source, found);
+    suppress(sups, code, found);
     merge->add(std::move(found));
     if (variant == 0) first.emplace(std::move(tree));
   }
   std::vector<Finding> found = merge->take();
   if (unreal) {
     drop_older_engine_arms(text, *unreal, data, found);
-    fit_fixes_to_engine(found, source, *unreal, data.unreal_api);
+    fit_fixes_to_engine(found, code, *unreal, data.unreal_api);
   }
+  if (view) keep_fixes_inside(literals, found);
   findings.insert(findings.end(), std::make_move_iterator(found.begin()), std::make_move_iterator(found.end()));
   if (first->unterminated_comment) {
     findings.push_back(input_finding(Severity::error, *first->unterminated_comment,

@@ -10,6 +10,7 @@
 #include "core/finding.h"
 #include "core/source.h"
 #include "fix/scene.h"
+#include "lang/formats.h"
 #include "lang/syntax.h"
 #include "world/model.h"
 
@@ -17,6 +18,7 @@ namespace lwc {
 
 struct AnalyzeOptions {
   std::optional<Lang> lang;              // overrides the extension
+  const FormatTable* formats = nullptr;  // which extensions are shaders (default: FormatTable::defaults())
   std::set<std::string> select;          // empty: every rule
   std::set<std::string> ignore;
   std::map<std::string, Severity> severity;  // per-rule overrides
@@ -36,7 +38,8 @@ struct AnalyzeOptions {
 // immutable rule data.
 std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options);
 
-// The language a path is analysed as, honouring the override.
+// How a path is analysed (language, and whether its GLSL sits in a script), honouring the override.
+std::optional<FileFormat> format_for(const Source& source, const AnalyzeOptions& options);
 std::optional<Lang> language_for(const Source& source, const AnalyzeOptions& options);
 
 // World-space data for a language plus extra sources, built once per distinct extra list.

@@ -60,6 +60,8 @@ Kind join(Kind a, Kind b) { return rank(b) > rank(a) ? b : a; }
 bool small(Kind k) { return k == Kind::direction || k == Kind::local || k == Kind::unknown; }
 
 Kind add(Kind a, Kind b) {
+  // A camera-relative position plus the camera's absolute position is absolute again.
+  if ((a == Kind::translated && b == Kind::absolute) || (a == Kind::absolute && b == Kind::translated)) return Kind::absolute;
   // Adding PreViewTranslation to a position (or to what is most likely one) translates it.
   if ((a == Kind::absolute || a == Kind::unknown) && b == Kind::camera_offset) return Kind::translated;
   if (a == Kind::camera_offset && (b == Kind::absolute || b == Kind::unknown)) return Kind::translated;
@@ -209,7 +211,8 @@ Kind WorldData::named_kind(std::string_view name, Kind k) const {
   if (position && any(holder_names.translated)) return Kind::translated;
   if (k == Kind::world_matrix && any(holder_names.translated)) return Kind::translated_world_matrix;
   if (k == Kind::from_world_matrix && any(holder_names.translated)) return Kind::from_translated_matrix;
-  if (position && any(holder_names.local)) return Kind::local;
+  bool world = name.find("World") != std::string_view::npos || name.find("world") != std::string_view::npos;
+  if (position && !world && any(holder_names.local)) return Kind::local;
   return k;
 }
 
@@ -299,6 +302,11 @@ class Analyzer {
   void run() {
     collect();
     for (int fn : function_order_) analyze_function(fn, {});
+    // A holder whose every use keeps only what float32 holds well is no hazard.
+    std::erase_if(m_.holders_, [&](const AbsoluteHolder& h) {
+      auto it = decl_var_.find(h.site);
+      return it != decl_var_.end() && (m_.cleared_.count(it->second) || m_.only_harmless_uses(it->second));
+    });
   }
 
  private:
@@ -727,8 +735,7 @@ class Analyzer {
 
   Kind eval_subscript(int id, int depth) {
     int base = t_.child_by_field(id, "argument");
-    int index = t_.child_by_field(id, "index");
-    if (index < 0) index = t_.named_child(id, 1);
+    int index = t_.subscript_index(id);
     Kind k = base >= 0 ? eval(base, depth) : Kind::unknown;
     if (index >= 0) eval(index, depth);
     if (!is_matrix(k)) return k;
@@ -818,8 +825,11 @@ class Analyzer {
       return Kind::unknown;
     }
     std::string name(t_.text(fn));
-    if (auto p = m_.path(id)) {
-      if (auto k = source_kind(*p)) return *k;
+    // A function this file defines is what it computes, whatever an engine function of that name does.
+    if (functions_.count(name) == 0) {
+      if (auto p = m_.path(id)) {
+        if (auto k = source_kind(*p)) return *k;
+      }
     }
     if (d_.is_float_type(name)) {  // a constructor: float4(P, 1), vec3(...), float3x3(M)
       Kind k = Kind::unknown;
@@ -894,6 +904,11 @@ class Analyzer {
   }
 
   Kind binary(std::string_view op, int l, Kind a, int r, Kind b) {
+    // A position minus a value of unknown space that is named as a position is a difference of
+    // two positions (a direction), not a position: unknown, as the space of that value is.
+    if (op == "-" && ((holds_absolute(a) && b == Kind::unknown && named_position(r)) ||
+                      (holds_absolute(b) && a == Kind::unknown && named_position(l))))
+      return Kind::unknown;
     if (op == "+") return add(a, b);
     if (op == "-") return subtract(a, b);
     if (op == "*" && (is_matrix(a) || is_matrix(b) || matrix_typed(l) || matrix_typed(r))) {
@@ -904,8 +919,40 @@ class Analyzer {
       }
       return Kind::unknown;  // a product with a matrix lwcport does not know (or HLSL's component-wise one)
     }
-    if (op == "*" || op == "/") return scale(a, b);
+    if (op == "*" || op == "/") {
+      // Scaled by a variable, a position moves to another space (grid cells, a unit volume):
+      // only a constant (a literal, an ALL_CAPS macro such as CENTIMETER_TO_KILOMETER) or the
+      // homogeneous divide keeps it.
+      if ((holds_absolute(a) && !constant(r)) || (holds_absolute(b) && !constant(l))) return Kind::unknown;
+      return scale(a, b);
+    }
     return Kind::local;  // comparisons, logic, bit operations
+  }
+
+  bool constant(int n) const {
+    while (n >= 0 && t_.is(n, "parenthesized_expression")) n = t_.named_child(n);
+    if (n < 0) return false;
+    if (t_.is(n, "number_literal")) return true;
+    if (t_.is(n, "unary_expression")) return constant(t_.child_by_field(n, "argument"));
+    // The homogeneous divide (P.xyz / P.w) keeps the position where it is.
+    if (t_.is(n, "field_expression") && t_.text(t_.child_by_field(n, "field")) == "w") return true;
+    if (!t_.is(n, "identifier")) return false;
+    std::string_view w = t_.text(n);
+    return w.size() > 1 && std::all_of(w.begin(), w.end(), [](char c) { return std::isupper(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)) || c == '_'; });
+  }
+
+  // An expression whose name (its variable, or its last field) says it is a position.
+  bool named_position(int n) const {
+    while (n >= 0 && (t_.is(n, "parenthesized_expression") ||
+                      (t_.is(n, "field_expression") && is_swizzle(t_.text(t_.child_by_field(n, "field"))))))
+      n = t_.is(n, "parenthesized_expression") ? t_.named_child(n) : t_.child_by_field(n, "argument");
+    if (n < 0) return false;
+    std::string_view name;
+    if (t_.is(n, "identifier")) name = t_.text(n);
+    else if (t_.is(n, "field_expression") && t_.child_by_field(n, "field") >= 0) name = t_.text(t_.child_by_field(n, "field"));
+    for (std::string_view w : {"Pos", "pos", "Origin", "origin", "Center", "center"})
+      if (name.find(w) != std::string_view::npos) return true;
+    return false;
   }
 
   Kind eval_assignment(int id, int depth) {
@@ -930,8 +977,21 @@ class Analyzer {
       }
       return;
     }
-    if (t_.is(lhs, "subscript_expression")) {
-      if (holds_absolute(k)) assign(t_.child_by_field(lhs, "argument"), k);
+    if (t_.is(lhs, "subscript_expression") || (t_.is(lhs, "field_expression") && is_swizzle(t_.text(t_.child_by_field(lhs, "field"))) &&
+                                                t_.is(t_.child_by_field(lhs, "argument"), "subscript_expression"))) {
+      int sub = t_.is(lhs, "subscript_expression") ? lhs : t_.child_by_field(lhs, "argument");
+      int base = t_.child_by_field(sub, "argument");
+      int index = t_.subscript_index(sub);
+      int var = base >= 0 && t_.is(base, "identifier") ? lookup(t_.text(base)) : -1;
+      // M[3] = vec4(0, 0, 0, 1): the translation of a matrix is cleared, and it only rotates now
+      // (the relative-to-eye pattern of globe engines).
+      if (var >= 0 && is_matrix(current(var)) && index >= 0 && t_.text(index) == "3" && !holds_absolute(k)) {
+        m_.refs_[base] = var;
+        m_.cleared_.insert(var);
+        if (frame_) frame_->current[var] = Kind::rotation_matrix;
+        return;
+      }
+      if (holds_absolute(k)) assign(base, k);
       return;
     }
     if (!t_.is(lhs, "field_expression")) return;
@@ -1030,6 +1090,159 @@ std::optional<Path> WorldModel::path(int node) const {
   if (out.empty()) return std::nullopt;
   std::reverse(out.begin(), out.end());
   return out;
+}
+
+bool WorldModel::only_harmless_uses(int var, int depth) const {
+  if (depth > 3) return false;
+  const Variable& v = variables_[var];
+  bool matrix = is_matrix(v.kind);
+  std::vector<int> list = uses(var);
+  if (list.empty()) return false;
+  auto strip = [&](int n) {
+    int p = tree_.at(n).parent;
+    while (p >= 0 && tree_.is(p, "parenthesized_expression")) n = p, p = tree_.at(n).parent;
+    return n;
+  };
+  for (int use : list) {
+    int n = strip(use), p = tree_.at(n).parent;
+    // A copy into a local that is itself harmless (or whose translation is then cleared).
+    if (tree_.is(p, "init_declarator")) {
+      int name = tree_.declarator_name(tree_.child_by_field(p, "declarator"));
+      int local = -1;
+      for (size_t i = 0; i < variables_.size() && local < 0; ++i)
+        if (variables_[i].decl == name) local = static_cast<int>(i);
+      if (local >= 0 && (cleared_.count(local) || only_harmless_uses(local, depth + 1))) continue;
+      return false;
+    }
+    if (matrix) {
+      // A basis vector (row or column 0..2), or the 3x3 rotation part.
+      if (tree_.is(p, "subscript_expression") && tree_.child_by_field(p, "argument") == n) {
+        int index = tree_.subscript_index(p);
+        std::string_view i = index >= 0 ? tree_.text(index) : "";
+        if (i == "0" || i == "1" || i == "2") continue;
+        if (i == "3" && cleared_.count(var)) continue;  // the write that clears it
+        return false;
+      }
+      int call = tree_.is(p, "argument_list") ? tree_.at(p).parent : p;
+      std::string_view callee;
+      if (tree_.is(call, "call_expression")) callee = tree_.text(tree_.child_by_field(call, "function"));
+      else if (tree_.is(call, "cast_expression")) callee = tree_.text(tree_.child_by_field(call, "type"));
+      if (callee == "mat3" || callee == "float3x3" || callee == "half3x3") continue;
+      return false;
+    }
+    // A position only ever normalised: its direction, which float32 keeps to 1e-7.
+    int call = tree_.is(p, "argument_list") ? tree_.at(p).parent : -1;
+    if (tree_.is(p, "field_expression") && is_swizzle(tree_.text(tree_.child_by_field(p, "field"))) && tree_.text(tree_.child_by_field(p, "field")).size() >= 3) {
+      int q = strip(p);
+      call = tree_.is(tree_.at(q).parent, "argument_list") ? tree_.at(tree_.at(q).parent).parent : -1;
+    }
+    if (call >= 0 && tree_.is(call, "call_expression") && tree_.text(tree_.child_by_field(call, "function")) == "normalize") continue;
+    if (call >= 0 && parameter_only_normalised(call, n, depth)) continue;
+    return false;
+  }
+  return true;
+}
+
+bool WorldModel::used_where_precision_matters(int var, int depth) const {
+  if (depth > 3 || cleared_.count(var)) return false;  // a matrix whose translation is cleared only rotates
+  bool matrix = is_matrix(variables_[var].kind);
+  int decl = variables_[var].decl;
+  bool array = decl >= 0 && tree_.is(tree_.at(decl).parent, "array_declarator");
+  // Up through parentheses, swizzles and (for an array) the element access.
+  auto climb = [&](int n) {
+    int p = tree_.at(n).parent;
+    while (p >= 0 && (tree_.is(p, "parenthesized_expression") ||
+                      (tree_.is(p, "field_expression") && is_swizzle(tree_.text(tree_.child_by_field(p, "field")))) ||
+                      (array && tree_.is(p, "subscript_expression") && tree_.child_by_field(p, "argument") == n))) {
+      array = array && !tree_.is(p, "subscript_expression");
+      n = p;
+      p = tree_.at(n).parent;
+    }
+    return n;
+  };
+  // A global declared in several #if arms is one name: every declaration's uses count.
+  std::vector<int> list = uses(var);
+  if (variables_[var].role == Variable::Role::global)
+    for (size_t other = 0; other < variables_.size(); ++other)
+      if (static_cast<int>(other) != var && variables_[other].role == Variable::Role::global && variables_[other].name == variables_[var].name) {
+        std::vector<int> more = uses(static_cast<int>(other));
+        list.insert(list.end(), more.begin(), more.end());
+      }
+  if (list.empty()) return true;  // declared for the host and not read here: its name is the evidence
+  for (int use : list) {
+    array = decl >= 0 && tree_.is(tree_.at(decl).parent, "array_declarator");
+    int n = climb(use), p = tree_.at(n).parent;
+    if (p < 0) continue;
+    std::string_view type = tree_.at(p).type;
+    if (type == "return_statement") return true;  // it escapes as data
+    if (type == "assignment_expression" && tree_.child_by_field(p, "right") == n) {
+      int target = tree_.child_by_field(p, "left");
+      int local = tree_.is(target, "identifier") ? variable_at(target) : -1;
+      if (local < 0 || variables_[local].role != Variable::Role::local) return true;  // stored as a field or an output
+      if (used_where_precision_matters(local, depth + 1)) return true;
+      continue;
+    }
+    if (type == "init_declarator") {  // a copy: its own uses decide
+      int name = tree_.declarator_name(tree_.child_by_field(p, "declarator"));
+      for (size_t i = 0; i < variables_.size(); ++i)
+        if (variables_[i].decl == name && used_where_precision_matters(static_cast<int>(i), depth + 1)) return true;
+      continue;
+    }
+    if (type == "binary_expression") {
+      std::string_view op = tree_.text(tree_.child_by_field(p, "operator"));
+      int other = tree_.child_by_field(p, tree_.child_by_field(p, "left") == n ? "right" : "left");
+      if (!matrix && (op == "-" || op == "+") && !tree_.is(other, "number_literal")) return true;  // a difference with a position
+      if (matrix && op == "*") return true;  // it transforms something (GLSL)
+      continue;
+    }
+    if (type == "subscript_expression" && matrix) {
+      int index = tree_.subscript_index(p);
+      if (index >= 0 && tree_.text(index) == "3" && !cleared_.count(var)) return true;  // its translation is read
+      continue;
+    }
+    if (type == "argument_list") {
+      int call = tree_.at(p).parent;
+      std::string_view callee = tree_.text(tree_.child_by_field(call, "function"));
+      if (callee == "distance" || callee == "mul") return true;
+      if (callee == "normalize" || callee == "mat3" || callee == "float3x3") continue;
+      // Handed to the large-world library (DFFastToTranslatedWorld(CameraPos, ..)): used as a position.
+      if (data_.unreal_api.looks_like_api(callee)) return true;
+      // A function of this file: what its parameter meets there.
+      for (int param : parameters_receiving(call, n))
+        if (used_where_precision_matters(param, depth + 1)) return true;
+      continue;
+    }
+  }
+  return false;
+}
+
+// The parameters (one per overload of that arity) a call passes an argument to, for functions
+// this file defines.
+std::vector<int> WorldModel::parameters_receiving(int call, int argument) const {
+  std::vector<int> out;
+  int fn = tree_.child_by_field(call, "function");
+  if (fn < 0 || !tree_.is(fn, "identifier")) return out;
+  std::vector<int> list = tree_.named_children(tree_.child_by_field(call, "arguments"));
+  size_t index = 0;
+  while (index < list.size() && !(tree_.at(list[index]).begin <= tree_.at(argument).begin && tree_.at(argument).end <= tree_.at(list[index]).end)) ++index;
+  if (index == list.size()) return out;
+  for (int var = 0; var < static_cast<int>(variables_.size()); ++var) {
+    const Variable& p = variables_[var];
+    if (p.role != Variable::Role::parameter || p.function < 0) continue;
+    int name = tree_.declarator_name(tree_.child_by_field(p.function, "declarator"));
+    if (name < 0 || tree_.text(name) != tree_.text(fn)) continue;
+    int d = tree_.child_by_field(p.function, "declarator");
+    while (d >= 0 && !tree_.is(d, "function_declarator")) d = tree_.child_by_field(d, "declarator");
+    std::vector<int> params = d >= 0 ? tree_.named_children(tree_.child_by_field(d, "parameters")) : std::vector<int>{};
+    if (params.size() == list.size() && params[index] == p.declaration) out.push_back(var);
+  }
+  return out;
+}
+
+// A value passed to a function of this file whose parameter is only ever normalised.
+bool WorldModel::parameter_only_normalised(int call, int argument, int depth) const {
+  std::vector<int> params = parameters_receiving(call, argument);
+  return !params.empty() && std::all_of(params.begin(), params.end(), [&](int p) { return only_harmless_uses(p, depth + 1); });
 }
 
 int WorldModel::variable_at(int identifier) const {

@@ -2,6 +2,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -139,6 +140,14 @@ class WorldModel {
   // Identifier nodes that refer to a variable (its declaration excluded).
   std::vector<int> uses(int variable) const;
   const std::vector<AbsoluteHolder>& absolute_holders() const { return holders_; }
+  // Every use of a variable keeps only what float32 holds well far from the origin: a matrix's
+  // rotation (a 3x3 cast, a basis row or column, a copy whose translation is then cleared), or a
+  // position's direction (normalize, here or in a function of the file it is passed to).
+  bool only_harmless_uses(int var, int depth = 0) const;
+  // Some use of a variable (or of a copy, or of the parameter of a function of this file it is
+  // passed to) lets its float32 rounding reach a result: a difference with a position, a point
+  // it transforms, its translation read. Without one there is no evidence of a hazard.
+  bool used_where_precision_matters(int var, int depth = 0) const;
   // Nodes whose analysis was cut because they nest too deeply.
   const std::vector<int>& too_deep() const { return too_deep_; }
   FileSummary summary() const;
@@ -157,6 +166,10 @@ class WorldModel {
   std::map<std::string, Kind> returns_;
   std::map<std::string, std::string> return_types_;
   bool names_as_evidence_ = true;
+  std::set<int> cleared_;  // matrices whose translation the code clears (M[3] = ...)
+
+  bool parameter_only_normalised(int call, int argument, int depth) const;
+  std::vector<int> parameters_receiving(int call, int argument) const;
 };
 
 // Where a file defines the LWC libraries themselves (rules/world-space.json "library-definitions"):

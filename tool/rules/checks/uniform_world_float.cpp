@@ -20,8 +20,12 @@ class UniformWorldFloat : public Check {
     std::set<int> relative_blocks;
     for (const Variable& v : vars)
       if (v.uniform && matches_any(relative_, v.name)) relative_blocks.insert(v.block);
-    for (const Variable& v : vars) {
+    for (size_t i = 0; i < vars.size(); ++i) {
+      const Variable& v = vars[i];
       if (!v.uniform || v.role != Variable::Role::global || !holds_absolute(v.kind)) continue;
+      // Reported where some use lets its rounding reach a result, not where it is only rotated,
+      // normalised or handed to code lwcport cannot see.
+      if (!ctx.world.used_where_precision_matters(static_cast<int>(i))) continue;
       if (!ctx.world.data().is_float_type(v.type) || matches_any(relative_, v.name)) continue;
       if (relative_blocks.count(v.block) && matches_any(reference_, v.name)) continue;
       std::string kind(kind_name(v.kind));

@@ -1,0 +1,38 @@
+#pragma once
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace lwc {
+
+enum class Lang;
+
+// Where a file keeps its shader code: the whole file, or GLSL in JavaScript/TypeScript template
+// literals (lang/embedded.h), linted in place.
+enum class Container { shader, javascript };
+
+struct FileFormat {
+  Lang lang;
+  Container container;
+  bool operator==(const FileFormat&) const = default;
+};
+
+// Which files are shaders, by extension (the longest matching one, case-insensitive: `.glsl.js`
+// before `.js`). The defaults cover what engines ship; a project's `.lwcport.json` "extensions"
+// adds to them or overrides them.
+class FormatTable {
+ public:
+  static const FormatTable& defaults();
+  // ".fxh" -> "hlsl", "glsl", "glsl-in-js" or "none" (not a shader). Throws std::runtime_error
+  // naming `where` for a bad extension or format.
+  void set(std::string_view extension, std::string_view format, std::string_view where);
+  std::optional<FileFormat> for_path(std::string_view path) const;
+  // The extensions of one language, for messages ("usf, ush, ...").
+  std::string extensions() const;
+
+ private:
+  std::map<std::string, std::optional<FileFormat>> by_extension_;  // ".usf" -> format, or none
+};
+
+}  // namespace lwc
