@@ -70,7 +70,9 @@ std::shared_ptr<const FileSummary> IncludeSummaries::own_summary(const fs::path&
   if (r.error.empty() && !r.too_large && !find_binary_marker(r.text)) {
     Source src(file.string(), r.text);
     SyntaxTree tree = parse(src, lang.value_or(Lang::hlsl));
-    WorldModel model(tree, world_data(tree.lang, config.world_sources), nullptr, names_as_evidence(src, tree.lang));
+    std::optional<UnrealEra> era;
+    if (tree.lang == Lang::hlsl && is_unreal_source(src.path(), r.text)) era = infer_unreal_era(r.text);
+    WorldModel model(tree, world_data(tree.lang, config.world_sources), {nullptr, names_as_evidence(src, tree.lang), era});
     *summary = model.summary();
     learn_macros(r.text, known_macros(tree.lang), summary->macros);
     text = r.text;

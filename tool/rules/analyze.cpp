@@ -440,6 +440,8 @@ std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options
     unreal = options.unreal ? UnrealTarget{*options.unreal, false} : UnrealTarget{infer_unreal_era(text), true};
   const WorldData& data = world_data(*lang, options.world_sources);
   bool names = names_as_evidence(code, *lang);
+  std::optional<UnrealEra> written_era;
+  if (unreal) written_era = infer_unreal_era(text);
   std::vector<Suppression> sups;
   std::optional<VariantMerge> merge;
   int errors = 0, too_deep = 0;
@@ -452,7 +454,7 @@ std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options
       errors += tree.error_count;
       if (!first_error) first_error = tree.first_error;
     }
-    WorldModel world(tree, data, options.includes, names);
+    WorldModel world(tree, data, {options.includes, names, written_era});
     std::vector<Finding> found;
     for (const auto& [rule, check] : checks()) {
       if (rule->applies_to(*lang) && options.enabled(rule->id)) check->run(CheckContext{tree, world, *rule, found, unreal});

@@ -198,9 +198,29 @@ WorldData WorldData::load(const nlohmann::json& ws, const nlohmann::json& extra_
   d.library = {library.at("functions").get<std::vector<std::string>>(), library.at("types").get<std::vector<std::string>>(),
                library.at("still-checked").get<std::vector<std::string>>()};
   d.unreal_api = UnrealApi::load(ws.at("unreal-api"));
+  auto kind_of = [](const nlohmann::json& j) {
+    auto k = parse_kind(j.get<std::string>());
+    if (!k) throw std::runtime_error("rules/world-space.json: engine: unknown kind " + j.dump());
+    return *k;
+  };
+  for (const auto& [owner, members] : ws.at("engine").at("structs").items())
+    for (const auto& [member, e] : members.items()) {
+      EngineMember m{kind_of(e.at(0)), {e.at(1).get<std::string>(), e.at(2).get<std::string>(), e.at(3).get<std::string>()}, {}};
+      if (e.size() > 4) m.ue5_kind = kind_of(e.at(4));
+      d.engine_structs[owner][member] = m;
+    }
+  for (const auto& [name, e] : ws.at("engine").at("functions").items())
+    d.engine_functions[name] = {kind_of(e.at(0)), kind_of(e.at(1)), kind_of(e.at(2))};
   const auto& names = ws.at("holder-names");
   d.holder_names = {names.at("translated").get<std::vector<std::string>>(), names.at("local").get<std::vector<std::string>>()};
   return d;
+}
+
+const WorldData::EngineMember* WorldData::engine_member(std::string_view owner, std::string_view member) const {
+  auto s = engine_structs.find(std::string(owner));
+  if (s == engine_structs.end()) return nullptr;
+  auto m = s->second.find(std::string(member));
+  return m == s->second.end() ? nullptr : &m->second;
 }
 
 Kind WorldData::named_kind(std::string_view name, Kind k) const {
@@ -692,6 +712,9 @@ class Analyzer {
         return current(var);
       }
     }
+    if (era_column() >= 0) {
+      if (const auto* e = d_.engine_member(owner_of(base), name)) return era_column() > 0 && e->ue5_kind ? *e->ue5_kind : e->kind;
+    }
     if (is_swizzle(name)) {
       if (is_matrix(base_kind)) return Kind::unknown;
       // `.w` of a position is its homogeneous coordinate or a packed scalar, not a coordinate.
@@ -701,6 +724,12 @@ class Analyzer {
     auto it = field_kinds_.find(owner_of(base) + "." + name);
     if (it == field_kinds_.end()) it = field_kinds_.find("." + name);
     return it != field_kinds_.end() ? it->second : Kind::unknown;
+  }
+
+  // 0, 1, 2 for UE4, UE 5.0-5.3, UE 5.4+ (the engine tables' columns); -1 outside Unreal code.
+  int era_column() const {
+    if (!m_.era_) return -1;
+    return *m_.era_ == UnrealEra::ue4 ? 0 : *m_.era_ == UnrealEra::ue5_0 ? 1 : 2;
   }
 
   // The struct type of a field access's base, when the base is a known variable.
@@ -721,8 +750,11 @@ class Analyzer {
     if (auto it = fields_.find(owner + "." + name); it != fields_.end()) return m_.variables_[it->second].type;
     if (owner.empty())
       if (auto f = fields_by_name_.find(name); f != fields_by_name_.end() && f->second.size() == 1) return m_.variables_[f->second[0]].type;
+    if (inc_)
+      if (auto it = inc_->field_types.find(owner + "." + name); it != inc_->field_types.end()) return it->second;
+    if (era_column() >= 0)
+      if (const auto* e = d_.engine_member(owner, name)) return e->types[era_column()];
     if (!inc_) return {};
-    if (auto it = inc_->field_types.find(owner + "." + name); it != inc_->field_types.end()) return it->second;
     if (!owner.empty()) return {};
     std::string found;
     for (auto it = inc_->field_types.lower_bound(""); it != inc_->field_types.end(); ++it) {
@@ -838,6 +870,8 @@ class Analyzer {
       return k;
     }
     if (auto it = functions_.find(name); it != functions_.end()) return call_user(it->second, args, kinds);
+    if (era_column() >= 0)
+      if (auto e = d_.engine_functions.find(name); e != d_.engine_functions.end()) return e->second[era_column()];
     if (auto role = role_of(name)) return apply_role(*role, args, kinds);
     if (inc_) {
       auto it = inc_->function_returns.find(name);
@@ -855,7 +889,9 @@ class Analyzer {
         if (is_matrix(a) && is_matrix(b)) return compose(a, b);
         if (is_matrix(b)) return transform(args[0], a, b, role == FunctionRole::transform_point);
         if (is_matrix(a)) return transform(args[1], b, a, role == FunctionRole::transform_point);
-        // A matrix lwcport does not know maps the value to a space it does not know either.
+        // A matrix lwcport does not know (or any operand that is not a constant) maps the value
+        // to a space it does not know either.
+        if ((holds_absolute(a) && !constant(args[1])) || (holds_absolute(b) && !constant(args[0]))) return Kind::unknown;
         if (role == FunctionRole::transform && (matrix_typed(args[0]) || matrix_typed(args[1]))) return Kind::unknown;
         return scale(a, b);
       case FunctionRole::direction: return Kind::direction;
@@ -1043,9 +1079,9 @@ class Analyzer {
   std::unordered_map<std::string, std::optional<Kind>> source_cache_;
 };
 
-WorldModel::WorldModel(const SyntaxTree& tree, const WorldData& data, const FileSummary* includes, bool names_as_evidence)
-    : tree_(tree), data_(data), names_as_evidence_(names_as_evidence) {
-  Analyzer(*this, includes).run();
+WorldModel::WorldModel(const SyntaxTree& tree, const WorldData& data, const ModelContext& context)
+    : tree_(tree), data_(data), names_as_evidence_(context.names_as_evidence), era_(context.era) {
+  Analyzer(*this, context.includes).run();
 }
 
 WorldModel::~WorldModel() = default;

@@ -1,4 +1,5 @@
 #pragma once
+#include <array>
 #include <map>
 #include <memory>
 #include <optional>
@@ -66,6 +67,15 @@ struct WorldData {
     std::vector<std::string> functions, types, still_checked;
   } library;
   UnrealApi unreal_api;  // which engine era defines each large-world name
+  // Unreal's structs and functions by era (rules/world-space.json "engine").
+  struct EngineMember {
+    Kind kind;
+    std::array<std::string, 3> types;  // declared in UE4, UE 5.0-5.3, UE 5.4+
+    std::optional<Kind> ue5_kind;      // its kind from UE 5.0 on, where it changed
+  };
+  std::map<std::string, std::map<std::string, EngineMember>> engine_structs;
+  std::map<std::string, std::array<Kind, 3>> engine_functions;  // return kind per era
+  const EngineMember* engine_member(std::string_view owner, std::string_view member) const;
 
   // What a place's name says it holds (rules/world-space.json "holder-names").
   struct HolderNames {
@@ -119,15 +129,22 @@ struct FileSummary {
   std::map<std::string, std::string> field_types;  // "Struct.Field" -> declared type
 };
 
+// What the model knows of a file besides its text.
+struct ModelContext {
+  const FileSummary* includes = nullptr;  // what its #includes declare
+  // Naming-convention sources count beyond the file's own globals (plain and UE4-era code; see
+  // rules/world-space.json "by-name").
+  bool names_as_evidence = true;
+  // Unreal code: the engine era its own code is written for (rules/world-space.json "engine").
+  std::optional<UnrealEra> era;
+};
+
 // Classifies every value of one parsed file. Function parameters and returns are followed within
 // the file through summaries computed at call sites (memoised per argument kinds): one pass per
 // function, no whole-tree fixpoint.
 class WorldModel {
  public:
-  // `names_as_evidence`: naming-convention sources count beyond the file's own globals (plain
-  // and UE4-era code; see rules/world-space.json "by-name").
-  WorldModel(const SyntaxTree& tree, const WorldData& data, const FileSummary* includes = nullptr,
-             bool names_as_evidence = true);
+  WorldModel(const SyntaxTree& tree, const WorldData& data, const ModelContext& context = {});
   ~WorldModel();
 
   // The kind recorded for an expression node (joined over every analysis of its function).
@@ -166,6 +183,7 @@ class WorldModel {
   std::map<std::string, Kind> returns_;
   std::map<std::string, std::string> return_types_;
   bool names_as_evidence_ = true;
+  std::optional<UnrealEra> era_;
   std::set<int> cleared_;  // matrices whose translation the code clears (M[3] = ...)
 
   bool parameter_only_normalised(int call, int argument, int depth) const;
