@@ -265,7 +265,10 @@ std::vector<Span> library_definitions(const SyntaxTree& tree, const WorldData& d
       if (name >= 0 && any(data.library.types, tree.text(name))) out.push_back(tree.span(id));
     }
   }
-  if (functions > 0 && library_functions == functions) return {tree.span(0)};
+  // A file that is mostly the library (its few other functions, like LargeWorldCoordinates.ush's
+  // WaveReadLaneAt overloads for the FLWC types, serve it) is the library as a whole.
+  if (functions > 0 && (library_functions == functions || (functions >= 5 && library_functions * 5 >= functions * 4)))
+    return {tree.span(0)};
   return out;
 }
 

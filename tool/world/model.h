@@ -191,8 +191,8 @@ class WorldModel {
 };
 
 // Where a file defines the LWC libraries themselves (rules/world-space.json "library-definitions"):
-// each function or type defined under a library name, or the whole file when every function it
-// defines is one.
+// each function or type defined under a library name, or the whole file when (nearly: four in
+// five of at least five) every function it defines is one.
 std::vector<Span> library_definitions(const SyntaxTree& tree, const WorldData& data);
 
 // Words written before a declaration's type: qualifiers and modifiers (`static const`,

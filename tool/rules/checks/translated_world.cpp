@@ -43,7 +43,7 @@ class TranslatedWorld : public Check {
   }
 
  private:
-  // The call that consumes `use` together with a camera term, or "" if the use is anything else.
+  // The call that consumes `use` together with the camera, or "" if the use is anything else.
   std::string relative_consumer(const CheckContext& ctx, int use) const {
     const SyntaxTree& t = ctx.tree;
     int list = t.at(use).parent;
@@ -51,10 +51,12 @@ class TranslatedWorld : public Check {
     int call = t.at(list).parent;
     std::string name(call_name(t, call));
     if (!matches_any(consumers_, name)) return {};
+    // The other operand must be the camera: the pre-view translation, or a camera position with a
+    // translated twin (an absolute point that is not the camera, such as a volume's origin, is not).
     for (int arg : call_arguments(t, call)) {
       if (arg == use) continue;
       Kind k = ctx.world.kind(arg);
-      if (k == Kind::camera_offset || k == Kind::absolute) return name;
+      if (k == Kind::camera_offset || (k == Kind::absolute && !translated_twin(ctx, arg).empty())) return name;
     }
     return {};
   }
