@@ -160,8 +160,9 @@ TEST(BadInput, SymlinkLoopsBrokenLinksFoldersAndFifos) {
 }
 
 TEST(BadInput, MissingPathOnTheCommandLine) {
+  // The report still says what happened; a path that yields nothing fails the run as a usage error.
   auto r = test::run(test::binary() + " lint /no/such/file.usf --format json");
-  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.exit_code, 2);
   auto doc = nlohmann::json::parse(r.out);
   EXPECT_EQ(doc["findings"][0]["message"], "cannot read: No such file or directory");
 }

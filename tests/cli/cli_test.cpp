@@ -166,3 +166,46 @@ TEST(Cli, RulesListsEveryRule) {
 
 }  // namespace
 }  // namespace lwc
+
+namespace lwc {
+namespace {
+
+test::Run run_with_stderr(const std::string& dir, const std::string& args) {
+  return test::run("cd " + dir + " && " + test::binary() + " " + args + " 2>&1");
+}
+
+TEST(Cli, APathThatYieldsNoShaderIsAnErrorNotASilentPass) {
+  std::string dir = test::scratch("no-shader");
+  test::write(dir + "/docs/readme.md", "# notes\n");
+  test::write(dir + "/scripts/util.ts", "export const n = `${1}`;\n");
+  test::write(dir + "/shaders/ok.glsl", "void main() {}\n");
+  auto r = run_with_stderr(dir, "lint docs scripts shaders typo --fail-on none --color never");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("lwcport: error: docs: no shader file in it"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("lwcport: error: scripts: no shader file in it"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("lwcport: error: typo: no such file or folder"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("shaders:"), std::string::npos) << r.out;
+  EXPECT_EQ(run_with_stderr(dir, "lint shaders").exit_code, 0);
+  // parse says what it skipped, and why.
+  auto p = run_with_stderr(dir, "parse docs scripts shaders --verbose");
+  EXPECT_NE(p.out.find("docs/readme.md: skipped: not a shader extension"), std::string::npos) << p.out;
+  EXPECT_NE(p.out.find("scripts/util.ts: skipped: no shader code in it"), std::string::npos) << p.out;
+  EXPECT_NE(p.out.find("Parsed 1 file(s)"), std::string::npos) << p.out;
+}
+
+TEST(Cli, AProjectMapsItsOwnExtensions) {
+  std::string dir = test::scratch("extensions");
+  test::write(dir + "/pointcloud.vs", "uniform mat4 modelMatrix;\nin vec3 position;\nvoid main() {\n  vec4 worldPosition = modelMatrix * vec4(position, 1.0);\n  gl_Position = worldPosition;\n}\n");
+  EXPECT_EQ(run_with_stderr(dir, "lint .").exit_code, 2);
+  test::write(dir + "/.lwcport.json", R"({"extensions": {".vs": "glsl"}})");
+  auto r = run_with_stderr(dir, "lint . --color never --fail-on none");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("pointcloud.vs:4:8: warning: variable `worldPosition`"), std::string::npos) << r.out;
+  test::write(dir + "/.lwcport.json", R"({"extensions": {".vs": "metal"}})");
+  auto bad = run_with_stderr(dir, "lint .");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.out.find("format must be hlsl, glsl, glsl-in-js or none"), std::string::npos) << bad.out;
+}
+
+}  // namespace
+}  // namespace lwc

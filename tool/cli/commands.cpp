@@ -280,6 +280,7 @@ LoadedFile load(const InputFile& file, const Options& o, IncludeSummaries& inclu
   a.macros = config.macros;
   a.unreal = config.unreal;
   a.lint_library = config.lint_library;
+  a.formats = &config.formats;
   a.max_bytes = config.max_file_bytes;
   a.strategy = o.strategy;
   if (o.scene) a.scene = o.scene->for_path(file.display);
@@ -295,6 +296,7 @@ FileReport lint_file(const InputFile& file, const Options& o, IncludeSummaries& 
   LoadedFile f = load(file, o, includes);
   if (f.problem) return std::move(*f.problem);
   FileReport report{file.display, {}};
+  report.has_code = holds_shader_code(*f.source, f.options);
   for (const Finding& finding : analyze(*f.source, f.options)) report.findings.push_back(locate(*f.source, finding));
   return report;
 }
@@ -326,6 +328,38 @@ std::vector<InputFile> input_files(const Options& o) {
   return discover(o.paths.empty() ? std::vector<std::string>{"."} : o.paths, configs);
 }
 
+// Nothing is silent: a path given on the command line that yields no shader code is an error
+// (a typo in a CI script must not pass). `with_code` counts, per argument, the files that hold some.
+bool every_argument_had_code(const Options& o, const std::vector<size_t>& with_code, std::ostream& err) {
+  bool ok = true;
+  std::vector<std::string> args = o.paths.empty() ? std::vector<std::string>{"."} : o.paths;
+  for (size_t i = 0; i < args.size(); ++i) {
+    if (i < with_code.size() && with_code[i] > 0) continue;
+    std::error_code ec;
+    std::string why = !fs::exists(args[i], ec) ? "no such file or folder"
+                      : fs::is_directory(args[i], ec)
+                          ? "no shader file in it (extensions: " + FormatTable::defaults().extensions() + "; map others in .lwcport.json \"extensions\")"
+                          : "not a shader file lwcport knows (map its extension in .lwcport.json \"extensions\", or pass --lang)";
+    err << fmt::format("lwcport: error: {}: {}\n", args[i], why);
+    ok = false;
+  }
+  return ok;
+}
+
+// Counts the files of each command-line argument that hold shader code.
+struct CodeCounter {
+  const std::vector<InputFile>& files;
+  std::vector<size_t> with_code;
+  size_t next = 0;
+  explicit CodeCounter(const std::vector<InputFile>& f) : files(f) {}
+  void add(const FileReport& r) {
+    const InputFile& file = files[next++];
+    bool known = r.findings.empty() || r.findings.front().message.rfind("not a shader file", 0) != 0;
+    if (with_code.size() <= file.argument) with_code.resize(file.argument + 1);
+    if (r.has_code && known && file.error.empty()) ++with_code[file.argument];
+  }
+};
+
 int lint(const Options& o, std::ostream& out, std::ostream& err) {
   std::vector<InputFile> files = input_files(o);
   ReportTarget target;
@@ -333,10 +367,15 @@ int lint(const Options& o, std::ostream& out, std::ostream& err) {
   if (!open_target(o, out, err, target, ro)) return 2;
   ReportWriter writer(*target.stream, ro);
   IncludeSummaries includes;
+  CodeCounter counter(files);
   run_in_order<FileReport>(
       files.size(), job_count(o), [&](size_t i) { return lint_file(files[i], o, includes); },
-      [&](const FileReport& r) { writer.file(r); });
+      [&](const FileReport& r) {
+        counter.add(r);
+        writer.file(r);
+      });
   writer.finish();
+  if (!every_argument_had_code(o, counter.with_code, err)) return 2;
   return o.fail_on && writer.failed(*o.fail_on) ? 1 : 0;
 }
 
@@ -590,6 +629,7 @@ FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& in
   FixOutcome fixed = fix_source(source, f.options, o.unsafe_fixes);
   out.path = file.path;
   out.report.path = file.display;
+  out.report.has_code = holds_shader_code(source, f.options);
   out.applied = fixed.applied;
   out.changed = fixed.text != source.text();
   Source result(file.display, fixed.text);
@@ -687,6 +727,7 @@ int fix(const Options& o, std::ostream& out, std::ostream& err) {
   IncludeSummaries includes;
   int applied = 0, changed_files = 0, unsafe_left = 0;
   std::map<BuildCheck::Outcome, int> builds;
+  CodeCounter counter(files);
   std::map<std::string, LibraryFile> libraries;  // by path
   run_in_order<FixedFile>(
       files.size(), verifier ? 1 : job_count(o), [&](size_t i) { return fix_file(files[i], o, includes, verifier ? &*verifier : nullptr); },
@@ -695,6 +736,7 @@ int fix(const Options& o, std::ostream& out, std::ostream& err) {
         changed_files += r.changed;
         unsafe_left += r.unsafe_left;
         if (r.build) ++builds[*r.build];
+        counter.add(r.report);
         if (r.library_lang) {
           std::string name = library_file_name(*r.library_lang);
           std::filesystem::path dir = std::filesystem::path(r.path).parent_path();
@@ -706,6 +748,7 @@ int fix(const Options& o, std::ostream& out, std::ostream& err) {
         else writer->file(r.report);
       });
   for (const auto& [path, lib] : libraries) write_library(lib, o, *target.stream, err);
+  bool arguments_ok = every_argument_had_code(o, counter.with_code, err);
   std::string unsafe = unsafe_left ? fmt::format(" {} more fix(es) are unsafe: rerun with --unsafe-fixes.", unsafe_left) : "";
   if (o.check_build)
     err << fmt::format("Build check: {} fixed file(s) compile as their originals did, {} compile except in code left to port by hand, "
@@ -714,10 +757,12 @@ int fix(const Options& o, std::ostream& out, std::ostream& err) {
                        builds[BuildCheck::Outcome::breaks], builds[BuildCheck::Outcome::unchecked]);
   if (o.diff) {
     err << fmt::format("Would fix {} finding(s) in {} file(s).{}\n", applied, changed_files, unsafe);
+    if (!arguments_ok) return 2;
     return changed_files && o.fail_on ? 1 : 0;  // like a linter: changes to make fail the run
   }
   writer->finish();
   err << fmt::format("Fixed {} finding(s) in {} file(s).{}\n", applied, changed_files, unsafe);
+  if (!arguments_ok) return 2;
   return o.fail_on && writer->failed(*o.fail_on) ? 1 : 0;
 }
 
@@ -741,32 +786,53 @@ std::string syntax_error_lines(const SyntaxTree& tree) {
   return out;
 }
 
-int parse_only(const Options& o, std::ostream& out) {
-  std::vector<InputFile> files = input_files(o);
+int parse_only(const Options& o, std::ostream& out, std::ostream& err) {
+  ConfigFinder configs;
+  std::vector<SkippedFile> skipped;
+  std::vector<InputFile> files = discover(o.paths.empty() ? std::vector<std::string>{"."} : o.paths, configs, &skipped);
   std::vector<int> errors(files.size());
   std::vector<std::string> details(files.size());
+  std::vector<bool> has_code(files.size(), false);
   std::atomic<size_t> bytes{0};
   parallel_for(files.size(), job_count(o), [&](size_t i) {
     ReadResult r = read_file(files[i].path, files[i].config->max_file_bytes);
-    auto lang = o.lang ? o.lang : lang_from_path(files[i].display);
-    if (!r.error.empty() || r.too_large || !lang) return;
-    bytes += r.text.size();
+    AnalyzeOptions a;
+    a.lang = o.lang;
+    a.formats = &files[i].config->formats;
+    if (!r.error.empty() || r.too_large) return;
     Source src(files[i].display, std::move(r.text));
-    MaskOptions mask{&known_macros(*lang), 0};
+    ShaderCode code = shader_code(src, a);
+    if (code.empty(src)) return;
+    has_code[i] = true;
+    bytes += src.text().size();
+    MaskOptions mask{&known_macros(*code.lang), 0};
     for (int variants = 1; mask.variant < variants; ++mask.variant) {
-      SyntaxTree tree = parse(src, *lang, mask);
+      SyntaxTree tree = parse(code.of(src), *code.lang, mask);
       variants = tree.variants;
       errors[i] += tree.error_count;
       if (o.verbose && tree.error_count) details[i] += syntax_error_lines(tree);
     }
   });
-  size_t with_errors = 0;
-  for (size_t i = 0; i < files.size(); ++i)
+  size_t with_errors = 0, parsed = 0;
+  std::vector<size_t> with_code;
+  for (size_t i = 0; i < files.size(); ++i) {
+    if (with_code.size() <= files[i].argument) with_code.resize(files[i].argument + 1);
+    if (!has_code[i]) {
+      skipped.push_back({files[i].display, files[i].error.empty() ? "no shader code in it" : files[i].error});
+      continue;
+    }
+    ++parsed;
+    ++with_code[files[i].argument];
     if (errors[i]) {
       ++with_errors;
       out << fmt::format("{}: {} syntax error node(s)\n", files[i].display, errors[i]) << details[i];
     }
-  out << fmt::format("Parsed {} file(s), {} bytes; {} with syntax errors.\n", files.size(), bytes.load(), with_errors);
+  }
+  if (o.verbose)
+    for (const SkippedFile& s : skipped) out << fmt::format("{}: skipped: {}\n", s.display, s.why);
+  out << fmt::format("Parsed {} file(s), {} bytes; {} with syntax errors; {} skipped{}.\n", parsed, bytes.load(), with_errors,
+                     skipped.size(), skipped.empty() || o.verbose ? "" : " (--verbose lists them)");
+  if (!every_argument_had_code(o, with_code, err)) return 2;
   return with_errors ? 1 : 0;
 }
 
@@ -861,7 +927,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     }
     if (o.command == "lint") return lint(o, out, err);
     if (o.command == "fix") return fix(o, out, err);
-    if (o.command == "parse") return parse_only(o, out);
+    if (o.command == "parse") return parse_only(o, out, err);
     if (o.command == "verify") return verify(o, out, err);
     if (o.command == "rules") {
       list_rules(out);

@@ -77,7 +77,7 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
     if (!find_rule(id)) fail(fmt::format("unknown rule id \"{}\"", id));
   };
   for (auto& [key, value] : j.items()) {
-    static const char* known[] = {"severity", "select", "ignore", "include-dirs", "virtual-roots", "exclude", "world-sources", "max-file-bytes", "macros", "unreal", "library-definitions"};
+    static const char* known[] = {"severity", "select", "ignore", "include-dirs", "virtual-roots", "exclude", "world-sources", "max-file-bytes", "macros", "unreal", "library-definitions", "extensions"};
     if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) == std::end(known))
       fail(fmt::format("unknown key \"{}\"", key));
     (void)value;
@@ -123,6 +123,13 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
     const auto& u = j.at("unreal");
     c.unreal = u.is_string() ? parse_unreal_era(u.get<std::string>()) : std::nullopt;
     if (!c.unreal) fail("\"unreal\" must name the engine version the project builds against: \"4\", \"5.0\" (to 5.3) or \"5.4\" (and later)");
+  }
+  if (j.contains("extensions")) {
+    if (!j.at("extensions").is_object()) fail("\"extensions\" must map extensions such as \".fxh\" to hlsl, glsl, glsl-in-js or none");
+    for (auto& [ext, format] : j.at("extensions").items()) {
+      if (!format.is_string()) fail(fmt::format("extension \"{}\": the format must be a string", ext));
+      c.formats.set(ext, format.get<std::string>(), file.string());
+    }
   }
   if (j.contains("library-definitions")) {
     const auto& l = j.at("library-definitions");

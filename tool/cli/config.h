@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/finding.h"
+#include "lang/formats.h"
 #include "lang/macros.h"
 #include "world/era.h"
 
@@ -26,6 +27,7 @@ struct ProjectConfig {
   size_t max_file_bytes = 16u << 20;
   MacroTable macros;  // macros used as syntax, by use (lang/macros.h)
   std::optional<UnrealEra> unreal;  // the engine the project builds against (else inferred per file)
+  FormatTable formats = FormatTable::defaults();  // which extensions are shaders, and how
   bool lint_library = false;        // report inside the LWC libraries' own definitions
 
   // Parses a config's text; throws std::runtime_error naming the file and the problem.

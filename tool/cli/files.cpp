@@ -19,11 +19,13 @@ namespace {
 
 struct Walker {
   ConfigFinder& configs;
+  std::vector<SkippedFile>* skipped;
   std::vector<InputFile> out;
   std::vector<std::pair<dev_t, ino_t>> walking;  // folders on the current path
+  size_t argument = 0;
 
   void add(const fs::path& path, std::string display, std::string error = {}) {
-    InputFile f{path, std::move(display), nullptr, std::move(error)};
+    InputFile f{path, std::move(display), nullptr, std::move(error), argument};
     f.config = configs.for_dir(path.parent_path().empty() ? fs::path(".") : path.parent_path());
     out.push_back(std::move(f));
   }
@@ -52,12 +54,18 @@ struct Walker {
       std::error_code type_ec;
       bool is_dir = e.is_directory(type_ec);
       if (name == ".git" || name == "node_modules") continue;
-      if (config->excluded(e.path(), is_dir)) continue;
+      if (config->excluded(e.path(), is_dir)) {
+        if (skipped && !is_dir) skipped->push_back({child, "excluded by " + (config->dir / ".lwcport.json").string()});
+        continue;
+      }
       if (is_dir) {
         walk_dir(e.path(), child);
         continue;
       }
-      if (!lang_from_path(name)) continue;
+      if (!config->formats.for_path(name)) {
+        if (skipped) skipped->push_back({child, "not a shader extension (map it in .lwcport.json \"extensions\")"});
+        continue;
+      }
       bool is_symlink = e.is_symlink(type_ec);
       bool regular = e.is_regular_file(type_ec);
       if (regular) add(e.path(), child);
@@ -70,9 +78,10 @@ struct Walker {
 
 }  // namespace
 
-std::vector<InputFile> discover(const std::vector<std::string>& args, ConfigFinder& configs) {
-  Walker w{configs, {}, {}};
+std::vector<InputFile> discover(const std::vector<std::string>& args, ConfigFinder& configs, std::vector<SkippedFile>* skipped) {
+  Walker w{configs, skipped, {}, {}};
   for (const std::string& arg : args) {
+    w.argument = static_cast<size_t>(&arg - args.data());
     fs::path p(arg);
     std::error_code ec;
     fs::file_status st = fs::status(p, ec);

@@ -16,12 +16,21 @@ struct InputFile {
   std::string display;  // as the user would write it: relative to the argument given
   std::shared_ptr<const ProjectConfig> config;
   std::string error;
+  size_t argument = 0;  // which command-line path it came from
+};
+
+// A file a walked folder holds that is not linted, and why.
+struct SkippedFile {
+  std::string display;
+  std::string why;
 };
 
 // Expands the command-line paths: folders recurse (sorted, following symlinks but never into a
-// folder already being walked), shader extensions only, config excludes applied. Files named
-// explicitly are always linted. The result is sorted by display path.
-std::vector<InputFile> discover(const std::vector<std::string>& args, ConfigFinder& configs);
+// folder already being walked), shader extensions only (the config's "extensions"), config
+// excludes applied; what a folder holds and is not linted goes to `skipped`, when given. Files
+// named explicitly are always linted. The result is sorted by display path.
+std::vector<InputFile> discover(const std::vector<std::string>& args, ConfigFinder& configs,
+                                std::vector<SkippedFile>* skipped = nullptr);
 
 struct ReadResult {
   std::string text;

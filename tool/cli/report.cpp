@@ -240,6 +240,7 @@ void ReportWriter::begin() {
 }
 
 void ReportWriter::file(const FileReport& report) {
+  if (!report.has_code) return;
   ++files_;
   for (const auto& f : report.findings) {
     (f.severity == Severity::error ? errors_ : f.severity == Severity::warning ? warnings_ : notes_)++;

@@ -42,6 +42,7 @@ struct ReportedFinding {
 struct FileReport {
   std::string path;
   std::vector<ReportedFinding> findings;
+  bool has_code = true;  // false: a script with no GLSL in it, not counted as a linted file
 };
 
 ReportedFinding locate(const Source& source, const Finding& finding);

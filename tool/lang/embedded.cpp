@@ -15,8 +15,12 @@ class Scanner {
  public:
   Scanner(std::string_view s, bool every_literal) : s_(s), every_(every_literal) {}
 
-  std::vector<Span> run() {
+  // The literals' contents, each with the `${...}` substitutions it holds.
+  std::vector<Span> run(std::vector<Span>& substitutions) {
     code(0, false);
+    for (Span sub : substitutions_)
+      for (Span lit : found_)
+        if (lit.begin <= sub.begin && sub.end <= lit.end) substitutions.push_back(sub);
     return found_;
   }
 
@@ -91,7 +95,9 @@ class Scanner {
       } else if (s_[i] == '$' && i + 1 < s_.size() && s_[i + 1] == '{') {
         std::string_view word = last_word_;
         char previous = previous_;
+        size_t begin = i;
         i = code(i + 2, true);
+        substitutions_.push_back({static_cast<uint32_t>(begin), static_cast<uint32_t>(i)});
         last_word_ = word;
         previous_ = previous;
       } else {
@@ -137,7 +143,7 @@ class Scanner {
 
   std::string_view s_;
   bool every_;
-  std::vector<Span> found_;
+  std::vector<Span> found_, substitutions_;
   std::string_view last_word_;
   char previous_ = 0;  // the last significant character ('a' for a word)
 };
@@ -145,16 +151,45 @@ class Scanner {
 }  // namespace
 
 std::vector<Span> glsl_template_literals(std::string_view path, std::string_view script) {
-  bool every = path.ends_with(".glsl.js") || path.ends_with(".glsl.ts");
-  return Scanner(script, every).run();
+  std::vector<Span> substitutions;
+  return glsl_template_literals(path, script, substitutions);
 }
 
-std::string glsl_view(std::string_view script, const std::vector<Span>& literals) {
+std::vector<Span> glsl_template_literals(std::string_view path, std::string_view script, std::vector<Span>& substitutions) {
+  bool every = path.ends_with(".glsl.js") || path.ends_with(".glsl.ts");
+  return Scanner(script, every).run(substitutions);
+}
+
+std::string glsl_view(std::string_view script, const std::vector<Span>& literals, const std::vector<Span>& substitutions) {
   std::string out(script.size(), ' ');
   for (size_t i = 0; i < script.size(); ++i)
     if (script[i] == '\n' || script[i] == '\r') out[i] = script[i];
-  for (Span s : literals)
-    for (uint32_t i = s.begin; i < s.end; ++i) out[i] = script[i];
+  for (Span s : literals) {
+    for (uint32_t i = s.begin; i < s.end; ++i) {
+      // A backslash before a line end is JavaScript's line continuation, not GLSL.
+      bool continuation = script[i] == '\\' && i + 1 < s.end && (script[i + 1] == '\n' || script[i + 1] == '\r');
+      out[i] = continuation ? ' ' : script[i];
+    }
+    // The closing backtick ends the literal's last statement: the next literal starts afresh.
+    if (s.end < out.size()) out[s.end] = ';';
+  }
+  // A substitution is whatever JavaScript puts there: alone on its line, declarations (blank);
+  // inside a line, a value (one identifier of its first line's length).
+  auto blank_line_around = [&](Span s) {
+    size_t line = script.rfind('\n', s.begin);
+    line = line == std::string_view::npos ? 0 : line + 1;
+    size_t eol = script.find('\n', s.end);
+    eol = eol == std::string_view::npos ? script.size() : eol;
+    auto blank = [](std::string_view t) { return t.find_first_not_of(" \t\r;") == std::string_view::npos; };
+    return blank(script.substr(line, s.begin - line)) && blank(script.substr(s.end, eol - s.end));
+  };
+  for (Span s : substitutions) {
+    bool alone = blank_line_around(s), first_line = true;
+    for (uint32_t i = s.begin; i < s.end; ++i) {
+      if (out[i] == '\n' || out[i] == '\r') first_line = false;
+      else out[i] = first_line && !alone ? '_' : ' ';
+    }
+  }
   return out;
 }
 

@@ -173,7 +173,17 @@ class Masker {
     if (auto use = macro_use(w)) {
       if (size_t j = apply_macro(i, *use); j != kNone) return j;
     }
-    if (lang_ == Lang::glsl) return glsl_identifier(i);
+    if (lang_ == Lang::glsl) {
+      // bgfx's `SAMPLER2D(s_texColor, 0);` declares at file scope.
+      if (scopes_.back() == Scope::file && at_boundary(i) && word(i + 1) == "(" && !one_of(word(i), kKeywords)) {
+        size_t close = matching(i + 1);
+        if (close < t_.size() && word(close + 1) == ";") {
+          mask(i, close + 1);
+          return close + 1;
+        }
+      }
+      return glsl_identifier(i);
+    }
     if (is(i + 1, Tok::ident) && !is_keyword_like(i + 1)) {
       if (one_of(w, kModifiers)) { mask(i, i); return i; }
       size_t p = prev_code(i);
@@ -404,6 +414,14 @@ void mask_glsl_statements(std::string_view text, const std::vector<Token>& t, st
       if (out[k] != '\n' && out[k] != '\r') out[k] = ' ';
   };
   for (size_t i = 0; i < t.size(); ++i) {
+    // bgfx's `$input a_position, a_normal` and `$output ...` lines name the varyings.
+    if (word(i) == "$" && (word(i + 1) == "input" || word(i + 1) == "output" || word(i + 1) == "raw") && t[i].end == t[i + 1].begin) {
+      size_t j = i + 1;
+      while (j + 1 < t.size() && text.substr(t[j].end, t[j + 1].begin - t[j].end).find('\n') == std::string_view::npos) ++j;
+      blank(i, j);
+      i = j;
+      continue;
+    }
     bool statement_start = i == 0 || word(i - 1) == ";" || word(i - 1) == "}" || t[i - 1].kind == Tok::directive;
     if (!statement_start || t[i].kind != Tok::ident) continue;
     if (word(i) == "precision" && word(i + 3) == ";") {

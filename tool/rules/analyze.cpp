@@ -25,6 +25,24 @@ std::optional<FileFormat> format_for(const Source& source, const AnalyzeOptions&
   return (options.formats ? *options.formats : FormatTable::defaults()).for_path(source.path());
 }
 
+ShaderCode shader_code(const Source& source, const AnalyzeOptions& options) {
+  ShaderCode code;
+  auto format = format_for(source, options);
+  if (!format) return code;
+  code.lang = format->lang;
+  if (format->container == Container::javascript) {
+    std::vector<Span> substitutions;
+    code.literals = glsl_template_literals(source.path(), source.text(), substitutions);
+    code.view.emplace(source.path(), glsl_view(source.text(), code.literals, substitutions));
+  }
+  return code;
+}
+
+bool holds_shader_code(const Source& source, const AnalyzeOptions& options) {
+  auto format = format_for(source, options);
+  return !format || format->container != Container::javascript || !glsl_template_literals(source.path(), source.text()).empty();
+}
+
 std::optional<Lang> language_for(const Source& source, const AnalyzeOptions& options) {
   auto format = format_for(source, options);
   return format ? std::optional<Lang>(format->lang) : std::nullopt;
@@ -421,14 +439,11 @@ std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options
   }
   // GLSL in a script is read in place: everything outside its literals becomes blank, so every
   // offset is the script's; a rewrite may only edit inside the literals.
-  std::vector<Span> literals;
-  std::optional<Source> view;
-  if (format->container == Container::javascript) {
-    literals = glsl_template_literals(source.path(), file_text);
-    if (literals.empty()) return finish();  // no shader code in this script
-    view.emplace(source.path(), glsl_view(file_text, literals));
-  }
-  const Source& code = view ? *view : source;
+  ShaderCode shader = shader_code(source, options);
+  if (shader.view && shader.literals.empty()) return finish();  // no shader code in this script
+  const std::vector<Span>& literals = shader.literals;
+  const std::optional<Source>& view = shader.view;
+  const Source& code = shader.of(source);
   const std::string& text = code.text();
   if (text.find_first_not_of(" \t\r\n\xEF\xBB\xBF") == std::string::npos) {
     findings.push_back(input_finding(Severity::note, 0, "empty file; nothing to analyse", ""));

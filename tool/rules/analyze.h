@@ -41,6 +41,19 @@ std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options
 // How a path is analysed (language, and whether its GLSL sits in a script), honouring the override.
 std::optional<FileFormat> format_for(const Source& source, const AnalyzeOptions& options);
 std::optional<Lang> language_for(const Source& source, const AnalyzeOptions& options);
+// The shader code of a file: the file itself, or for a script its GLSL template literals read in
+// place (a same-length text, blank outside them). No `lang` when it is not a shader lwcport knows;
+// no literals in a script means no shader code.
+struct ShaderCode {
+  std::optional<Lang> lang;
+  std::optional<Source> view;  // a script's literals, at the script's offsets
+  std::vector<Span> literals;
+  const Source& of(const Source& file) const { return view ? *view : file; }
+  bool empty(const Source& file) const { return !lang || (file.text().size() > 0 && view && literals.empty()); }
+};
+ShaderCode shader_code(const Source& source, const AnalyzeOptions& options);
+// False for a script (JavaScript, TypeScript) that holds no GLSL template literal: not linted.
+bool holds_shader_code(const Source& source, const AnalyzeOptions& options);
 
 // World-space data for a language plus extra sources, built once per distinct extra list.
 const WorldData& world_data(Lang lang, const nlohmann::json& extra_sources);

@@ -774,6 +774,9 @@ class Analyzer {
     Kind k = base >= 0 ? eval(base, depth) : Kind::unknown;
     if (index >= 0) eval(index, depth);
     if (!is_matrix(k)) return k;
+    // A name the file does not declare (an engine's array of matrices, bgfx's u_model[0]) is
+    // indexed by element: the element is the matrix.
+    if (t_.is(base, "identifier") && lookup(t_.text(base)) < 0) return k;
     // Row (HLSL) or column (GLSL) 3 of a 4x4 transform is its translation.
     bool translation = index >= 0 && t_.text(index) == "3";
     if (!translation) return Kind::direction;

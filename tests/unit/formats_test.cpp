@@ -1,0 +1,96 @@
+// Which files hold shader code, and GLSL read in place inside JavaScript and TypeScript.
+#include <gtest/gtest.h>
+
+#include "fix/apply.h"
+#include "lang/embedded.h"
+#include "lang/formats.h"
+#include "support.h"
+
+namespace lwc {
+namespace {
+
+TEST(Formats, DefaultsCoverWhatEnginesShipAndAProjectCanChangeThem) {
+  const FormatTable& d = FormatTable::defaults();
+  for (const char* p : {"a.fxh", "b.cginc", "c.usf", "D.USH"}) EXPECT_EQ(d.for_path(p)->lang, Lang::hlsl) << p;
+  for (const char* p : {"a.vsh", "b.fsh", "c.mesh", "d.task", "e.rgen", "f.rchit", "g.rmiss", "h.rahit", "i.rint", "j.rcall", "k.sc"})
+    EXPECT_EQ(d.for_path(p)->lang, Lang::glsl) << p;
+  EXPECT_EQ(d.for_path("shaders/tile.glsl.js")->container, Container::javascript);
+  EXPECT_EQ(d.for_path("layer.ts")->container, Container::javascript);
+  EXPECT_FALSE(d.for_path("x.cpp").has_value());
+  EXPECT_FALSE(d.for_path("pointcloud.vs").has_value());
+  FormatTable project = d;
+  project.set(".vs", "glsl", "test");
+  project.set(".ts", "none", "test");
+  EXPECT_EQ(project.for_path("pointcloud.vs")->lang, Lang::glsl);
+  EXPECT_FALSE(project.for_path("layer.ts").has_value());
+  EXPECT_THROW(project.set("vs", "glsl", "test"), std::runtime_error);
+  EXPECT_THROW(project.set(".vs", "metal", "test"), std::runtime_error);
+}
+
+const char* kScript = R"(import {x} from './x';
+const re = /`not a literal`/g;
+const label = `plain text ${x}`;
+export const vs = /* glsl */ `\
+#version 300 es
+uniform mat4 modelMatrix;
+uniform vec3 cameraPosition;
+${DECLARATIONS}
+in vec3 position;
+void main() {
+  vec4 worldPosition = modelMatrix * vec4(position, ${ONE});
+  gl_Position = worldPosition - vec4(cameraPosition, 0.0);
+}
+`;
+export const fs = glsl`void main() { gl_FragColor = vec4(1.0); }`;
+)";
+
+TEST(EmbeddedGlsl, TaggedCommentedAndVersionedLiteralsAreFound) {
+  std::vector<Span> subs;
+  auto literals = glsl_template_literals("layer.ts", kScript, subs);
+  ASSERT_EQ(literals.size(), 2u);  // the plain-text literal and the regular expression are not GLSL
+  std::string_view script = kScript;
+  EXPECT_EQ(script.substr(literals[1].begin, 4), "void");
+  EXPECT_EQ(subs.size(), 2u);
+  std::string view = glsl_view(script, literals, subs);
+  ASSERT_EQ(view.size(), script.size());
+  EXPECT_EQ(view.find("import"), std::string::npos);
+  EXPECT_EQ(view.find("DECLARATIONS"), std::string::npos);  // alone on its line: declarations, blank
+  EXPECT_NE(view.find("vec4(position, ______)"), std::string::npos);  // inside a line: one value
+  EXPECT_EQ(glsl_template_literals("tile.glsl.js", "export default `float f() { return 1.0; }`;\n").size(), 1u);
+}
+
+TEST(EmbeddedGlsl, FindingsPointIntoTheScriptAndFixesStayInTheLiteral) {
+  AnalyzeOptions o;
+  Source script("layer.ts", kScript);
+  auto findings = analyze(script, o);
+  bool world = false;
+  for (const Finding& f : findings) {
+    EXPECT_NE(f.rule, "lwc-input") << f.message;
+    if (f.rule == "lwc-float-world-position") {
+      world = true;
+      EXPECT_EQ(script.slice(f.span), "worldPosition");
+      EXPECT_EQ(script.position(f.span.begin).line, 11);
+      // The High/Low rewrite would add an #include at the top of the script: not offered.
+      EXPECT_TRUE(f.fixes.empty());
+    }
+  }
+  EXPECT_TRUE(world);
+  EXPECT_TRUE(holds_shader_code(script, o));
+  EXPECT_FALSE(holds_shader_code(Source("util.ts", "export const n = `${1}`;\n"), o));
+}
+
+TEST(Bgfx, VaryingLinesAndSamplerMacrosParse) {
+  std::string code =
+      "$input a_position, a_normal\n$output v_pos\n#include <bgfx_shader.sh>\nSAMPLER2D(s_texColor, 0);\n"
+      "uniform vec4 u_cameraPos;\nvoid main()\n{\n\tvec3 wpos = mul(u_model[0], vec4(a_position, 1.0)).xyz;\n"
+      "\tv_pos = wpos - u_cameraPos.xyz;\n\tgl_Position = mul(u_viewProj, vec4(wpos, 1.0));\n}\n";
+  Source src("vs_mesh.sc", code);
+  EXPECT_EQ(parse(src, Lang::glsl).error_count, 0);
+  auto findings = analyze(src, AnalyzeOptions{});
+  EXPECT_TRUE(std::any_of(findings.begin(), findings.end(), [&](const Finding& f) {
+    return f.rule == "lwc-float-world-position" && src.slice(f.span) == "wpos";
+  }));
+}
+
+}  // namespace
+}  // namespace lwc
