@@ -187,3 +187,27 @@ TEST(UnrealEras, AnArmForAnOlderEngineIsThatEnginesCode) {
 
 }  // namespace
 }  // namespace lwc
+
+namespace lwc {
+namespace {
+
+TEST(TileOffset, NeverRenamesIntoAnExistingOverload) {
+  std::string code =
+      "float3 ToFloat(FDFVector3 V) { return DFDemote(V); }\n"
+      "float3 ToFloat(FLWCVector3 V) { return LWCToFloat(V); }\n"
+      "float3 Use(FLWCVector3 P) { return ToFloat(P); }\n";
+  auto findings = lint_unreal(code, UnrealEra::ue5_4, "lwc-tile-offset");
+  ASSERT_EQ(findings.size(), 3u);
+  // The overload's own type: no rewrite, and why.
+  EXPECT_TRUE(findings[0].fixes.empty());
+  ASSERT_FALSE(findings[0].withheld.empty());
+  EXPECT_NE(findings[0].withheld[0].find("would define it a second time"), std::string::npos);
+  // Elsewhere the renames stay, unsafe: they compile only together with a hand port.
+  for (size_t i : {1, 2}) {
+    ASSERT_EQ(findings[i].fixes.size(), 1u);
+    EXPECT_EQ(findings[i].fixes[0].applicability, Applicability::unsafe);
+  }
+}
+
+}  // namespace
+}  // namespace lwc

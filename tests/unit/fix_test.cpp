@@ -176,3 +176,22 @@ TEST(Planner, NotNeededFindingsBecomeNotesWithTheirNumbers) {
 
 }  // namespace
 }  // namespace lwc
+
+namespace lwc {
+namespace {
+
+TEST(Planner, NeverWritesATranslatedRewriteItKnowsFallsShort) {
+  Finding f = world_position_finding();
+  std::erase_if(f.fixes, [](const Fix& fix) { return fix.strategy == "df"; });  // no DoubleFloat rewrite here
+  std::vector<Finding> findings = {f};
+  plan_fixes(findings, {6.4e8, 1e8, 0.0625}, Strategy::automatic);  // a planet seen from orbit
+  EXPECT_TRUE(findings[0].fixes.empty());
+  ASSERT_FALSE(findings[0].withheld.empty());
+  EXPECT_NE(findings[0].withheld.back().find("over the precision target 0.0625 cm, and no DoubleFloat rewrite exists here"),
+            std::string::npos)
+      << findings[0].withheld.back();
+  EXPECT_NE(findings[0].decision.find("no automatic rewrite for this site"), std::string::npos) << findings[0].decision;
+}
+
+}  // namespace
+}  // namespace lwc

@@ -209,9 +209,12 @@ void plan_fixes(std::vector<Finding>& findings, const SceneNumbers& scene, Strat
       chosen = translated, why = "translated world, the cheaper rewrite";
     } else if (df) {
       chosen = df, why = translated ? "DoubleFloat" : "DoubleFloat: this value cannot be made camera-relative";
-    } else if (translated) {
-      chosen = translated, why = "translated world, the only rewrite here, although short of the target";
     }
+    // A translated rewrite short of the target is never written: the site is left, and says why.
+    if (translated && !translated_enough && !chosen)
+      f.withheld.push_back(fmt::format("translated world: its float32 error at the view distance ({}) is over the precision "
+                                       "target {}, and no DoubleFloat rewrite exists here", format_distance(view_error),
+                                       format_distance(scene.precision)));
     if (!chosen && plain) chosen = plain, why = "the rule's rewrite";
     std::string none = "no automatic rewrite for this site";
     for (size_t i = 0; i < f.withheld.size(); ++i) none += (i ? "; " : " (") + f.withheld[i];

@@ -1,6 +1,8 @@
 // lwc-tile-offset: UE 5.0-5.3 tile/offset types and operations, superseded by DoubleFloat.
 #include <fmt/format.h>
 
+#include <map>
+
 #include "rules/checks/util.h"
 
 namespace lwc::checks {
@@ -38,7 +40,18 @@ class TileOffset : public Check {
     // A rename is safe only when the whole file can move to DoubleFloat: every site has a
     // counterpart and no code reads the tile/offset parts, which FDF types do not have.
     std::string blocker = whole_file_blocker(t, sites);
+    std::map<int, std::string> duplicates = renamed_into_existing_overloads(t);
+    if (blocker.empty() && !duplicates.empty()) blocker = duplicates.begin()->second;
     for (const Site& s : sites) {
+      int fn = t.ancestor(s.id, "function_definition");
+      int body = fn >= 0 ? t.child_by_field(fn, "body") : -1;
+      bool in_signature = fn >= 0 && (body < 0 || t.at(s.id).begin < t.at(body).begin);
+      if (in_signature && duplicates.count(fn)) {
+        Finding& f = ctx.report(t.span(s.id), {{"name", s.name}, {"what", s.type ? "type" : "operation"},
+                                               {"replacement", "its FDF*/DF* counterpart"}, {"to", ""}, {"blocker", blocker}});
+        f.withheld.push_back(duplicates.at(fn));
+        continue;
+      }
       std::string replacement = mapping_.value(s.name, "");
       Vars vars{{"name", s.name},
                 {"what", s.type ? "type" : "operation"},
@@ -80,6 +93,42 @@ class TileOffset : public Check {
                            t.source->position(t.at(field).begin).line);
     }
     return "";
+  }
+
+  // Functions whose signature, once its tile/offset types are renamed, is that of another
+  // function of the file (an FLWCVector3 overload beside its FDFVector3 twin): the rename would
+  // define it twice. Function node -> why.
+  std::map<int, std::string> renamed_into_existing_overloads(const SyntaxTree& t) const {
+    struct Signature {
+      int fn;
+      std::string written, renamed;
+    };
+    std::vector<Signature> all;
+    for (int fn : nodes_of(t, "function_definition")) {
+      int d = t.child_by_field(fn, "declarator");
+      while (d >= 0 && !t.is(d, "function_declarator")) d = t.child_by_field(d, "declarator");
+      int params = d >= 0 ? t.child_by_field(d, "parameters") : -1;
+      int name = d >= 0 ? t.declarator_name(d) : -1;
+      if (params < 0 || name < 0) continue;
+      Signature sig{fn, std::string(t.text(name)) + "(", std::string(t.text(name)) + "("};
+      for (int p : t.named_children(params)) {
+        int type = t.child_by_field(p, "type");
+        std::string written = type >= 0 ? std::string(t.text(type)) : "";
+        sig.written += written + ",";
+        sig.renamed += mapping_.value(written, written) + ",";
+      }
+      all.push_back(sig);
+    }
+    std::map<int, std::string> out;
+    for (const Signature& a : all) {
+      if (a.renamed == a.written) continue;
+      for (const Signature& b : all)
+        if (b.fn != a.fn && b.written == a.renamed)
+          out[a.fn] = fmt::format("renaming the types of `{}` (line {}) would define it a second time: the file already has that "
+                                  "DoubleFloat overload (line {}); remove the tile/offset one by hand",
+                                  a.written.substr(0, a.written.find('(')), line_of(t, a.fn), line_of(t, b.fn));
+    }
+    return out;
   }
 
   std::vector<std::string> types_, functions_, excluded_;
