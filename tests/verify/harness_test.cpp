@@ -163,5 +163,34 @@ TEST(HarnessOnLavapipe, DoubleFloatMatrixRewriteOfATileOffsetFactoryIsSubCentime
   EXPECT_GT(original.max_error, rewrite.max_error);
 }
 
+// FDFInverseMatrix as UE 5.4's DoubleFloat.ush has it: PreTranslation is subtracted before M (and
+// FDFMatrix's PostTranslation added after it). The engine's own spelling, the library's
+// DFMultiplyDemote and a float32 original all go world -> local; a sign error in the library or
+// in how the harness splits the matrix puts the rewrites an object's distance away.
+TEST(HarnessOnLavapipe, DoubleFloatInverseMatrixSubtractsItsPreTranslationAsTheEngineDoes) {
+  Driver d = start_driver();
+  ASSERT_NE(d.device, nullptr);
+  auto shader = [](const std::string& parameters, const std::string& body) {
+    return "#include \"/Engine/Private/Common.ush\"\n"
+           "float3 ToLocal(" + parameters + ") { " + body + " }\n";
+  };
+  HarnessSetup setup = small_setup(Lang::hlsl, "ToLocal.usf");
+  setup.unreal = true;
+  FunctionResult r = verify_function(
+      *d.device, d.probes, setup, "ToLocal",
+      {{"original (float32)", shader("float3 WorldPosition, float4x4 WorldToLocal", "return mul(float4(WorldPosition, 1), WorldToLocal).xyz;"), 427},
+       {"library", shader("FDFVector3 WorldPosition, FDFInverseMatrix WorldToLocal", "return DFMultiplyDemote(WorldPosition, WorldToLocal);"), 504},
+       {"engine spelling", shader("FDFVector3 WorldPosition, FDFInverseMatrix WorldToLocal",
+                                  "float3 V = DFFastSubtractDemote(WorldPosition, WorldToLocal.PreTranslation); return mul(float4(V, 1), WorldToLocal.M).xyz;"), 504}});
+  ASSERT_EQ(r.variants.size(), 3u);
+  for (size_t i = 1; i < 3; ++i) {
+    ASSERT_TRUE(r.variants[i].measured) << r.variants[i].label << ": " << r.variants[i].status;
+    // Sub-millimetre typically; the worst case is a 1e4-scaled object, whose float matrix scales
+    // the demoted position's rounding with it.
+    EXPECT_LT(r.variants[i].median_error, 1e-3) << r.variants[i].label << ": " << r.variants[i].worst;
+    EXPECT_LT(r.variants[i].max_error * 100, r.variants[0].max_error) << r.variants[i].label;
+  }
+}
+
 }  // namespace
 }  // namespace lwc

@@ -437,7 +437,9 @@ void encode(const Leaf& leaf, const std::vector<double>& v, bool float64, bool o
     }
     case Encoding::df_inverse_matrix:
     case Encoding::lwc_inverse_matrix: {
-      // local = M' (P + Post): Post is minus the object's large translation, M' = M T(-Post).
+      // The object's large translation moves out of the float matrix: M = M' T(-origin), so
+      // local = M' (P - origin). FDFInverseMatrix subtracts its PreTranslation (= origin) before M'
+      // (UE 5.4's DoubleFloat.ush); FLWCInverseMatrix adds its Tile, which holds minus the tiles.
       std::array<double, 9> m3{};
       for (int c = 0; c < 3; ++c)
         for (int r = 0; r < 3; ++r) m3[c * 3 + r] = v[c * 4 + r];
@@ -446,16 +448,16 @@ void encode(const Leaf& leaf, const std::vector<double>& v, bool float64, bool o
       std::array<double, 9> m3_inverse = inverse3(m3);
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c) world_origin[r] += m3_inverse[c * 3 + r] * origin[c];
-      Vec post{};
+      Vec moved{};  // the part of the object's origin taken out of M
       for (int r = 0; r < 3; ++r)
-        post[r] = leaf.encoding == Encoding::lwc_inverse_matrix ? -tiles(world_origin[r]) * kTile
-                  : float64                                     ? 0.0
-                                                                : -static_cast<float>(world_origin[r]);
+        moved[r] = leaf.encoding == Encoding::lwc_inverse_matrix ? tiles(world_origin[r]) * kTile
+                   : float64                                     ? 0.0
+                                                                 : static_cast<float>(world_origin[r]);
       Mat4 m{};
       std::copy(v.begin(), v.begin() + 16, m.begin());
-      Mat4 shifted = multiply(m, translation(neg(post)));
+      Mat4 shifted = multiply(m, translation(moved));
       for (int i = 0; i < 16; ++i) put(i, shifted[i]);
-      for (int r = 0; r < 3; ++r) put(16 + r, leaf.encoding == Encoding::lwc_inverse_matrix ? post[r] / kTile : post[r]);
+      for (int r = 0; r < 3; ++r) put(16 + r, leaf.encoding == Encoding::lwc_inverse_matrix ? -moved[r] / kTile : moved[r]);
       break;
     }
   }
@@ -486,9 +488,9 @@ std::vector<double> decode(const Leaf& leaf, const double* in) {
     case Encoding::lwc_inverse_matrix: {
       Mat4 shifted{};
       std::copy(at, at + 16, shifted.begin());
-      Vec post{};
-      for (int r = 0; r < 3; ++r) post[r] = leaf.encoding == Encoding::lwc_inverse_matrix ? at[16 + r] * kTile : at[16 + r];
-      Mat4 m = multiply(shifted, translation(post));
+      Vec moved{};
+      for (int r = 0; r < 3; ++r) moved[r] = leaf.encoding == Encoding::lwc_inverse_matrix ? -at[16 + r] * kTile : at[16 + r];
+      Mat4 m = multiply(shifted, translation(neg(moved)));
       out.assign(m.begin(), m.end());
       break;
     }

@@ -160,8 +160,8 @@ void assign(const Leaf& l, Lang lang, bool float64, std::string& body) {
     case Encoding::lwc_matrix:
     case Encoding::lwc_inverse_matrix: {
       set(l.path + ".M", matrix_type(lang, float64), l.offset, 16);
-      const char* part = l.encoding == Encoding::df_matrix ? ".PreTranslation"
-                         : l.encoding == Encoding::df_inverse_matrix ? ".PostTranslation" : ".Tile";
+      const char* part = l.encoding == Encoding::df_matrix ? ".PostTranslation"
+                         : l.encoding == Encoding::df_inverse_matrix ? ".PreTranslation" : ".Tile";
       set(l.path + part, pair_part_type(lang, 3, float64), l.offset + 16, 3);
       break;
     }
@@ -193,8 +193,8 @@ void write(const Leaf& l, bool float64, std::string& body) {
       int k = 0;
       for (int i = 0; i < 4; ++i)
         for (int j = 0; j < 4; ++j) put(fmt::format("{}.M[{}][{}]", l.path, i, j), l.offset + k++);
-      const char* part = l.encoding == Encoding::df_matrix ? ".PreTranslation"
-                         : l.encoding == Encoding::df_inverse_matrix ? ".PostTranslation" : ".Tile";
+      const char* part = l.encoding == Encoding::df_matrix ? ".PostTranslation"
+                         : l.encoding == Encoding::df_inverse_matrix ? ".PreTranslation" : ".Tile";
       vector(l.path + part, 3, l.offset + 16);
     }
   }
