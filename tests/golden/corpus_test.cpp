@@ -60,9 +60,10 @@ TEST(Corpus, NegativeCasesAreClean) {
   auto r = test::run("cd " + test::source_dir() + " && " + test::binary() +
                      " lint corpus/negative/NormalsAndTangents.hlsl corpus/negative/LocalSpaceMath.vert "
                      "corpus/negative/AlreadyTranslated.usf corpus/glsl/rte_highlow_precise.vert corpus/glsl/splitmodel.vert "
-                     "corpus/ue5.4/TranslatedWorldVertexFactory.ush corpus/negative/OrdinaryArithmetic.usf --color never");
+                     "corpus/ue5.4/TranslatedWorldVertexFactory.ush corpus/negative/OrdinaryArithmetic.usf "
+                     "corpus/negative/UnrealOtherSpaces.usf --color never");
   EXPECT_EQ(r.exit_code, 0) << r.out;
-  EXPECT_NE(r.out.find("No findings in 7 file(s)."), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("No findings in 8 file(s)."), std::string::npos) << r.out;
 }
 
 }  // namespace

@@ -16,6 +16,7 @@ void merge(FileSummary& into, const FileSummary& from) {
   into.function_return_types.insert(from.function_return_types.begin(), from.function_return_types.end());
   into.macros.insert(from.macros.begin(), from.macros.end());
   into.field_types.insert(from.field_types.begin(), from.field_types.end());
+  into.parameter_uses.insert(from.parameter_uses.begin(), from.parameter_uses.end());
 }
 }  // namespace
 
@@ -72,7 +73,7 @@ std::shared_ptr<const FileSummary> IncludeSummaries::own_summary(const fs::path&
     SyntaxTree tree = parse(src, lang.value_or(Lang::hlsl));
     std::optional<UnrealEra> era;
     if (tree.lang == Lang::hlsl && is_unreal_source(src.path(), r.text)) era = infer_unreal_era(r.text);
-    WorldModel model(tree, world_data(tree.lang, config.world_sources), {nullptr, names_as_evidence(src, tree.lang), era});
+    WorldModel model(tree, world_data(tree.lang, config.world_sources), {nullptr, names_as_evidence(src, tree.lang), !era, era});
     *summary = model.summary();
     learn_macros(r.text, known_macros(tree.lang), summary->macros);
     text = r.text;

@@ -469,7 +469,7 @@ std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options
       errors += tree.error_count;
       if (!first_error) first_error = tree.first_error;
     }
-    WorldModel world(tree, data, {options.includes, names, written_era});
+    WorldModel world(tree, data, {options.includes, names, !unreal, written_era});
     std::vector<Finding> found;
     for (const auto& [rule, check] : checks()) {
       if (rule->applies_to(*lang) && options.enabled(rule->id)) check->run(CheckContext{tree, world, *rule, found, unreal});

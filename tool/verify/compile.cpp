@@ -185,7 +185,11 @@ CompileResult compile_file(const FileBuild& build, const std::string& text) {
     if (build.unreal_version)
       in.preamble = "#define LWCPORT_UE_VERSION " + std::to_string(*build.unreal_version) + "\n" + unreal_environment_text();
   } else {
-    in.stage = stage_from_extension(build.name).value_or(Stage::fragment);
+    std::optional<Stage> stage = stage_from_extension(build.name);
+    in.stage = stage.value_or(Stage::fragment);
+    // A GLSL include (no stage in its name, no main): checked as a unit of its own.
+    static const std::regex main_definition(R"(\bvoid\s+main\s*\()");
+    if (!stage && !std::regex_search(text, main_definition)) in.text += "\nvoid main() {}\n";
   }
   return compile_shader(in);
 }

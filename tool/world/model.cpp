@@ -177,7 +177,12 @@ WorldData WorldData::load(const nlohmann::json& ws, const nlohmann::json& extra_
         throw std::runtime_error(std::string(where) + ": a world source needs \"match\" and \"kind\": " + s.dump());
       auto kind = parse_kind(s.at("kind").get<std::string>());
       if (!kind) throw std::runtime_error(std::string(where) + ": unknown world-space kind " + s.at("kind").dump());
-      if (applies_to(s, lang)) d.sources.push_back({PathPattern(s.at("match").get<std::string>()), *kind, s.value("by-name", false)});
+      const nlohmann::json by_name = s.value("by-name", nlohmann::json(false));
+      if (!by_name.is_boolean() && by_name != "plain")
+        throw std::runtime_error(std::string(where) + ": \"by-name\" is true, false or \"plain\": " + s.dump());
+      bool plain_only = by_name == "plain";
+      if (applies_to(s, lang))
+        d.sources.push_back({PathPattern(s.at("match").get<std::string>()), *kind, plain_only || by_name == true, plain_only});
     }
   };
   // The project's sources come first so they can override the built-in ones.
@@ -275,6 +280,10 @@ std::vector<Span> library_definitions(const SyntaxTree& tree, const WorldData& d
 std::vector<std::string_view> leading_words(const SyntaxTree& tree, int declaration) {
   std::vector<std::string_view> words;
   int type = tree.child_by_field(declaration, "type");
+  // A GLSL interface block has no type: its qualifiers end at its member list.
+  if (type < 0)
+    for (int c : tree.named_children(declaration))
+      if (tree.is(c, "field_declaration_list")) type = c;
   uint32_t begin = tree.at(declaration).begin;
   uint32_t end = type >= 0 ? tree.at(type).begin : begin;
   // HLSL's masked modifiers (`out`, `uniform`...) lie just before the node: take the words
@@ -441,7 +450,15 @@ class Analyzer {
       if (n < 0 || t_.is(c, "function_declarator")) continue;
       int var = add_global(id, n, type, block, uniform, has_word(words, "precise"));
       if (t_.is(c, "init_declarator")) m_.variables_[var].init = t_.child_by_field(c, "value");
+      m_.variables_[var].private_global = !uniform && block < 0 && private_storage(words);
     }
+  }
+
+  bool private_storage(const std::vector<std::string_view>& words) const {
+    if (t_.lang == Lang::hlsl) return has_word(words, "static") && !has_word(words, "groupshared");
+    for (std::string_view w : {"in", "out", "inout", "attribute", "varying", "buffer", "shared"})
+      if (has_word(words, w)) return false;
+    return true;
   }
 
   int add_global(int declaration, int name, std::string type, int block, bool uniform, bool precise) {
@@ -599,13 +616,13 @@ class Analyzer {
   // names are evidence (plain and UE4-era code).
   std::optional<Kind> source_kind(const Path& path, bool declared_global = false) {
     bool names = declared_global || m_.names_as_evidence_;
-    std::string key = names ? "n:" : "s:";
+    std::string key = std::string(names ? "n:" : "s:");
     for (const auto& s : path) key += s.name + (s.call ? "()." : ".");
     auto it = source_cache_.find(key);
     if (it != source_cache_.end()) return it->second;
     std::optional<Kind> found;
     for (const auto& s : d_.sources)
-      if ((names || !s.by_name) && s.pattern.matches(path)) {
+      if ((!s.by_name || (names && (!s.plain_only || m_.plain_names_))) && s.pattern.matches(path)) {
         found = s.kind;
         break;
       }
@@ -1086,7 +1103,7 @@ class Analyzer {
 };
 
 WorldModel::WorldModel(const SyntaxTree& tree, const WorldData& data, const ModelContext& context)
-    : tree_(tree), data_(data), names_as_evidence_(context.names_as_evidence), era_(context.era) {
+    : tree_(tree), data_(data), names_as_evidence_(context.names_as_evidence), plain_names_(context.plain_names), era_(context.era), includes_(context.includes) {
   Analyzer(*this, context.includes).run();
 }
 
@@ -1147,6 +1164,11 @@ bool WorldModel::only_harmless_uses(int var, int depth) const {
   };
   for (int use : list) {
     int n = strip(use), p = tree_.at(n).parent;
+    // Written, not read (`sunPos = lightPosition;`): what is read later decides. A stage output
+    // or an out parameter escapes when written.
+    if ((v.role == Variable::Role::local || v.private_global) && tree_.is(p, "assignment_expression") && tree_.child_by_field(p, "left") == n &&
+        tree_.text(tree_.child_by_field(p, "operator")) == "=")
+      continue;
     // A copy into a local that is itself harmless (or whose translation is then cleared).
     if (tree_.is(p, "init_declarator")) {
       int name = tree_.declarator_name(tree_.child_by_field(p, "declarator"));
@@ -1193,6 +1215,10 @@ bool WorldModel::used_where_precision_matters(int var, int depth) const {
   // Up through parentheses, swizzles and (for an array) the element access.
   auto climb = [&](int n) {
     int p = tree_.at(n).parent;
+    if (p >= 0 && tree_.is(p, "field_expression") && tree_.child_by_field(p, "field") == n) {  // block.member
+      n = p;
+      p = tree_.at(n).parent;
+    }
     while (p >= 0 && (tree_.is(p, "parenthesized_expression") ||
                       (tree_.is(p, "field_expression") && is_swizzle(tree_.text(tree_.child_by_field(p, "field")))) ||
                       (array && tree_.is(p, "subscript_expression") && tree_.child_by_field(p, "argument") == n))) {
@@ -1219,9 +1245,11 @@ bool WorldModel::used_where_precision_matters(int var, int depth) const {
     if (type == "return_statement") return true;  // it escapes as data
     if (type == "assignment_expression" && tree_.child_by_field(p, "right") == n) {
       int target = tree_.child_by_field(p, "left");
-      int local = tree_.is(target, "identifier") ? variable_at(target) : -1;
-      if (local < 0 || variables_[local].role != Variable::Role::local) return true;  // stored as a field or an output
-      if (used_where_precision_matters(local, depth + 1)) return true;
+      int copy = tree_.is(target, "identifier") ? variable_at(target) : -1;
+      // Stored as a field, an output or shared memory: it escapes. A local or a private global:
+      // its own uses decide.
+      if (copy < 0 || !(variables_[copy].role == Variable::Role::local || variables_[copy].private_global)) return true;
+      if (used_where_precision_matters(copy, depth + 1)) return true;
       continue;
     }
     if (type == "init_declarator") {  // a copy: its own uses decide
@@ -1249,11 +1277,28 @@ bool WorldModel::used_where_precision_matters(int var, int depth) const {
       if (callee == "normalize" || callee == "mat3" || callee == "float3x3") continue;
       // Handed to the large-world library (DFFastToTranslatedWorld(CameraPos, ..)): used as a position.
       if (data_.unreal_api.looks_like_api(callee)) return true;
-      // A function of this file: what its parameter meets there.
+      // A function of this file, or of an include: what its parameter meets there.
       for (int param : parameters_receiving(call, n))
         if (used_where_precision_matters(param, depth + 1)) return true;
+      if (auto use = included_parameter_use(call, n); use && use->matters) return true;
       continue;
     }
+  }
+  return false;
+}
+
+bool WorldModel::combined_with_translated(int var) const {
+  for (int use : uses(var)) {
+    int n = use, p = tree_.at(n).parent;
+    while (p >= 0 && (tree_.is(p, "parenthesized_expression") ||
+                      (tree_.is(p, "field_expression") && is_swizzle(tree_.text(tree_.child_by_field(p, "field")))))) {
+      n = p;
+      p = tree_.at(n).parent;
+    }
+    if (p < 0 || !tree_.is(p, "binary_expression")) continue;
+    std::string_view op = tree_.text(tree_.child_by_field(p, "operator"));
+    int other = tree_.child_by_field(p, tree_.child_by_field(p, "left") == n ? "right" : "left");
+    if ((op == "-" || op == "+") && other >= 0 && kind(other) == Kind::translated) return true;
   }
   return false;
 }
@@ -1284,7 +1329,22 @@ std::vector<int> WorldModel::parameters_receiving(int call, int argument) const 
 // A value passed to a function of this file whose parameter is only ever normalised.
 bool WorldModel::parameter_only_normalised(int call, int argument, int depth) const {
   std::vector<int> params = parameters_receiving(call, argument);
-  return !params.empty() && std::all_of(params.begin(), params.end(), [&](int p) { return only_harmless_uses(p, depth + 1); });
+  if (params.empty()) {
+    auto use = included_parameter_use(call, argument);
+    return use && use->harmless;
+  }
+  return std::all_of(params.begin(), params.end(), [&](int p) { return only_harmless_uses(p, depth + 1); });
+}
+
+std::optional<ParameterUse> WorldModel::included_parameter_use(int call, int argument) const {
+  int fn = tree_.child_by_field(call, "function");
+  if (!includes_ || fn < 0 || !tree_.is(fn, "identifier")) return std::nullopt;
+  std::vector<int> list = tree_.named_children(tree_.child_by_field(call, "arguments"));
+  size_t index = 0;
+  while (index < list.size() && !(tree_.at(list[index]).begin <= tree_.at(argument).begin && tree_.at(argument).end <= tree_.at(list[index]).end)) ++index;
+  auto it = includes_->parameter_uses.find(std::string(tree_.text(fn)) + "/" + std::to_string(list.size()));
+  if (it == includes_->parameter_uses.end() || index >= it->second.size()) return std::nullopt;
+  return it->second[index];
 }
 
 int WorldModel::variable_at(int identifier) const {
@@ -1308,6 +1368,26 @@ FileSummary WorldModel::summary() const {
   }
   s.function_returns = returns_;
   s.function_return_types = return_types_;
+  // Parameters in declaration order per function; overloads of one arity share an entry.
+  std::map<int, std::vector<int>> by_function;
+  for (int i = 0; i < static_cast<int>(variables_.size()); ++i)
+    if (variables_[i].role == Variable::Role::parameter && variables_[i].function >= 0) by_function[variables_[i].function].push_back(i);
+  std::set<std::string> seen;
+  for (const auto& [fn, params] : by_function) {
+    int name = tree_.declarator_name(tree_.child_by_field(fn, "declarator"));
+    if (name < 0) continue;
+    std::string key = std::string(tree_.text(name)) + "/" + std::to_string(params.size());
+    auto& entry = s.parameter_uses[key];
+    bool first = seen.insert(key).second;
+    entry.resize(params.size());
+    for (size_t k = 0; k < params.size(); ++k) {
+      bool used = !uses(params[k]).empty();
+      bool matters = used && used_where_precision_matters(params[k]);
+      bool harmless = used && only_harmless_uses(params[k]);
+      entry[k].matters = entry[k].matters || matters;
+      entry[k].harmless = first ? harmless : entry[k].harmless && harmless;
+    }
+  }
   return s;
 }
 

@@ -47,6 +47,7 @@ struct WorldData {
     PathPattern pattern;
     Kind kind;
     bool by_name = false;  // a naming convention of plain code, not engine data
+    bool plain_only = false;  // ... of plain HLSL and GLSL only, never of Unreal code
   };
   struct Function {
     PathPattern pattern;
@@ -105,6 +106,7 @@ struct Variable {
   bool precise = false;
   bool uniform = false;
   bool output = false;    // an `out`/`inout` parameter
+  bool private_global = false;  // a global only this invocation sees (GLSL without a storage qualifier, HLSL static)
   bool clip = false;      // declared with an SV_Position semantic: clip space
   std::string owner;      // for fields: the struct's name
   Kind kind = Kind::unknown;  // for uniforms: from the sources; otherwise the most absolute kind held
@@ -120,6 +122,12 @@ struct AbsoluteHolder {
   Kind kind;
 };
 
+// What a function does with one parameter, for callers in files that include it.
+struct ParameterUse {
+  bool matters = false;  // some use lets its float32 rounding reach a result
+  bool harmless = false;  // every use keeps only a direction or a rotation
+};
+
 // What an included file teaches: its globals' kinds and its functions' return kinds.
 struct FileSummary {
   std::map<std::string, Kind> globals;
@@ -127,6 +135,8 @@ struct FileSummary {
   std::map<std::string, std::string> function_return_types;
   MacroTable macros;  // what its #define lines teach about macros used as syntax
   std::map<std::string, std::string> field_types;  // "Struct.Field" -> declared type
+  // "name/arity" -> its parameters' uses (over every overload of that arity).
+  std::map<std::string, std::vector<ParameterUse>> parameter_uses;
 };
 
 // What the model knows of a file besides its text.
@@ -135,6 +145,8 @@ struct ModelContext {
   // Naming-convention sources count beyond the file's own globals (plain and UE4-era code; see
   // rules/world-space.json "by-name").
   bool names_as_evidence = true;
+  // Sources marked "by-name": "plain" count (code that is not Unreal's).
+  bool plain_names = true;
   // Unreal code: the engine era its own code is written for (rules/world-space.json "engine").
   std::optional<UnrealEra> era;
 };
@@ -165,6 +177,9 @@ class WorldModel {
   // passed to) lets its float32 rounding reach a result: a difference with a position, a point
   // it transforms, its translation read. Without one there is no evidence of a hazard.
   bool used_where_precision_matters(int var, int depth = 0) const;
+  // Some use adds it to or subtracts it from a translated-world position: whatever its name
+  // says, the code treats it as translated.
+  bool combined_with_translated(int var) const;
   // Nodes whose analysis was cut because they nest too deeply.
   const std::vector<int>& too_deep() const { return too_deep_; }
   FileSummary summary() const;
@@ -183,11 +198,16 @@ class WorldModel {
   std::map<std::string, Kind> returns_;
   std::map<std::string, std::string> return_types_;
   bool names_as_evidence_ = true;
+  bool plain_names_ = true;
   std::optional<UnrealEra> era_;
   std::set<int> cleared_;  // matrices whose translation the code clears (M[3] = ...)
 
+  const FileSummary* includes_ = nullptr;  // valid while the model is: the caller's summary
+
   bool parameter_only_normalised(int call, int argument, int depth) const;
   std::vector<int> parameters_receiving(int call, int argument) const;
+  // How an included function uses the parameter a call passes `argument` to, if known.
+  std::optional<ParameterUse> included_parameter_use(int call, int argument) const;
 };
 
 // Where a file defines the LWC libraries themselves (rules/world-space.json "library-definitions"):

@@ -9,10 +9,11 @@ namespace lwc::checks {
 namespace {
 
 class TileOffset : public Check {
-  struct Site {  // one tile/offset type or operation in the file
+  struct Site {  // one tile/offset type, operation or engine member read in the file
     int id;
-    bool type;
+    std::string what;  // "type", "operation", "value"
     std::string name;
+    std::string replacement;
   };
 
  public:
@@ -22,7 +23,8 @@ class TileOffset : public Check {
         excluded_(string_list(rule.data, "excluded")),
         mapping_(rule.data.value("mapping", nlohmann::json::object())),
         construct_(rule.data.value("constructors", nlohmann::json::object())),
-        parts_(string_list(rule.data, "parts")) {}
+        parts_(string_list(rule.data, "parts")),
+        kept_(string_list(rule.data, "kept-tile-offset")) {}
 
   void run(const CheckContext& ctx) const override {
     const SyntaxTree& t = ctx.tree;
@@ -31,10 +33,20 @@ class TileOffset : public Check {
       bool type = t.is(id, "type_identifier");
       bool call = t.is(id, "identifier") && t.is(t.at(id).parent, "call_expression") &&
                   t.child_by_field(t.at(id).parent, "function") == id;
+      if (t.is(id, "field_expression")) {
+        // The engine's tile/offset copy of a view member (`ResolvedView.TileOffset.PreViewTranslation`)
+        // stays FLWC in UE 5.4; the member itself is its DoubleFloat twin.
+        int field = t.child_by_field(id, "field"), parent = t.at(id).parent;
+        if (field >= 0 && matches_any(kept_, t.text(field)) && t.is(parent, "field_expression") && t.child_by_field(parent, "argument") == id) {
+          std::string base(t.text(t.child_by_field(id, "argument"))), member(t.text(t.child_by_field(parent, "field")));
+          sites.push_back({parent, "value", std::string(t.text(parent)), base + "." + member});
+        }
+        continue;
+      }
       if (!type && !call) continue;
       std::string name(t.text(id));
       if (matches_any(excluded_, name) || !matches_any(type ? types_ : functions_, name)) continue;
-      sites.push_back({id, type, name});
+      sites.push_back({id, type ? "type" : "operation", name, mapping_.value(name, "")});
     }
     if (sites.empty()) return;
     // A rename is safe only when the whole file can move to DoubleFloat: every site has a
@@ -47,14 +59,14 @@ class TileOffset : public Check {
       int body = fn >= 0 ? t.child_by_field(fn, "body") : -1;
       bool in_signature = fn >= 0 && (body < 0 || t.at(s.id).begin < t.at(body).begin);
       if (in_signature && duplicates.count(fn)) {
-        Finding& f = ctx.report(t.span(s.id), {{"name", s.name}, {"what", s.type ? "type" : "operation"},
+        Finding& f = ctx.report(t.span(s.id), {{"name", s.name}, {"what", s.what},
                                                {"replacement", "its FDF*/DF* counterpart"}, {"to", ""}, {"blocker", blocker}});
         f.withheld.push_back(duplicates.at(fn));
         continue;
       }
-      std::string replacement = mapping_.value(s.name, "");
+      const std::string& replacement = s.replacement;
       Vars vars{{"name", s.name},
-                {"what", s.type ? "type" : "operation"},
+                {"what", s.what},
                 {"replacement", replacement.empty() ? "its FDF*/DF* counterpart" : "`" + replacement + "`"},
                 {"to", replacement},
                 {"blocker", blocker}};
@@ -81,7 +93,7 @@ class TileOffset : public Check {
  private:
   std::string whole_file_blocker(const SyntaxTree& t, const std::vector<Site>& sites) const {
     for (const Site& s : sites) {
-      if (!mapping_.contains(s.name)) return fmt::format("`{}` has no DoubleFloat counterpart: port that code by hand, or the file will not compile after the rename", s.name);
+      if (s.replacement.empty()) return fmt::format("`{}` has no DoubleFloat counterpart: port that code by hand, or the file will not compile after the rename", s.name);
       if (construct_.contains(s.name))
         return fmt::format("`{}` (line {}) builds a tile/offset value and its rewrite is unsafe; the renames compile only together with it", s.name,
                            t.source->position(t.at(s.id).begin).line);
@@ -133,7 +145,7 @@ class TileOffset : public Check {
 
   std::vector<std::string> types_, functions_, excluded_;
   nlohmann::json mapping_, construct_;
-  std::vector<std::string> parts_;
+  std::vector<std::string> parts_, kept_;
 };
 
 }  // namespace

@@ -26,6 +26,7 @@ class UniformWorldFloat : public Check {
       // Reported where some use lets its rounding reach a result, not where it is only rotated,
       // normalised or handed to code lwcport cannot see.
       if (!ctx.world.used_where_precision_matters(static_cast<int>(i))) continue;
+      if (ctx.world.combined_with_translated(static_cast<int>(i))) continue;
       if (!ctx.world.data().is_float_type(v.type) || matches_any(relative_, v.name)) continue;
       if (relative_blocks.count(v.block) && matches_any(reference_, v.name)) continue;
       std::string kind(kind_name(v.kind));
