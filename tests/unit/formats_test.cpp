@@ -1,6 +1,8 @@
 // Which files hold shader code, and GLSL read in place inside JavaScript and TypeScript.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "fix/apply.h"
 #include "lang/embedded.h"
 #include "lang/formats.h"
@@ -77,6 +79,56 @@ TEST(EmbeddedGlsl, FindingsPointIntoTheScriptAndFixesStayInTheLiteral) {
   EXPECT_TRUE(world);
   EXPECT_TRUE(holds_shader_code(script, o));
   EXPECT_FALSE(holds_shader_code(Source("util.ts", "export const n = `${1}`;\n"), o));
+}
+
+// Each literal is a shader of its own: a uniform one literal uses with its translation is not
+// reported in the other, which clears that translation first, though both declare the name.
+TEST(EmbeddedGlsl, EachLiteralIsItsOwnShader) {
+  const char* script =
+      "const relativeToEye = glsl`\n"
+      "uniform mat4 viewMatrix;\n"
+      "in vec3 offsetFromEye;\n"
+      "void main() {\n"
+      "  mat4 rotationOnly = viewMatrix;\n"
+      "  rotationOnly[3] = vec4(0.0, 0.0, 0.0, 1.0);\n"
+      "  gl_Position = rotationOnly * vec4(offsetFromEye, 1.0);\n"
+      "}`;\n"
+      "const plain = glsl`\n"
+      "uniform mat4 viewMatrix;\n"
+      "in vec3 worldVertex;\n"
+      "void main() { gl_Position = viewMatrix * vec4(worldVertex, 1.0); }`;\n";
+  Source source("shaders.ts", script);
+  std::vector<int> lines;
+  for (const Finding& f : analyze(source, AnalyzeOptions{}))
+    if (f.rule == "lwc-uniform-world-float") lines.push_back(source.position(f.span.begin).line);
+  EXPECT_EQ(lines, std::vector<int>{10});
+}
+
+// A script assembles its literals into programs: a function one literal defines is known to the
+// others (a uniform handed to it counts by what it does there), and a stage input holds what a
+// sibling's stage output of that name holds.
+TEST(EmbeddedGlsl, SiblingLiteralsAreModulesAndStages) {
+  const char* script =
+      "const fogModule = glsl`\n"
+      "float fogAmount(vec3 eye, vec3 surfacePoint) { return 1.0 - exp(-distance(eye, surfacePoint)); }\n"
+      "`;\n"
+      "const vs = glsl`\n"
+      "uniform mat4 modelMatrix;\n"
+      "uniform mat4 viewProjectionMatrix;\n"
+      "in vec3 position;\n"
+      "out vec3 vPosition;\n"
+      "void main() { vPosition = (modelMatrix * vec4(position, 1.0)).xyz; gl_Position = viewProjectionMatrix * vec4(vPosition, 1.0); }`;\n"
+      "const fs = glsl`\n"
+      "uniform vec3 eyePosition;\n"
+      "in vec3 vPosition;\n"
+      "out vec4 color;\n"
+      "void main() { color = vec4(fogAmount(eyePosition, vPosition)); }`;\n";
+  Source source("program.ts", script);
+  std::vector<std::string> found;
+  for (const Finding& f : analyze(source, AnalyzeOptions{}))
+    if (f.rule != "lwc-input") found.push_back(std::to_string(source.position(f.span.begin).line) + " " + std::string(source.slice(f.span)));
+  std::sort(found.begin(), found.end());
+  EXPECT_EQ(found, (std::vector<std::string>{"11 eyePosition", "12 vPosition", "5 modelMatrix", "6 viewProjectionMatrix", "8 vPosition"}));
 }
 
 TEST(Bgfx, VaryingLinesAndSamplerMacrosParse) {

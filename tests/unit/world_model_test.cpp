@@ -55,6 +55,19 @@ TEST(WorldModel, TranslatedWorldIsNotAbsolute) {
             V{});
 }
 
+// Engine functions whose headers are absent, from rules/world-space.json "engine": vertex
+// factories return translated world in every era (UE4 included), TransformLocalToWorld absolute.
+TEST(WorldModel, EngineFunctionsByEraWithoutTheirHeaders) {
+  EXPECT_EQ(holders("#include \"/Engine/Generated/VertexFactory.ush\"\n"
+                    "void MainVS(FVertexFactoryInput Input, out float4 OutPosition : SV_POSITION) {\n"
+                    "  FVertexFactoryIntermediates VFIntermediates = GetVertexFactoryIntermediates(Input);\n"
+                    "  float4 WorldPos = VertexFactoryGetWorldPosition(Input, VFIntermediates);\n"
+                    "  float3 Absolute = TransformLocalToWorld(Input.Position.xyz).xyz;\n"
+                    "  OutPosition = mul(WorldPos, ResolvedView.TranslatedWorldToClip) + Absolute.x;\n"
+                    "}\n"),
+            V{"5:10 Absolute"});
+}
+
 TEST(WorldModel, FollowsParametersReturnsAndOutParametersWithinTheFile) {
   EXPECT_EQ(holders("float3 ToWorld(float3 L) { return mul(float4(L, 1), Primitive.LocalToWorld).xyz; }\n"
                     "float Fog(float3 P) { return length(P - ResolvedView.WorldCameraOrigin); }\n"

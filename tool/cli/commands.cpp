@@ -805,12 +805,14 @@ int parse_only(const Options& o, std::ostream& out, std::ostream& err) {
     if (code.empty(src)) return;
     has_code[i] = true;
     bytes += src.text().size();
-    MaskOptions mask{&known_macros(*code.lang), 0};
-    for (int variants = 1; mask.variant < variants; ++mask.variant) {
-      SyntaxTree tree = parse(code.of(src), *code.lang, mask);
-      variants = tree.variants;
-      errors[i] += tree.error_count;
-      if (o.verbose && tree.error_count) details[i] += syntax_error_lines(tree);
+    for (const Source* unit : code.units(src)) {
+      MaskOptions mask{&known_macros(*code.lang), 0};
+      for (int variants = 1; mask.variant < variants; ++mask.variant) {
+        SyntaxTree tree = parse(*unit, *code.lang, mask);
+        variants = tree.variants;
+        errors[i] += tree.error_count;
+        if (o.verbose && tree.error_count) details[i] += syntax_error_lines(tree);
+      }
     }
   });
   size_t with_errors = 0, parsed = 0;

@@ -10,14 +10,6 @@ namespace lwc {
 namespace {
 constexpr int kMaxIncludeDepth = 16;
 
-void merge(FileSummary& into, const FileSummary& from) {
-  into.globals.insert(from.globals.begin(), from.globals.end());
-  into.function_returns.insert(from.function_returns.begin(), from.function_returns.end());
-  into.function_return_types.insert(from.function_return_types.begin(), from.function_return_types.end());
-  into.macros.insert(from.macros.begin(), from.macros.end());
-  into.field_types.insert(from.field_types.begin(), from.field_types.end());
-  into.parameter_uses.insert(from.parameter_uses.begin(), from.parameter_uses.end());
-}
 }  // namespace
 
 std::optional<fs::path> IncludeSummaries::resolve(const std::string& include, const fs::path& from,
@@ -91,7 +83,7 @@ void IncludeSummaries::merge_includes(const fs::path& path, std::string_view tex
     if (!file || !seen.insert(fs::weakly_canonical(*file)).second) continue;
     std::string included_text;
     auto summary = own_summary(*file, config, included_text);
-    merge(into, *summary);
+    into.merge(*summary);
     merge_includes(*file, included_text, config, into, seen, depth + 1);
   }
 }

@@ -31,9 +31,15 @@ ShaderCode shader_code(const Source& source, const AnalyzeOptions& options) {
   if (!format) return code;
   code.lang = format->lang;
   if (format->container == Container::javascript) {
+    code.script = true;
     std::vector<Span> substitutions;
     code.literals = glsl_template_literals(source.path(), source.text(), substitutions);
-    code.view.emplace(source.path(), glsl_view(source.text(), code.literals, substitutions));
+    for (Span literal : code.literals) {
+      std::vector<Span> inside;
+      for (Span s : substitutions)
+        if (literal.begin <= s.begin && s.end <= literal.end) inside.push_back(s);
+      code.views.emplace_back(source.path(), glsl_view(source.text(), {literal}, inside));
+    }
   }
   return code;
 }
@@ -397,6 +403,81 @@ MacroTable macro_table(Lang lang, const AnalyzeOptions& options) {
   return table;
 }
 
+// One shader: a file, or one GLSL template literal of a script (then `literal` is its span).
+void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, const AnalyzeOptions& options,
+                  std::vector<Finding>& findings) {
+  const std::string& text = code.text();
+  if (text.find_first_not_of(" \t\r\n\xEF\xBB\xBF") == std::string::npos) {
+    if (!literal) findings.push_back(input_finding(Severity::note, 0, "empty file; nothing to analyse", ""));
+    return;
+  }
+  MacroTable macros = macro_table(lang, options);
+  std::optional<UnrealTarget> unreal;
+  if (lang == Lang::hlsl && is_unreal_source(code.path(), text))
+    unreal = options.unreal ? UnrealTarget{*options.unreal, false} : UnrealTarget{infer_unreal_era(text), true};
+  const WorldData& data = world_data(lang, options.world_sources);
+  bool names = names_as_evidence(code, lang);
+  std::optional<UnrealEra> written_era;
+  if (unreal) written_era = infer_unreal_era(text);
+  std::vector<Suppression> sups;
+  std::optional<VariantMerge> merge;
+  int errors = 0, too_deep = 0;
+  std::optional<uint32_t> first_error, first_too_deep;
+  std::optional<SyntaxTree> first;  // variant 0, kept for the suppressions' own fixes
+  for (int variant = 0, variants = 1; variant < variants; ++variant) {
+    SyntaxTree tree = parse(code, lang, {&macros, variant});
+    variants = tree.variants;
+    if (tree.error_count > 0) {
+      errors += tree.error_count;
+      if (!first_error) first_error = tree.first_error;
+    }
+    WorldModel world(tree, data, {options.includes, names, !unreal, written_era});
+    std::vector<Finding> found;
+    for (const auto& [rule, check] : checks()) {
+      if (rule->applies_to(lang) && options.enabled(rule->id)) check->run(CheckContext{tree, world, *rule, found, unreal});
+    }
+    drop_what_errors_touch(tree, found);
+    if (!options.lint_library) drop_library_findings(library_definitions(tree, data), data, found);
+    if (!world.too_deep().empty()) {
+      too_deep += static_cast<int>(world.too_deep().size());
+      if (!first_too_deep) first_too_deep = tree.at(world.too_deep().front()).begin;
+    }
+    if (variant == 0) {
+      sups = find_suppressions(tree);
+      merge.emplace(tree.resolved_conditionals);
+    }
+    suppress(sups, code, found);
+    merge->add(std::move(found));
+    if (variant == 0) first.emplace(std::move(tree));
+  }
+  std::vector<Finding> found = merge->take();
+  if (unreal) {
+    drop_older_engine_arms(text, *unreal, data, found);
+    fit_fixes_to_engine(found, code, *unreal, data.unreal_api);
+  }
+  if (literal) keep_fixes_inside({*literal}, found);
+  findings.insert(findings.end(), std::make_move_iterator(found.begin()), std::make_move_iterator(found.end()));
+  if (first->unterminated_comment) {
+    findings.push_back(input_finding(Severity::error, *first->unterminated_comment,
+                                     "unterminated block comment: everything after it is a comment",
+                                     "close the comment with */ (no fixes are offered in this file until then)"));
+    for (Finding& f : findings) f.fixes.clear();
+  } else if (errors > 0) {
+    findings.push_back(input_finding(Severity::note, *first_error,
+                                     fmt::format("{} syntax error(s) the parser could not place; findings next to them may be missed",
+                                                 errors),
+                                     "run `lwcport parse --verbose` on this file to see where; a macro used as syntax can cause "
+                                     "this (declare it in .lwcport.json \"macros\"); no fixes are offered in the declarations "
+                                     "that hold an error"));
+  }
+  if (too_deep > 0) {
+    findings.push_back(input_finding(Severity::note, *first_too_deep,
+                                     fmt::format("expression nested too deeply to analyse ({} place(s)); it was skipped", too_deep),
+                                     "split the expression"));
+  }
+  report_unused(sups, *first, options, findings);
+}
+
 }  // namespace
 
 std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options) {
@@ -437,83 +518,30 @@ std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options
                                                  static_cast<unsigned char>(file_text[*bad])),
                                      "save the file as UTF-8"));
   }
-  // GLSL in a script is read in place: everything outside its literals becomes blank, so every
-  // offset is the script's; a rewrite may only edit inside the literals.
+  // GLSL in a script is read in place: everything outside a literal becomes blank, so every
+  // offset is the script's; each literal is a shader of its own, and a rewrite may only edit
+  // inside it.
   ShaderCode shader = shader_code(source, options);
-  if (shader.view && shader.literals.empty()) return finish();  // no shader code in this script
-  const std::vector<Span>& literals = shader.literals;
-  const std::optional<Source>& view = shader.view;
-  const Source& code = shader.of(source);
-  const std::string& text = code.text();
-  if (text.find_first_not_of(" \t\r\n\xEF\xBB\xBF") == std::string::npos) {
-    findings.push_back(input_finding(Severity::note, 0, "empty file; nothing to analyse", ""));
+  if (!shader.script) {
+    analyze_unit(source, *lang, std::nullopt, options, findings);
     return finish();
   }
-  MacroTable macros = macro_table(*lang, options);
-  std::optional<UnrealTarget> unreal;
-  if (*lang == Lang::hlsl && is_unreal_source(code.path(), text))
-    unreal = options.unreal ? UnrealTarget{*options.unreal, false} : UnrealTarget{infer_unreal_era(text), true};
-  const WorldData& data = world_data(*lang, options.world_sources);
-  bool names = names_as_evidence(code, *lang);
-  std::optional<UnrealEra> written_era;
-  if (unreal) written_era = infer_unreal_era(text);
-  std::vector<Suppression> sups;
-  std::optional<VariantMerge> merge;
-  int errors = 0, too_deep = 0;
-  std::optional<uint32_t> first_error, first_too_deep;
-  std::optional<SyntaxTree> first;  // variant 0, kept for the suppressions' own fixes
-  for (int variant = 0, variants = 1; variant < variants; ++variant) {
-    SyntaxTree tree = parse(code, *lang, {&macros, variant});
-    variants = tree.variants;
-    if (tree.error_count > 0) {
-      errors += tree.error_count;
-      if (!first_error) first_error = tree.first_error;
-    }
-    WorldModel world(tree, data, {options.includes, names, !unreal, written_era});
-    std::vector<Finding> found;
-    for (const auto& [rule, check] : checks()) {
-      if (rule->applies_to(*lang) && options.enabled(rule->id)) check->run(CheckContext{tree, world, *rule, found, unreal});
-    }
-    drop_what_errors_touch(tree, found);
-    if (!options.lint_library) drop_library_findings(library_definitions(tree, data), data, found);
-    if (!world.too_deep().empty()) {
-      too_deep += static_cast<int>(world.too_deep().size());
-      if (!first_too_deep) first_too_deep = tree.at(world.too_deep().front()).begin;
-    }
-    if (variant == 0) {
-      sups = find_suppressions(tree);
-      merge.emplace(tree.resolved_conditionals);
-    }
-    suppress(sups, code, found);
-    merge->add(std::move(found));
-    if (variant == 0) first.emplace(std::move(tree));
+  // A script's literals are assembled into programs by the script (shader modules): the functions
+  // one defines are known to the others, as an include's are.
+  std::vector<FileSummary> summaries;
+  for (const Source& view : shader.views) {
+    MacroTable macros = macro_table(*lang, options);
+    SyntaxTree tree = parse(view, *lang, {&macros, 0});
+    summaries.push_back(WorldModel(tree, world_data(*lang, options.world_sources), {options.includes}).summary());
   }
-  std::vector<Finding> found = merge->take();
-  if (unreal) {
-    drop_older_engine_arms(text, *unreal, data, found);
-    fit_fixes_to_engine(found, code, *unreal, data.unreal_api);
+  for (size_t i = 0; i < shader.views.size(); ++i) {
+    FileSummary known = options.includes ? *options.includes : FileSummary{};
+    for (size_t j = 0; j < summaries.size(); ++j)
+      if (j != i) known.merge(summaries[j]);
+    AnalyzeOptions with_siblings = options;
+    with_siblings.includes = &known;
+    analyze_unit(shader.views[i], *lang, shader.literals[i], with_siblings, findings);
   }
-  if (view) keep_fixes_inside(literals, found);
-  findings.insert(findings.end(), std::make_move_iterator(found.begin()), std::make_move_iterator(found.end()));
-  if (first->unterminated_comment) {
-    findings.push_back(input_finding(Severity::error, *first->unterminated_comment,
-                                     "unterminated block comment: everything after it is a comment",
-                                     "close the comment with */ (no fixes are offered in this file until then)"));
-    for (Finding& f : findings) f.fixes.clear();
-  } else if (errors > 0) {
-    findings.push_back(input_finding(Severity::note, *first_error,
-                                     fmt::format("{} syntax error(s) the parser could not place; findings next to them may be missed",
-                                                 errors),
-                                     "run `lwcport parse --verbose` on this file to see where; a macro used as syntax can cause "
-                                     "this (declare it in .lwcport.json \"macros\"); no fixes are offered in the declarations "
-                                     "that hold an error"));
-  }
-  if (too_deep > 0) {
-    findings.push_back(input_finding(Severity::note, *first_too_deep,
-                                     fmt::format("expression nested too deeply to analyse ({} place(s)); it was skipped", too_deep),
-                                     "split the expression"));
-  }
-  report_unused(sups, *first, options, findings);
   return finish();
 }
 

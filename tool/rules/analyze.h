@@ -46,10 +46,19 @@ std::optional<Lang> language_for(const Source& source, const AnalyzeOptions& opt
 // no literals in a script means no shader code.
 struct ShaderCode {
   std::optional<Lang> lang;
-  std::optional<Source> view;  // a script's literals, at the script's offsets
+  bool script = false;
+  // A script's literals, each its own shader, and each read at the script's offsets (the rest of
+  // the script blank).
   std::vector<Span> literals;
-  const Source& of(const Source& file) const { return view ? *view : file; }
-  bool empty(const Source& file) const { return !lang || (file.text().size() > 0 && view && literals.empty()); }
+  std::vector<Source> views;
+  // What to analyse: the file itself, or a script's literals one by one.
+  std::vector<const Source*> units(const Source& file) const {
+    if (!script) return {&file};
+    std::vector<const Source*> out;
+    for (const Source& v : views) out.push_back(&v);
+    return out;
+  }
+  bool empty(const Source& file) const { return !lang || (file.text().size() > 0 && script && literals.empty()); }
 };
 ShaderCode shader_code(const Source& source, const AnalyzeOptions& options);
 // False for a script (JavaScript, TypeScript) that holds no GLSL template literal: not linted.

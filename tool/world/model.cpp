@@ -451,6 +451,10 @@ class Analyzer {
       int var = add_global(id, n, type, block, uniform, has_word(words, "precise"));
       if (t_.is(c, "init_declarator")) m_.variables_[var].init = t_.child_by_field(c, "value");
       m_.variables_[var].private_global = !uniform && block < 0 && private_storage(words);
+      // A GLSL stage input that another shader of the program writes (a sibling literal of a
+      // script): it holds what that stage's output holds.
+      if (inc_ && t_.lang == Lang::glsl && (has_word(words, "in") || has_word(words, "varying")) && !has_word(words, "out"))
+        if (auto it = inc_->globals.find(m_.variables_[var].name); it != inc_->globals.end()) hold(var, it->second, -1);
     }
   }
 
@@ -1179,6 +1183,8 @@ bool WorldModel::only_harmless_uses(int var, int depth) const {
       return false;
     }
     if (matrix) {
+      // A direction it transforms (w = 0): the translation never acts.
+      if (int other = transformed_operand(n); other >= 0 && is_direction_vector(other)) continue;
       // A basis vector (row or column 0..2), or the 3x3 rotation part.
       if (tree_.is(p, "subscript_expression") && tree_.child_by_field(p, "argument") == n) {
         int index = tree_.subscript_index(p);
@@ -1262,7 +1268,7 @@ bool WorldModel::used_where_precision_matters(int var, int depth) const {
       std::string_view op = tree_.text(tree_.child_by_field(p, "operator"));
       int other = tree_.child_by_field(p, tree_.child_by_field(p, "left") == n ? "right" : "left");
       if (!matrix && (op == "-" || op == "+") && !tree_.is(other, "number_literal")) return true;  // a difference with a position
-      if (matrix && op == "*") return true;  // it transforms something (GLSL)
+      if (matrix && op == "*" && !is_direction_vector(other)) return true;  // it transforms a point (GLSL)
       continue;
     }
     if (type == "subscript_expression" && matrix) {
@@ -1273,7 +1279,12 @@ bool WorldModel::used_where_precision_matters(int var, int depth) const {
     if (type == "argument_list") {
       int call = tree_.at(p).parent;
       std::string_view callee = tree_.text(tree_.child_by_field(call, "function"));
-      if (callee == "distance" || callee == "mul") return true;
+      if (callee == "distance") return true;
+      if (callee == "mul") {
+        int other = transformed_operand(n);
+        if (!(matrix && other >= 0 && is_direction_vector(other))) return true;
+        continue;
+      }
       if (callee == "normalize" || callee == "mat3" || callee == "float3x3") continue;
       // Handed to the large-world library (DFFastToTranslatedWorld(CameraPos, ..)): used as a position.
       if (data_.unreal_api.looks_like_api(callee)) return true;
@@ -1285,6 +1296,29 @@ bool WorldModel::used_where_precision_matters(int var, int depth) const {
     }
   }
   return false;
+}
+
+bool WorldModel::is_direction_vector(int node) const {
+  while (node >= 0 && tree_.is(node, "parenthesized_expression")) node = tree_.named_child(node);
+  if (node < 0 || !tree_.is(node, "call_expression")) return false;
+  std::string_view fn = tree_.text(tree_.child_by_field(node, "function"));
+  if (fn != "vec4" && fn != "float4" && fn != "half4" && fn != "dvec4") return false;
+  std::vector<int> args = tree_.named_children(tree_.child_by_field(node, "arguments"));
+  if (args.size() < 2 || !tree_.is(args.back(), "number_literal")) return false;
+  std::string w(tree_.text(args.back()));
+  while (!w.empty() && (w.back() == 'f' || w.back() == 'F' || w.back() == 'h')) w.pop_back();
+  return w.find_first_not_of("0.") == std::string::npos && w.find('0') != std::string::npos;
+}
+
+int WorldModel::transformed_operand(int n) const {
+  int p = tree_.at(n).parent;
+  if (p >= 0 && tree_.is(p, "binary_expression") && tree_.text(tree_.child_by_field(p, "operator")) == "*")
+    return tree_.child_by_field(p, tree_.child_by_field(p, "left") == n ? "right" : "left");
+  if (p >= 0 && tree_.is(p, "argument_list") && tree_.text(tree_.child_by_field(tree_.at(p).parent, "function")) == "mul") {
+    std::vector<int> args = tree_.named_children(p);
+    if (args.size() == 2) return args[0] == n ? args[1] : args[0];
+  }
+  return -1;
 }
 
 bool WorldModel::combined_with_translated(int var) const {
@@ -1353,11 +1387,21 @@ int WorldModel::variable_at(int identifier) const {
 }
 
 std::vector<int> WorldModel::uses(int variable) const {
-  std::vector<int> out;
-  for (auto [node, var] : refs_)
-    if (var == variable) out.push_back(node);
-  std::sort(out.begin(), out.end());
-  return out;
+  if (uses_.empty() && !refs_.empty()) {  // indexed once: the rules ask for many variables
+    uses_.resize(variables_.size());
+    for (auto [node, var] : refs_) uses_[var].push_back(node);
+    for (auto& list : uses_) std::sort(list.begin(), list.end());
+  }
+  return variable >= 0 && variable < static_cast<int>(uses_.size()) ? uses_[variable] : std::vector<int>{};
+}
+
+void FileSummary::merge(const FileSummary& from) {
+  globals.insert(from.globals.begin(), from.globals.end());
+  function_returns.insert(from.function_returns.begin(), from.function_returns.end());
+  function_return_types.insert(from.function_return_types.begin(), from.function_return_types.end());
+  macros.insert(from.macros.begin(), from.macros.end());
+  field_types.insert(from.field_types.begin(), from.field_types.end());
+  parameter_uses.insert(from.parameter_uses.begin(), from.parameter_uses.end());
 }
 
 FileSummary WorldModel::summary() const {

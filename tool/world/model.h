@@ -137,6 +137,9 @@ struct FileSummary {
   std::map<std::string, std::string> field_types;  // "Struct.Field" -> declared type
   // "name/arity" -> its parameters' uses (over every overload of that arity).
   std::map<std::string, std::vector<ParameterUse>> parameter_uses;
+
+  // Adds what `from` knows; what this summary already knows wins.
+  void merge(const FileSummary& from);
 };
 
 // What the model knows of a file besides its text.
@@ -192,6 +195,7 @@ class WorldModel {
   const WorldData& data_;
   std::vector<Variable> variables_;
   std::unordered_map<int, int> refs_;  // identifier node -> variable
+  mutable std::vector<std::vector<int>> uses_;  // variable -> its identifier nodes, built on first use
   std::unordered_map<int, Kind> kinds_;
   std::vector<AbsoluteHolder> holders_;
   std::vector<int> too_deep_;
@@ -205,6 +209,10 @@ class WorldModel {
   const FileSummary* includes_ = nullptr;  // valid while the model is: the caller's summary
 
   bool parameter_only_normalised(int call, int argument, int depth) const;
+  // `vec4(v, 0.0)` / `float4(v, 0)`: a direction, which a matrix only rotates.
+  bool is_direction_vector(int node) const;
+  // The other operand a matrix meets in `M * x`, `x * M` or `mul(x, M)`, or -1.
+  int transformed_operand(int matrix_use) const;
   std::vector<int> parameters_receiving(int call, int argument) const;
   // How an included function uses the parameter a call passes `argument` to, if known.
   std::optional<ParameterUse> included_parameter_use(int call, int argument) const;
