@@ -1,5 +1,8 @@
 #include "cli/includes.h"
 
+#include <algorithm>
+#include <set>
+
 #include "cli/files.h"
 #include "rules/analyze.h"
 
@@ -12,8 +15,8 @@ constexpr int kMaxIncludeDepth = 16;
 
 }  // namespace
 
-std::optional<fs::path> IncludeSummaries::resolve(const std::string& include, const fs::path& from,
-                                                  const ProjectConfig& config) const {
+namespace {
+std::optional<fs::path> find_include(const std::string& include, const fs::path& from, const ProjectConfig& config) {
   std::error_code ec;
   for (const auto& [prefix, folder] : config.virtual_roots) {
     if (include.rfind(prefix, 0) == 0) {
@@ -45,18 +48,44 @@ std::optional<fs::path> IncludeSummaries::resolve(const std::string& include, co
   }
   return std::nullopt;
 }
+}  // namespace
 
-std::shared_ptr<const FileSummary> IncludeSummaries::own_summary(const fs::path& file, const ProjectConfig& config,
-                                                                std::string& text) {
+std::optional<fs::path> IncludeSummaries::resolve(const std::string& include, const fs::path& from,
+                                                  const ProjectConfig& config) {
+  // Resolution depends on the including folder only: cached per folder.
+  auto key = std::make_tuple(&config, from.parent_path(), include);
+  std::lock_guard lock(mutex_);
+  auto it = resolved_.find(key);
+  if (it == resolved_.end()) it = resolved_.emplace(key, find_include(include, from, config)).first;
+  return it->second;
+}
+
+fs::path IncludeSummaries::canonical(const fs::path& p) {
+  std::lock_guard lock(mutex_);
+  auto it = canonical_.find(p);
+  if (it != canonical_.end()) return it->second;
   std::error_code ec;
-  fs::path key = fs::weakly_canonical(file, ec);
+  fs::path c = fs::weakly_canonical(p, ec);
+  return canonical_.emplace(p, ec ? p : c).first->second;
+}
+
+std::vector<fs::path> IncludeSummaries::resolve_all(const std::vector<std::string>& includes, const fs::path& from,
+                                                    const ProjectConfig& config) {
+  std::vector<fs::path> out;
+  for (const std::string& inc : includes)
+    if (auto file = resolve(inc, from, config)) out.push_back(canonical(*file));
+  return out;
+}
+
+const IncludeSummaries::Entry& IncludeSummaries::entry(const fs::path& file, const ProjectConfig& config) {
   {
     std::lock_guard lock(mutex_);
-    if (auto it = cache_.find(key); it != cache_.end()) {
-      text = it->second.second;
-      return it->second.first;
-    }
+    if (auto it = entries_.find(file); it != entries_.end()) return *it->second;
   }
+  // Parsed outside the lock, so workers parse different includes at once; a file two workers
+  // parse together is kept once.
+  auto made = std::make_unique<Entry>();
+  made->file = file;
   auto summary = std::make_shared<FileSummary>();
   ReadResult r = read_file(file, config.max_file_bytes);
   std::optional<Lang> lang = lang_from_path(file.string());
@@ -68,30 +97,49 @@ std::shared_ptr<const FileSummary> IncludeSummaries::own_summary(const fs::path&
     WorldModel model(tree, world_data(tree.lang, config.world_sources), {nullptr, names_as_evidence(src, tree.lang), !era, era});
     *summary = model.summary();
     learn_macros(r.text, known_macros(tree.lang), summary->macros);
-    text = r.text;
+    made->includes = include_paths(r.text);
   }
+  made->own = std::move(summary);
   std::lock_guard lock(mutex_);
-  cache_.emplace(key, std::make_pair(summary, text));
-  return summary;
+  return *entries_.emplace(file, std::move(made)).first->second;
 }
 
-void IncludeSummaries::merge_includes(const fs::path& path, std::string_view text, const ProjectConfig& config,
-                                      FileSummary& into, std::set<fs::path>& seen, int depth) {
-  if (depth > kMaxIncludeDepth) return;
-  for (const std::string& inc : include_paths(text)) {
-    auto file = resolve(inc, path, config);
-    if (!file || !seen.insert(fs::weakly_canonical(*file)).second) continue;
-    std::string included_text;
-    auto summary = own_summary(*file, config, included_text);
-    into.merge(*summary);
-    merge_includes(*file, included_text, config, into, seen, depth + 1);
+std::vector<const IncludeSummaries::Entry*> IncludeSummaries::closure(const Entry& e, const ProjectConfig& config,
+                                                                      std::set<const Entry*>& active) {
+  {
+    std::lock_guard lock(mutex_);
+    if (auto it = closures_.find(&e); it != closures_.end()) return it->second;
   }
+  if (active.size() > kMaxIncludeDepth || !active.insert(&e).second) return {};  // an include cycle stops here
+  std::vector<const Entry*> out;
+  std::set<const Entry*> seen{&e};
+  for (const fs::path& file : resolve_all(e.includes, e.file, config)) {
+    const Entry& inc = entry(file, config);
+    if (seen.insert(&inc).second) out.push_back(&inc);
+    for (const Entry* deeper : closure(inc, config, active))
+      if (seen.insert(deeper).second) out.push_back(deeper);
+  }
+  active.erase(&e);
+  // Inside a cycle the list is cut where the cycle closes: kept only when complete.
+  if (active.empty() || std::none_of(out.begin(), out.end(), [&](const Entry* x) { return active.count(x); })) {
+    std::lock_guard lock(mutex_);
+    closures_.emplace(&e, out);
+  }
+  return out;
 }
 
 FileSummary IncludeSummaries::for_file(const fs::path& path, std::string_view text, const ProjectConfig& config) {
   FileSummary out;
-  std::set<fs::path> seen{fs::weakly_canonical(path)};
-  merge_includes(path, text, config, out, seen, 0);
+  fs::path self = canonical(path);
+  std::set<fs::path> seen{self};
+  for (const fs::path& file : resolve_all(include_paths(text), path, config)) {
+    if (!seen.insert(file).second) continue;
+    const Entry& inc = entry(file, config);
+    out.merge(*inc.own);
+    std::set<const Entry*> active;
+    for (const Entry* deeper : closure(inc, config, active))
+      if (seen.insert(deeper->file).second) out.merge(*deeper->own);
+  }
   return out;
 }
 

@@ -3,7 +3,11 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
+#include <string>
+#include <tuple>
+#include <vector>
 
 #include "cli/config.h"
 #include "world/model.h"
@@ -12,23 +16,38 @@ namespace lwc {
 
 // Resolves #include paths (next to the including file, then include dirs, then virtual roots
 // such as /Engine/) and learns what the included files declare. Missing includes are skipped:
-// lwcport never needs them to lint, they only add context. Thread-safe; each file is read once.
+// lwcport never needs them to lint, they only add context. Thread-safe; each file is read and
+// parsed once per run, each include resolved once per folder, and each file's transitive
+// include list worked out once.
 class IncludeSummaries {
  public:
   // Where `#include "include"` in `from` leads: virtual roots, the including folder, include dirs.
   std::optional<std::filesystem::path> resolve(const std::string& include, const std::filesystem::path& from,
-                                               const ProjectConfig& config) const;
-  // What everything `text` (the file at `path`) includes declares, transitively.
+                                               const ProjectConfig& config);
+  // What everything `text` (the file at `path`) includes declares, transitively: the first
+  // declaration in include order wins.
   FileSummary for_file(const std::filesystem::path& path, std::string_view text, const ProjectConfig& config);
 
  private:
-  void merge_includes(const std::filesystem::path& path, std::string_view text, const ProjectConfig& config,
-                      FileSummary& into, std::set<std::filesystem::path>& seen, int depth);
-  std::shared_ptr<const FileSummary> own_summary(const std::filesystem::path& file, const ProjectConfig& config,
-                                                 std::string& text);
+  struct Entry {
+    std::filesystem::path file;  // canonical
+    std::shared_ptr<const FileSummary> own;
+    std::vector<std::string> includes;  // as written
+  };
+  const Entry& entry(const std::filesystem::path& canonical, const ProjectConfig& config);
+  // Everything `e` includes, transitively, in include order (`active`: the includes being
+  // expanded above it, to stop at a cycle).
+  std::vector<const Entry*> closure(const Entry& e, const ProjectConfig& config, std::set<const Entry*>& active);
+  // The canonical files `includes` (written in the file at `from`) lead to, in order.
+  std::vector<std::filesystem::path> resolve_all(const std::vector<std::string>& includes, const std::filesystem::path& from,
+                                                 const ProjectConfig& config);
+  std::filesystem::path canonical(const std::filesystem::path& p);
 
   std::mutex mutex_;
-  std::map<std::filesystem::path, std::pair<std::shared_ptr<const FileSummary>, std::string>> cache_;
+  std::map<std::filesystem::path, std::unique_ptr<Entry>> entries_;
+  std::map<const Entry*, std::vector<const Entry*>> closures_;
+  std::map<std::tuple<const ProjectConfig*, std::filesystem::path, std::string>, std::optional<std::filesystem::path>> resolved_;
+  std::map<std::filesystem::path, std::filesystem::path> canonical_;
 };
 
 }  // namespace lwc

@@ -30,7 +30,7 @@ std::string_view SyntaxTree::text(int id) const { return source->slice(span(id))
 
 int SyntaxTree::child_by_field(int id, std::string_view field) const {
   for (int c = nodes[id].first_child; c >= 0; c = nodes[c].next_sibling)
-    if (nodes[c].field && field == nodes[c].field) return c;
+    if (nodes[c].field && names_equal(field, nodes[c].field)) return c;
   return -1;
 }
 
@@ -49,7 +49,7 @@ std::vector<int> SyntaxTree::named_children(int id) const {
 
 int SyntaxTree::ancestor(int id, std::string_view type) const {
   for (; id >= 0; id = nodes[id].parent)
-    if (type == nodes[id].type) return id;
+    if (names_equal(type, nodes[id].type)) return id;
   return -1;
 }
 

@@ -18,6 +18,13 @@ std::optional<Lang> lang_from_path(std::string_view path);
 
 // One tree-sitter node, flattened: the tree is a pre-order array so analyses walk it without
 // recursion (10,000 nested parentheses are fine) and the tree-sitter tree is freed after parsing.
+// `name` equals the grammar's C string `s`, without measuring `s` first (the hottest comparison).
+inline bool names_equal(std::string_view name, const char* s) {
+  for (char c : name)
+    if (*s++ != c) return false;
+  return *s == '\0';
+}
+
 struct Node {
   const char* type = "";      // tree-sitter node type (a static string of the grammar)
   const char* field = nullptr;  // field name in the parent, if any
@@ -40,7 +47,7 @@ class SyntaxTree {
   std::vector<Span> resolved_conditionals;  // groups resolved per variant: no rewrite touches them
 
   const Node& at(int id) const { return nodes[id]; }
-  bool is(int id, std::string_view type) const { return id >= 0 && type == nodes[id].type; }
+  bool is(int id, std::string_view type) const { return id >= 0 && names_equal(type, nodes[id].type); }
   std::string_view text(int id) const;
   Span span(int id) const { return {nodes[id].begin, nodes[id].end}; }
   int child_by_field(int id, std::string_view field) const;

@@ -1347,16 +1347,29 @@ std::vector<int> WorldModel::parameters_receiving(int call, int argument) const 
   size_t index = 0;
   while (index < list.size() && !(tree_.at(list[index]).begin <= tree_.at(argument).begin && tree_.at(argument).end <= tree_.at(list[index]).end)) ++index;
   if (index == list.size()) return out;
-  for (int var = 0; var < static_cast<int>(variables_.size()); ++var) {
-    const Variable& p = variables_[var];
-    if (p.role != Variable::Role::parameter || p.function < 0) continue;
-    int name = tree_.declarator_name(tree_.child_by_field(p.function, "declarator"));
-    if (name < 0 || tree_.text(name) != tree_.text(fn)) continue;
-    int d = tree_.child_by_field(p.function, "declarator");
-    while (d >= 0 && !tree_.is(d, "function_declarator")) d = tree_.child_by_field(d, "declarator");
-    std::vector<int> params = d >= 0 ? tree_.named_children(tree_.child_by_field(d, "parameters")) : std::vector<int>{};
-    if (params.size() == list.size() && params[index] == p.declaration) out.push_back(var);
+  if (parameters_by_function_.empty()) {  // indexed once: name/arity -> each overload's parameters
+    parameters_by_function_.emplace("", std::vector<std::vector<int>>{});
+    std::map<int, std::vector<int>> by_definition;
+    for (int var = 0; var < static_cast<int>(variables_.size()); ++var)
+      if (variables_[var].role == Variable::Role::parameter && variables_[var].function >= 0) by_definition[variables_[var].function].push_back(var);
+    for (const auto& [definition, params] : by_definition) {
+      int name = tree_.declarator_name(tree_.child_by_field(definition, "declarator"));
+      int d = tree_.child_by_field(definition, "declarator");
+      while (d >= 0 && !tree_.is(d, "function_declarator")) d = tree_.child_by_field(d, "declarator");
+      if (name < 0 || d < 0) continue;
+      // Declared parameters in order (an unnamed one has no variable): match by declaration.
+      std::vector<int> declared = tree_.named_children(tree_.child_by_field(d, "parameters"));
+      std::vector<int> ordered(declared.size(), -1);
+      for (int var : params)
+        for (size_t k = 0; k < declared.size(); ++k)
+          if (declared[k] == variables_[var].declaration) ordered[k] = var;
+      parameters_by_function_[std::string(tree_.text(name)) + "/" + std::to_string(declared.size())].push_back(std::move(ordered));
+    }
   }
+  auto it = parameters_by_function_.find(std::string(tree_.text(fn)) + "/" + std::to_string(list.size()));
+  if (it == parameters_by_function_.end()) return out;
+  for (const std::vector<int>& overload : it->second)
+    if (overload[index] >= 0) out.push_back(overload[index]);
   return out;
 }
 
@@ -1425,6 +1438,10 @@ FileSummary WorldModel::summary() const {
     bool first = seen.insert(key).second;
     entry.resize(params.size());
     for (size_t k = 0; k < params.size(); ++k) {
+      // Only a float vector or matrix can carry a world position or transform.
+      const std::string& type = variables_[params[k]].type;
+      bool shaped = !type.empty() && (type.back() == '3' || type.back() == '4' || type.rfind("mat", 0) == 0);
+      if (!shaped || !data_.is_float_type(type)) continue;
       bool used = !uses(params[k]).empty();
       bool matters = used && used_where_precision_matters(params[k]);
       bool harmless = used && only_harmless_uses(params[k]);

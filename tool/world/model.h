@@ -207,6 +207,8 @@ class WorldModel {
   std::set<int> cleared_;  // matrices whose translation the code clears (M[3] = ...)
 
   const FileSummary* includes_ = nullptr;  // valid while the model is: the caller's summary
+  // "name/arity" -> each overload's parameter variables in order (-1 where unnamed), built on first use.
+  mutable std::map<std::string, std::vector<std::vector<int>>> parameters_by_function_;
 
   bool parameter_only_normalised(int call, int argument, int depth) const;
   // `vec4(v, 0.0)` / `float4(v, 0)`: a direction, which a matrix only rotates.

@@ -323,10 +323,29 @@ class MissingPrecise : public Check {
 
   // An error term: zero as written only once its temporaries are expanded. Or a high/low
   // difference of two pairs.
+  // Cheap necessary conditions for an error term: a subtraction (`-` or a precise subtract
+  // helper), and a local whose value can be substituted (else expanding changes nothing and the
+  // term cannot cancel).
+  bool may_cancel(const CheckContext& ctx, const Definitions& d, int id) const {
+    const SyntaxTree& t = ctx.tree;
+    bool minus = false, substitutable = false;
+    uint32_t end = t.at(id).end;
+    for (int n = id; n < static_cast<int>(t.nodes.size()) && t.at(n).begin < end && !(minus && substitutable); ++n) {
+      if (t.at(n).end > end) break;  // pre-order: the subtree is the run of nodes inside `id`
+      if (!t.at(n).named && t.text(n) == "-") minus = true;
+      if (t.is(n, "call_expression") && precise_ops_.value(std::string(call_name(t, n)), "") == "subtract") minus = true;
+      if (!substitutable && t.is(n, "identifier")) {
+        int var = ctx.world.variable_at(n);
+        substitutable = var >= 0 && d.assigned.count(var);
+      }
+    }
+    return minus && substitutable;
+  }
+
   Transformation recognise(const CheckContext& ctx, const Definitions& d, int id) const {
     const SyntaxTree& t = ctx.tree;
     Evaluation as_written;
-    auto written = evaluate(ctx, d, id, false, as_written);
+    auto written = may_cancel(ctx, d, id) ? evaluate(ctx, d, id, false, as_written) : std::nullopt;
     if (written && !is_zero(*written)) {
       Evaluation e;
       auto expanded = evaluate(ctx, d, id, true, e);
