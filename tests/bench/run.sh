@@ -1,10 +1,18 @@
 #!/usr/bin/env bash
-# Lint throughput benchmark. Generates >= 5,000 files / 50 MB from the corpus, then times, in one
-# run on the same files: lint --jobs 1, lint --jobs 2, parse-only --jobs 1 (the baseline), and
-# ripgrep over the rules' trigger identifiers. Prints the figures as a Markdown table row set;
-# append them to RESULTS.md with the machine and date.
+# Lint throughput benchmark. Generates >= 5,000 files / 50 MB from the corpus (or takes a real
+# tree with --tree DIR), then times, in one run on the same files and interleaved (each command
+# once per round, 5 rounds, medians): lint --jobs 1, lint --jobs 2, parse-only --jobs 1 (the
+# baseline), and ripgrep over the rules' trigger identifiers. Ratios are of CPU time (user +
+# system), the 2-job speed-up of wall time. Prints the figures as a Markdown table; append them
+# to RESULTS.md with the machine and date.
 #   usage: tests/bench/run.sh [FILES] [TARGET_MB]
+#          tests/bench/run.sh --tree DIR
 set -euo pipefail
+tree=""
+if [ "${1:-}" = "--tree" ]; then
+  tree=$(cd "$2" && pwd)
+  shift 2
+fi
 cd "$(dirname "$0")/../.."
 files=${1:-5000}
 target_mb=${2:-50}
@@ -16,6 +24,7 @@ command -v rg > /dev/null || { echo "ripgrep is missing: apt-get install ripgrep
 
 # Each generated file joins corpus files of one language, with its functions renamed so no two
 # files are alike, until it reaches its share of the target size.
+if [ -z "$tree" ]; then
 rm -rf "$work" && mkdir -p "$work/hlsl" "$work/glsl"
 mapfile -t hlsl < <(find corpus -name '*.usf' -o -name '*.ush' -o -name '*.hlsl' | grep -v /engine/ | sort)
 mapfile -t glsl < <(find corpus -name '*.vert' -o -name '*.frag' -o -name '*.comp' | sort)
@@ -44,43 +53,47 @@ awk -v files="$files" -v per="$per_file" -v out="$work" -v nh="${#hlsl[@]}" '
       close(path)
     }
   }' "${hlsl[@]}" "${glsl[@]}"
-bytes=$(cat "$work"/*/* | wc -c)
-count=$(find "$work" -type f | wc -l)
+fi
+[ -n "$tree" ] && work=$tree
+read -r count bytes < <("$bin" parse "$work" | tail -1 | sed -E 's/^Parsed ([0-9]+) file\(s\), ([0-9]+) bytes.*/\1 \2/')
 
-measure() {  # label, command...: prints "label seconds maxrss_kb"
-  local label=$1; shift
-  "$@" > /dev/null 2>&1 || true  # warm the page cache
-  local best=""
-  local rss=0
-  for run in 1 2 3; do
-    local t
-    t=$( { /usr/bin/time -f "%e %M" "$@" > /dev/null; } 2>&1 >/dev/null | tail -1)
-    local s=${t% *} m=${t#* }
-    if [ -z "$best" ] || awk -v a="$s" -v b="$best" 'BEGIN { exit !(a < b) }'; then best=$s; fi
-    [ "$m" -gt "$rss" ] && rss=$m
-  done
-  echo "$label $best $rss"
-}
-
+# Each command once per round, in turn, so drift on a shared machine hits all alike; per command
+# the median CPU (user + system) and wall time, and the largest peak memory.
 pattern='View\.|PrimaryView|LWCHackToFloat|DFHackToFloat|_Hack\b|FLWC|\bLWC[A-Z]|DFFastTwoSum|DFDemote|LocalToWorld|WorldCameraOrigin|PreViewTranslation|modelMatrix|cameraPosition|precise|4097'
-results=$(
-  measure parse1 "$bin" parse "$work" --jobs 1
-  measure lint1 "$bin" lint "$work" --jobs 1 --format json --fail-on none
-  measure lint2 "$bin" lint "$work" --jobs 2 --format json --fail-on none
-  measure rg1 rg -j1 -c -e "$pattern" "$work"
+commands=(
+  "parse1|$bin parse $work --jobs 1"
+  "lint1|$bin lint $work --jobs 1 --format json --fail-on none"
+  "lint2|$bin lint $work --jobs 2 --format json --fail-on none"
+  "rg1|rg -j1 -c -e $pattern $work"
 )
-echo "$results" > "$work/times.txt"
+samples=$(mktemp)
+trap 'rm -f "$samples" "$samples.one"' EXIT
+for round in 0 1 2 3 4 5; do
+  for entry in "${commands[@]}"; do
+    label=${entry%%|*}
+    read -ra cmd <<< "${entry#*|}"
+    /usr/bin/time -o "$samples.one" -f "%e %U %S %M" "${cmd[@]}" > /dev/null 2>&1 || true
+    [ "$round" -gt 0 ] && echo "$label $(tail -1 "$samples.one")" >> "$samples"  # round 0 warms the page cache
+  done
+done
 awk -v bytes="$bytes" -v count="$count" '
-  { t[$1] = $2; m[$1] = $3 }
+  function median(label, what,   n, i, j, v, tmp) {
+    n = 0
+    for (i = 1; i <= rows; i++) if (lab[i] == label) v[++n] = val[i, what]
+    for (i = 1; i <= n; i++) for (j = i + 1; j <= n; j++) if (v[j] < v[i]) { tmp = v[i]; v[i] = v[j]; v[j] = tmp }
+    return n % 2 ? v[(n + 1) / 2] : (v[n / 2] + v[n / 2 + 1]) / 2
+  }
+  { rows++; lab[rows] = $1; val[rows, "wall"] = $2; val[rows, "cpu"] = $3 + $4; if ($5 > m[$1]) m[$1] = $5 }
   END {
     mb = bytes / 1048576
+    p = median("parse1", "cpu"); l1 = median("lint1", "cpu"); r = median("rg1", "cpu")
     printf "| files | %d |\n| bytes | %d (%.1f MB) |\n", count, bytes, mb
-    printf "| parse-only, 1 job | %.2f s (%.1f MB/s) |\n", t["parse1"], mb / t["parse1"]
-    printf "| lint, 1 job | %.2f s (%.1f MB/s per core) |\n", t["lint1"], mb / t["lint1"]
-    printf "| lint, 2 jobs | %.2f s |\n", t["lint2"]
-    printf "| ripgrep, 1 thread, trigger identifiers | %.2f s |\n", t["rg1"]
-    printf "| lint / parse-only (target <= 1.5) | %.2f |\n", t["lint1"] / t["parse1"]
-    printf "| speed-up on 2 jobs (target >= 1.7) | %.2f |\n", t["lint1"] / t["lint2"]
-    printf "| lint / ripgrep | %.1f |\n", t["lint1"] / t["rg1"]
+    printf "| parse-only, 1 job, CPU | %.2f s (%.1f MB/s) |\n", p, mb / p
+    printf "| lint, 1 job, CPU | %.2f s (%.1f MB/s per core) |\n", l1, mb / l1
+    printf "| lint, 2 jobs, wall | %.2f s |\n", median("lint2", "wall")
+    printf "| ripgrep, 1 thread, trigger identifiers, CPU | %.2f s |\n", r
+    printf "| lint / parse-only, CPU (target <= 1.5) | %.2f |\n", l1 / p
+    printf "| speed-up on 2 jobs, wall (target >= 1.7) | %.2f |\n", median("lint1", "wall") / median("lint2", "wall")
+    printf "| lint / ripgrep, CPU | %.1f |\n", l1 / (r > 0 ? r : 0.01)
     printf "| peak memory, lint 2 jobs (target < 200 MB) | %.1f MB |\n", m["lint2"] / 1024
-  }' "$work/times.txt"
+  }' "$samples"

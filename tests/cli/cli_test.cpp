@@ -126,6 +126,27 @@ TEST(Cli, IncludesTeachDeclarationsAndMissingOnesAreFine) {
   EXPECT_EQ(doc["findings"][1]["start"]["column"], 43);
 }
 
+// A file that is both a lint target and an include is parsed once, and its summary is the same
+// whichever way it was made: linting the includer alone or with its includes gives the same.
+TEST(Cli, AnIncludeThatIsAlsoATargetTeachesWhatItTeachesAlone) {
+  std::string dir = test::scratch("include-targets");
+  test::write(dir + "/Defs.ush", "#define SCENE_INLINE\n");
+  test::write(dir + "/Scene.ush",
+              "#include \"Defs.ush\"\nSCENE_INLINE float3 GetPivot() { return mul(float4(0, 0, 0, 1), Primitive.LocalToWorld).xyz; }\n");
+  test::write(dir + "/a.usf", "#include \"Scene.ush\"\nfloat F() { float3 P = GetPivot(); return P.x; }\n");
+  auto in_a = [](const std::string& out) {
+    std::vector<std::string> got;
+    nlohmann::json doc = nlohmann::json::parse(out);
+    for (const auto& f : doc["findings"])
+      if (f["path"] == "a.usf") got.push_back(f["rule"].get<std::string>() + " " + std::to_string(f["start"]["column"].get<int>()));
+    return got;
+  };
+  std::vector<std::string> alone = in_a(lint(dir, "a.usf --format json --fail-on none").out);
+  EXPECT_EQ(alone, (std::vector<std::string>{"lwc-float-world-position 7", "lwc-float-world-position 20"}));
+  EXPECT_EQ(in_a(lint(dir, ". --format json --fail-on none --jobs 1").out), alone);
+  EXPECT_EQ(in_a(lint(dir, ". --format json --fail-on none --jobs 2").out), alone);
+}
+
 TEST(Cli, SuppressionsOnTheLineAboveAndForTheFileAndUnusedOnes) {
   std::string dir = test::scratch("suppress");
   test::write(dir + "/a.usf",

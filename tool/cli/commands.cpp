@@ -214,11 +214,11 @@ void parallel_for(size_t count, unsigned jobs, Work work) {
   for (auto& t : threads) t.join();
 }
 
-// Runs `work(i)` for every index on `jobs` threads and hands each result to `emit` on this
-// thread, in index order, as soon as it is ready; a result is freed once emitted, so memory holds
-// only the files in flight.
+// Runs `work(i)` for every index on `jobs` threads (in `order` when given) and hands each result
+// to `emit` on this thread, in index order, as soon as it is ready; a result is freed once
+// emitted, so memory holds only the files in flight and those done ahead of their turn.
 template <typename Result, typename Work, typename Emit>
-void run_in_order(size_t count, unsigned jobs, Work work, Emit emit) {
+void run_in_order(size_t count, unsigned jobs, Work work, Emit emit, const std::vector<size_t>* order = nullptr) {
   std::vector<std::optional<Result>> slots(count);
   std::mutex mutex;
   std::condition_variable ready;
@@ -226,7 +226,8 @@ void run_in_order(size_t count, unsigned jobs, Work work, Emit emit) {
   std::vector<std::thread> workers;
   for (unsigned t = 0; t < std::min<size_t>(jobs, count); ++t) {
     workers.emplace_back([&]() {
-      for (size_t i; (i = next.fetch_add(1)) < count;) {
+      for (size_t k; (k = next.fetch_add(1)) < count;) {
+        size_t i = order ? (*order)[k] : k;
         Result r = work(i);
         std::lock_guard lock(mutex);
         slots[i] = std::move(r);
@@ -292,13 +293,60 @@ LoadedFile load(const InputFile& file, const Options& o, IncludeSummaries& inclu
   return out;
 }
 
-FileReport lint_file(const InputFile& file, const Options& o, IncludeSummaries& includes) {
+// `included`: another target includes it, so its summary is wanted.
+FileReport lint_file(const InputFile& file, const Options& o, IncludeSummaries& includes, bool included) {
   LoadedFile f = load(file, o, includes);
   if (f.problem) return std::move(*f.problem);
   FileReport report{file.display, {}};
   report.has_code = holds_shader_code(*f.source, f.options);
+  std::optional<FileSummary> own;
+  if (included) f.options.summary_for_includers = &own;
   for (const Finding& finding : analyze(*f.source, f.options)) report.findings.push_back(locate(*f.source, finding));
+  if (auto lang = language_for(*f.source, f.options); own && lang) includes.offer(file.path, *lang, *file.config, std::move(*own));
   return report;
+}
+
+// The order to lint in: each file after the files it includes that are lint targets too, so
+// their summaries come from their own parse (IncludeSummaries::offer). Reports still come out in
+// path order.
+struct LintOrder {
+  std::vector<size_t> order;
+  std::vector<bool> included;  // per file: another target includes it
+};
+LintOrder includes_first(const std::vector<InputFile>& files, IncludeSummaries& includes) {
+  std::map<fs::path, size_t> index;
+  for (size_t i = 0; i < files.size(); ++i)
+    if (files[i].error.empty()) index.emplace(includes.canonical(files[i].path), i);
+  std::vector<std::vector<size_t>> deps(files.size());
+  LintOrder out{{}, std::vector<bool>(files.size(), false)};
+  for (const auto& [path, i] : index)
+    for (const fs::path& inc : includes.direct_includes(path, *files[i].config))
+      if (auto it = index.find(inc); it != index.end()) {
+        deps[i].push_back(it->second);
+        out.included[it->second] = true;
+      }
+  std::vector<size_t>& order = out.order;
+  std::vector<char> seen(files.size(), 0);
+  for (size_t root = 0; root < files.size(); ++root) {
+    if (seen[root]) continue;
+    seen[root] = 1;
+    std::vector<std::pair<size_t, size_t>> stack{{root, 0}};  // file, next dependency
+    while (!stack.empty()) {
+      auto [file, next] = stack.back();
+      if (next < deps[file].size()) {
+        ++stack.back().second;
+        size_t dep = deps[file][next];
+        if (!seen[dep]) {
+          seen[dep] = 1;
+          stack.push_back({dep, 0});
+        }
+        continue;
+      }
+      order.push_back(file);
+      stack.pop_back();
+    }
+  }
+  return out;
 }
 
 // The report goes to standard output or --output; nullopt (after an error message) if that
@@ -368,12 +416,14 @@ int lint(const Options& o, std::ostream& out, std::ostream& err) {
   ReportWriter writer(*target.stream, ro);
   IncludeSummaries includes;
   CodeCounter counter(files);
+  LintOrder order = includes_first(files, includes);
   run_in_order<FileReport>(
-      files.size(), job_count(o), [&](size_t i) { return lint_file(files[i], o, includes); },
+      files.size(), job_count(o), [&](size_t i) { return lint_file(files[i], o, includes, order.included[i]); },
       [&](const FileReport& r) {
         counter.add(r);
         writer.file(r);
-      });
+      },
+      &order.order);
   writer.finish();
   if (!every_argument_had_code(o, counter.with_code, err)) return 2;
   return o.fail_on && writer.failed(*o.fail_on) ? 1 : 0;

@@ -77,31 +77,55 @@ std::vector<fs::path> IncludeSummaries::resolve_all(const std::vector<std::strin
   return out;
 }
 
-const IncludeSummaries::Entry& IncludeSummaries::entry(const fs::path& file, const ProjectConfig& config) {
+const IncludeSummaries::Entry& IncludeSummaries::scanned(const fs::path& file, const ProjectConfig& config) {
   {
     std::lock_guard lock(mutex_);
     if (auto it = entries_.find(file); it != entries_.end()) return *it->second;
   }
-  // Parsed outside the lock, so workers parse different includes at once; a file two workers
-  // parse together is kept once.
+  // Read outside the lock; a file two workers scan together is kept once.
   auto made = std::make_unique<Entry>();
   made->file = file;
-  auto summary = std::make_shared<FileSummary>();
   ReadResult r = read_file(file, config.max_file_bytes);
-  std::optional<Lang> lang = lang_from_path(file.string());
   if (r.error.empty() && !r.too_large && !find_binary_marker(r.text)) {
-    Source src(file.string(), r.text);
-    SyntaxTree tree = parse(src, lang.value_or(Lang::hlsl));
-    std::optional<UnrealEra> era;
-    if (tree.lang == Lang::hlsl && is_unreal_source(src.path(), r.text)) era = infer_unreal_era(r.text);
-    WorldModel model(tree, world_data(tree.lang, config.world_sources), {nullptr, names_as_evidence(src, tree.lang), !era, era});
-    *summary = model.summary();
-    learn_macros(r.text, known_macros(tree.lang), summary->macros);
+    made->lang = lang_from_path(file.string()).value_or(Lang::hlsl);
     made->includes = include_paths(r.text);
+    learn_macros(r.text, known_macros(*made->lang), made->macros);
+  } else {
+    made->own = std::make_shared<FileSummary>();
   }
-  made->own = std::move(summary);
   std::lock_guard lock(mutex_);
   return *entries_.emplace(file, std::move(made)).first->second;
+}
+
+const FileSummary& IncludeSummaries::summarised(const Entry& e, const ProjectConfig& config) {
+  {
+    std::lock_guard lock(mutex_);
+    if (e.own) return *e.own;
+  }
+  // Read with the macros it would be linted with (see offer): what its own includes define.
+  MacroTable included;
+  for (const Entry* inc : closure_of(e.file, e.includes, config)) included.insert(inc->macros.begin(), inc->macros.end());
+  MacroTable macros = macro_table(*e.lang, &included, config.macros);
+  auto summary = std::make_shared<FileSummary>();
+  ReadResult r = read_file(e.file, config.max_file_bytes);
+  if (r.error.empty() && !r.too_large) {
+    Source src(e.file.string(), r.text);
+    *summary = include_summary(src, parse(src, *e.lang, {&macros, 0}), config.world_sources, model_context(src, *e.lang, nullptr));
+  }
+  std::lock_guard lock(mutex_);
+  if (!e.own) e.own = std::move(summary);
+  return *e.own;
+}
+
+void IncludeSummaries::offer(const fs::path& path, Lang lang, const ProjectConfig& config, FileSummary summary) {
+  const Entry& e = scanned(canonical(path), config);
+  std::lock_guard lock(mutex_);
+  if (!e.own && e.lang == lang) e.own = std::make_shared<FileSummary>(std::move(summary));
+}
+
+std::vector<fs::path> IncludeSummaries::direct_includes(const fs::path& path, const ProjectConfig& config) {
+  fs::path self = canonical(path);
+  return resolve_all(scanned(self, config).includes, self, config);
 }
 
 std::vector<const IncludeSummaries::Entry*> IncludeSummaries::closure(const Entry& e, const ProjectConfig& config,
@@ -114,7 +138,7 @@ std::vector<const IncludeSummaries::Entry*> IncludeSummaries::closure(const Entr
   std::vector<const Entry*> out;
   std::set<const Entry*> seen{&e};
   for (const fs::path& file : resolve_all(e.includes, e.file, config)) {
-    const Entry& inc = entry(file, config);
+    const Entry& inc = scanned(file, config);
     if (seen.insert(&inc).second) out.push_back(&inc);
     for (const Entry* deeper : closure(inc, config, active))
       if (seen.insert(deeper).second) out.push_back(deeper);
@@ -128,18 +152,24 @@ std::vector<const IncludeSummaries::Entry*> IncludeSummaries::closure(const Entr
   return out;
 }
 
-FileSummary IncludeSummaries::for_file(const fs::path& path, std::string_view text, const ProjectConfig& config) {
-  FileSummary out;
-  fs::path self = canonical(path);
+std::vector<const IncludeSummaries::Entry*> IncludeSummaries::closure_of(const fs::path& self, const std::vector<std::string>& includes,
+                                                                         const ProjectConfig& config) {
+  std::vector<const Entry*> out;
   std::set<fs::path> seen{self};
-  for (const fs::path& file : resolve_all(include_paths(text), path, config)) {
+  for (const fs::path& file : resolve_all(includes, self, config)) {
     if (!seen.insert(file).second) continue;
-    const Entry& inc = entry(file, config);
-    out.merge(*inc.own);
+    const Entry& inc = scanned(file, config);
+    out.push_back(&inc);
     std::set<const Entry*> active;
     for (const Entry* deeper : closure(inc, config, active))
-      if (seen.insert(deeper->file).second) out.merge(*deeper->own);
+      if (seen.insert(deeper->file).second) out.push_back(deeper);
   }
+  return out;
+}
+
+FileSummary IncludeSummaries::for_file(const fs::path& path, std::string_view text, const ProjectConfig& config) {
+  FileSummary out;
+  for (const Entry* inc : closure_of(canonical(path), include_paths(text), config)) out.merge(summarised(*inc, config));
   return out;
 }
 

@@ -27,21 +27,36 @@ class IncludeSummaries {
   // What everything `text` (the file at `path`) includes declares, transitively: the first
   // declaration in include order wins.
   FileSummary for_file(const std::filesystem::path& path, std::string_view text, const ProjectConfig& config);
+  // The files `path` includes directly (canonical, in order): for scheduling includes first.
+  std::vector<std::filesystem::path> direct_includes(const std::filesystem::path& path, const ProjectConfig& config);
+  // A lint target's own parse gives its summary (include_summary), so a file that is both a
+  // target and an include is parsed once. Both ways read it with the same macros, so the
+  // summary does not depend on which came first.
+  void offer(const std::filesystem::path& path, Lang lang, const ProjectConfig& config, FileSummary summary);
+  // The path with links and dots resolved (cached: lint asks for each file many times).
+  std::filesystem::path canonical(const std::filesystem::path& p);
 
  private:
+  // A file as its includers see it: first scanned (its #include lines and #defines, no parse),
+  // then summarised on demand.
   struct Entry {
     std::filesystem::path file;  // canonical
-    std::shared_ptr<const FileSummary> own;
+    std::optional<Lang> lang;    // none: not readable as a shader
     std::vector<std::string> includes;  // as written
+    MacroTable macros;                  // what its #defines teach
+    mutable std::shared_ptr<const FileSummary> own;  // null until summarised; set once, under the mutex
   };
-  const Entry& entry(const std::filesystem::path& canonical, const ProjectConfig& config);
+  const Entry& scanned(const std::filesystem::path& canonical, const ProjectConfig& config);
+  const FileSummary& summarised(const Entry& e, const ProjectConfig& config);
   // Everything `e` includes, transitively, in include order (`active`: the includes being
   // expanded above it, to stop at a cycle).
   std::vector<const Entry*> closure(const Entry& e, const ProjectConfig& config, std::set<const Entry*>& active);
+  // Everything the file at `self` (including `includes`) includes, transitively, in include order.
+  std::vector<const Entry*> closure_of(const std::filesystem::path& self, const std::vector<std::string>& includes,
+                                       const ProjectConfig& config);
   // The canonical files `includes` (written in the file at `from`) lead to, in order.
   std::vector<std::filesystem::path> resolve_all(const std::vector<std::string>& includes, const std::filesystem::path& from,
                                                  const ProjectConfig& config);
-  std::filesystem::path canonical(const std::filesystem::path& p);
 
   std::mutex mutex_;
   std::map<std::filesystem::path, std::unique_ptr<Entry>> entries_;

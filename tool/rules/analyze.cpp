@@ -63,8 +63,26 @@ const WorldData& world_data(Lang lang, const nlohmann::json& extra_sources) {
   return *slot;
 }
 
-bool names_as_evidence(const Source& source, Lang lang) {
-  return lang == Lang::glsl || !is_unreal_source(source.path(), source.text()) || infer_unreal_era(source.text()) == UnrealEra::ue4;
+ModelContext model_context(const Source& source, Lang lang, const FileSummary* includes) {
+  std::optional<UnrealEra> era;
+  if (lang == Lang::hlsl && is_unreal_source(source.path(), source.text())) era = infer_unreal_era(source.text());
+  return {includes, !era || *era == UnrealEra::ue4, !era, era};
+}
+
+MacroTable macro_table(Lang lang, const MacroTable* included, const MacroTable& project) {
+  MacroTable table = known_macros(lang);
+  if (included)
+    for (const auto& [name, use] : *included) table[name] = use;
+  for (const auto& [name, use] : project) table[name] = use;
+  return table;
+}
+
+FileSummary include_summary(const Source& source, const SyntaxTree& tree, const nlohmann::json& world_sources,
+                            const ModelContext& context) {
+  WorldModel model(tree, world_data(tree.lang, world_sources), context);
+  FileSummary summary = model.summary();
+  learn_macros(source.text(), known_macros(tree.lang), summary.macros);
+  return summary;
 }
 
 std::vector<std::string> include_paths(std::string_view text) {
@@ -394,13 +412,8 @@ void keep_fixes_inside(const std::vector<Span>& literals, std::vector<Finding>& 
   }
 }
 
-// The macros a file is read with: the built-in table, what its includes define, the project's.
 MacroTable macro_table(Lang lang, const AnalyzeOptions& options) {
-  MacroTable table = known_macros(lang);
-  if (options.includes)
-    for (const auto& [name, use] : options.includes->macros) table[name] = use;
-  for (const auto& [name, use] : options.macros) table[name] = use;
-  return table;
+  return lwc::macro_table(lang, options.includes ? &options.includes->macros : nullptr, options.macros);
 }
 
 // One shader: a file, or one GLSL template literal of a script (then `literal` is its span).
@@ -412,13 +425,10 @@ void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, co
     return;
   }
   MacroTable macros = macro_table(lang, options);
+  ModelContext context = model_context(code, lang, options.includes);
   std::optional<UnrealTarget> unreal;
-  if (lang == Lang::hlsl && is_unreal_source(code.path(), text))
-    unreal = options.unreal ? UnrealTarget{*options.unreal, false} : UnrealTarget{infer_unreal_era(text), true};
+  if (context.era) unreal = options.unreal ? UnrealTarget{*options.unreal, false} : UnrealTarget{*context.era, true};
   const WorldData& data = world_data(lang, options.world_sources);
-  bool names = names_as_evidence(code, lang);
-  std::optional<UnrealEra> written_era;
-  if (unreal) written_era = infer_unreal_era(text);
   std::vector<Suppression> sups;
   std::optional<VariantMerge> merge;
   int errors = 0, too_deep = 0;
@@ -431,7 +441,7 @@ void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, co
       errors += tree.error_count;
       if (!first_error) first_error = tree.first_error;
     }
-    WorldModel world(tree, data, {options.includes, names, !unreal, written_era});
+    WorldModel world(tree, data, context);
     std::vector<Finding> found;
     for (const auto& [rule, check] : checks()) {
       if (rule->applies_to(lang) && options.enabled(rule->id)) check->run(CheckContext{tree, world, *rule, found, unreal});
@@ -443,6 +453,8 @@ void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, co
       if (!first_too_deep) first_too_deep = tree.at(world.too_deep().front()).begin;
     }
     if (variant == 0) {
+      if (options.summary_for_includers && !literal)
+        *options.summary_for_includers = include_summary(code, tree, options.world_sources, {nullptr, context.names_as_evidence, context.plain_names, context.era});
       sups = find_suppressions(tree);
       merge.emplace(tree.resolved_conditionals);
     }

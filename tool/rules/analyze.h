@@ -24,6 +24,9 @@ struct AnalyzeOptions {
   std::map<std::string, Severity> severity;  // per-rule overrides
   nlohmann::json world_sources = nlohmann::json::array();  // the project's extra sources
   const FileSummary* includes = nullptr;  // what the file's #includes declare
+  // When set, filled with what the file tells the files that include it (include_summary of its
+  // first parse): a lint target's parse serves as its include summary too.
+  std::optional<FileSummary>* summary_for_includers = nullptr;
   MacroTable macros;                      // the project's macros (.lwcport.json "macros")
   bool lint_library = false;              // report in the LWC libraries' own definitions too
   std::optional<UnrealEra> unreal;        // the engine the project builds against (else inferred per file)
@@ -66,10 +69,20 @@ bool holds_shader_code(const Source& source, const AnalyzeOptions& options);
 
 // World-space data for a language plus extra sources, built once per distinct extra list.
 const WorldData& world_data(Lang lang, const nlohmann::json& extra_sources);
-// Naming conventions count as evidence in plain code and in Unreal code written for UE4 (what
-// its own code uses, whatever engine it now builds against): UE5-era code says what is large
-// through the engine's large-world types.
-bool names_as_evidence(const Source& source, Lang lang);
+// How the world model reads a file: in Unreal code, the engine era its own code is written for
+// (inferred once from its text). Naming conventions count as evidence in plain code and in
+// Unreal code written for UE4 (whatever engine it now builds against): UE5-era code says what is
+// large through the engine's large-world types.
+ModelContext model_context(const Source& source, Lang lang, const FileSummary* includes);
+
+// The macros a file is read with: the built-in table, then what its includes define, then the
+// project's (each later one wins).
+MacroTable macro_table(Lang lang, const MacroTable* included, const MacroTable& project);
+// What a file tells the files that include it: its world model's summary (read without its own
+// includes, so no include cycle can change it) and what its #defines teach. `tree` is its
+// first variant, parsed with macro_table(..); `context` is model_context(source, lang, nullptr).
+FileSummary include_summary(const Source& source, const SyntaxTree& tree, const nlohmann::json& world_sources,
+                            const ModelContext& context);
 
 // The paths a file #includes, in order, as written (a scan of its directive lines).
 std::vector<std::string> include_paths(std::string_view text);

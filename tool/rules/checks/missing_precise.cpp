@@ -78,7 +78,7 @@ class MissingPrecise : public Check {
  public:
   explicit MissingPrecise(const RuleInfo& rule)
       : wrappers_(string_list(rule.data, "precise-wrappers")),
-        precise_ops_(rule.data.at("precise-operations")),
+        precise_ops_(rule.data.at("precise-operations").get<std::map<std::string, std::string, std::less<>>>()),
         split_constants_(string_list(rule.data, "split-constants")),
         high_(string_list(rule.data, "high-names")),
         low_(string_list(rule.data, "low-names")),
@@ -87,6 +87,7 @@ class MissingPrecise : public Check {
   void run(const CheckContext& ctx) const override {
     const SyntaxTree& t = ctx.tree;
     Definitions defs = collect_definitions(ctx);
+    std::vector<uint8_t> flags = subtree_flags(ctx, defs);
     std::string no_precise = glsl_version_without_precise(t);
     std::set<int> reported_results;
     std::vector<Span> reported;
@@ -96,7 +97,7 @@ class MissingPrecise : public Check {
       if (!candidate) continue;
       if (std::any_of(reported.begin(), reported.end(), [&](Span s) { return s.begin <= t.at(id).begin && t.at(id).end <= s.end; }))
         continue;
-      Transformation eft = recognise(ctx, defs, id);
+      Transformation eft = recognise(ctx, defs, flags, id);
       if (eft.name.empty() || wrapped(t, id)) continue;
       reported.push_back(t.span(id));
       int result = result_variable(ctx, id);
@@ -194,7 +195,7 @@ class MissingPrecise : public Check {
   bool precise_call(const SyntaxTree& t, int call) const {
     if (!t.is(call, "call_expression")) return false;
     std::string_view name = call_name(t, call);
-    return matches_any(wrappers_, name) || precise_ops_.contains(std::string(name));
+    return matches_any(wrappers_, name) || precise_ops_.contains(name);
   }
 
   // A variable whose value is computed by a precise helper (`S = INVARIANT_ADD(a, b)`).
@@ -267,7 +268,8 @@ class MissingPrecise : public Check {
     if (type == "call_expression") {
       std::string name(call_name(t, n));
       auto args = call_arguments(t, n);
-      std::string as = matches_any(fma_, name) ? "fma" : precise_ops_.value(name, matches_any(wrappers_, name) ? "same" : "");
+      std::string_view as = matches_any(fma_, name) ? "fma" : precise_op(name);
+      if (as.empty() && matches_any(wrappers_, name)) as = "same";
       if (as.empty() && d_cast(name) && args.size() == 1) as = "same";
       if (as == "same" && args.size() == 1) return evaluate(ctx, d, args[0], expand, e);
       if ((as == "add" || as == "subtract" || as == "multiply") && args.size() == 2) {
@@ -321,31 +323,38 @@ class MissingPrecise : public Check {
     std::vector<int> temporaries;
   };
 
-  // An error term: zero as written only once its temporaries are expanded. Or a high/low
-  // difference of two pairs.
-  // Cheap necessary conditions for an error term: a subtraction (`-` or a precise subtract
-  // helper), and a local whose value can be substituted (else expanding changes nothing and the
-  // term cannot cancel).
-  bool may_cancel(const CheckContext& ctx, const Definitions& d, int id) const {
-    const SyntaxTree& t = ctx.tree;
-    bool minus = false, substitutable = false;
-    uint32_t end = t.at(id).end;
-    for (int n = id; n < static_cast<int>(t.nodes.size()) && t.at(n).begin < end && !(minus && substitutable); ++n) {
-      if (t.at(n).end > end) break;  // pre-order: the subtree is the run of nodes inside `id`
-      if (!t.at(n).named && t.text(n) == "-") minus = true;
-      if (t.is(n, "call_expression") && precise_ops_.value(std::string(call_name(t, n)), "") == "subtract") minus = true;
-      if (!substitutable && t.is(n, "identifier")) {
-        int var = ctx.world.variable_at(n);
-        substitutable = var >= 0 && d.assigned.count(var);
-      }
-    }
-    return minus && substitutable;
+  // What a precise helper computes ("add", "subtract", ...; "" when `name` is not one).
+  std::string_view precise_op(std::string_view name) const {
+    auto it = precise_ops_.find(name);
+    return it == precise_ops_.end() ? std::string_view() : std::string_view(it->second);
   }
 
-  Transformation recognise(const CheckContext& ctx, const Definitions& d, int id) const {
+  // Cheap necessary conditions for an error term, per node over its subtree, worked out once per
+  // file: a subtraction (`-` or a precise subtract helper), and a local whose value can be
+  // substituted (else expanding changes nothing and the term cannot cancel).
+  enum : uint8_t { kSubtracts = 1, kSubstitutable = 2 };
+  std::vector<uint8_t> subtree_flags(const CheckContext& ctx, const Definitions& d) const {
+    const SyntaxTree& t = ctx.tree;
+    std::vector<uint8_t> flags(t.nodes.size(), 0);
+    for (int n = static_cast<int>(t.nodes.size()) - 1; n >= 0; --n) {  // children come after their parent
+      if (!t.at(n).named && t.text(n) == "-") flags[n] |= kSubtracts;
+      if (t.is(n, "call_expression") && precise_op(call_name(t, n)) == "subtract") flags[n] |= kSubtracts;
+      if (t.is(n, "identifier")) {
+        int var = ctx.world.variable_at(n);
+        if (var >= 0 && d.assigned.count(var)) flags[n] |= kSubstitutable;
+      }
+      if (int parent = t.at(n).parent; parent >= 0) flags[parent] |= flags[n];
+    }
+    return flags;
+  }
+
+  // An error term: zero as written only once its temporaries are expanded. Or a high/low
+  // difference of two pairs.
+  Transformation recognise(const CheckContext& ctx, const Definitions& d, const std::vector<uint8_t>& flags, int id) const {
     const SyntaxTree& t = ctx.tree;
     Evaluation as_written;
-    auto written = may_cancel(ctx, d, id) ? evaluate(ctx, d, id, false, as_written) : std::nullopt;
+    bool may_cancel = flags[id] == (kSubtracts | kSubstitutable);
+    auto written = may_cancel ? evaluate(ctx, d, id, false, as_written) : std::nullopt;
     if (written && !is_zero(*written)) {
       Evaluation e;
       auto expanded = evaluate(ctx, d, id, true, e);
@@ -419,7 +428,7 @@ class MissingPrecise : public Check {
   }
 
   std::vector<std::string> wrappers_;
-  nlohmann::json precise_ops_;  // helper name -> "add" | "subtract" | "multiply" | "fma"
+  std::map<std::string, std::string, std::less<>> precise_ops_;  // helper name -> "add" | "subtract" | "multiply" | "fma"
   std::vector<std::string> split_constants_, high_, low_, fma_;
 };
 
