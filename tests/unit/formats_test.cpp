@@ -46,6 +46,21 @@ void main() {
 export const fs = glsl`void main() { gl_FragColor = vec4(1.0); }`;
 )";
 
+// Vulkan's samples name HLSL stages .vert and .frag: read as GLSL they do not parse, and the note
+// says what to do. GLSL that fails to parse keeps the usual hint.
+TEST(Formats, HlslUnderAGlslExtensionIsToldHowToMapIt) {
+  auto hint_for = [](const std::string& path, const std::string& code) {
+    for (const Finding& f : analyze(Source(path, code), {}))
+      if (f.rule == "lwc-input") return f.hint;
+    return std::string("no note");
+  };
+  std::string hlsl = "cbuffer UBO : register(b0) { float4x4 mvp; };\nfloat4 main(float3 p : POSITION) : SV_POSITION { return mul(mvp, float4(p, 1)); }\n";
+  EXPECT_NE(hint_for("mesh.vert", hlsl).find("reads as HLSL"), std::string::npos);
+  EXPECT_EQ(hint_for("mesh.hlsl", hlsl), "no note");  // as HLSL it parses
+  std::string broken_glsl = "#version 450\nvoid main() { gl_Position = vec4(1 +, 0, 0, 1); }\n";
+  EXPECT_NE(hint_for("mesh.vert", broken_glsl).find("parse --verbose"), std::string::npos);
+}
+
 TEST(EmbeddedGlsl, TaggedCommentedAndVersionedLiteralsAreFound) {
   std::vector<Span> subs;
   auto literals = glsl_template_literals("layer.ts", kScript, subs);

@@ -416,6 +416,17 @@ MacroTable macro_table(Lang lang, const AnalyzeOptions& options) {
   return lwc::macro_table(lang, options.includes ? &options.includes->macros : nullptr, options.macros);
 }
 
+// HLSL written under a GLSL extension (Vulkan samples name HLSL stages .vert and .frag): what
+// only HLSL has, a `cbuffer`, a `register(..)` binding or an `SV_` semantic after a colon.
+bool reads_as_hlsl(std::string_view text) {
+  if (text.find("cbuffer ") != std::string_view::npos || text.find(": register(") != std::string_view::npos) return true;
+  for (size_t at = text.find("SV_"); at != std::string_view::npos; at = text.find("SV_", at + 3)) {
+    size_t before = text.find_last_not_of(" \t", at - 1);
+    if (at > 0 && before != std::string_view::npos && text[before] == ':') return true;
+  }
+  return false;
+}
+
 // One shader: a file, or one GLSL template literal of a script (then `literal` is its span).
 void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, const AnalyzeOptions& options,
                   std::vector<Finding>& findings) {
@@ -475,12 +486,16 @@ void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, co
                                      "close the comment with */ (no fixes are offered in this file until then)"));
     for (Finding& f : findings) f.fixes.clear();
   } else if (errors > 0) {
+    std::string hint = lang == Lang::glsl && reads_as_hlsl(text)
+                           ? "this file reads as HLSL (`cbuffer`, `register(..)`, `SV_` semantics) but its extension says GLSL: map "
+                             "the extension in .lwcport.json \"extensions\" (for example {\".frag\": \"hlsl\"}) or pass --lang hlsl"
+                           : "run `lwcport parse --verbose` on this file to see where; a macro used as syntax can cause "
+                             "this (declare it in .lwcport.json \"macros\"); no fixes are offered in the declarations "
+                             "that hold an error";
     findings.push_back(input_finding(Severity::note, *first_error,
                                      fmt::format("{} syntax error(s) the parser could not place; findings next to them may be missed",
                                                  errors),
-                                     "run `lwcport parse --verbose` on this file to see where; a macro used as syntax can cause "
-                                     "this (declare it in .lwcport.json \"macros\"); no fixes are offered in the declarations "
-                                     "that hold an error"));
+                                     hint));
   }
   if (too_deep > 0) {
     findings.push_back(input_finding(Severity::note, *first_too_deep,
