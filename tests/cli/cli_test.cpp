@@ -147,6 +147,30 @@ TEST(Cli, AnIncludeThatIsAlsoATargetTeachesWhatItTeachesAlone) {
   EXPECT_EQ(in_a(lint(dir, ". --format json --fail-on none --jobs 2").out), alone);
 }
 
+// Bytes that are not UTF-8, in a source and in its name: every format still writes valid output,
+// one column per such byte (as an editor shows it), escaped in text, U+FFFD in JSON and SARIF.
+TEST(Cli, BytesThatAreNotUtf8NeverAbortAnOutput) {
+  std::string dir = test::scratch("not-utf8");
+  test::write(dir + "/caf\xE9.usf",
+              "// \xA9 Epic\nfloat3 F() { /*\xE9*/ float3 P = mul(float4(0, 0, 0, 1), Primitive.LocalToWorld).xyz; return P; }\n");
+  for (const char* format : {"json", "sarif", "github", "text"}) {
+    auto r = lint(dir, std::string(". --fail-on none --format ") + format);
+    EXPECT_EQ(r.exit_code, 0) << format;
+  }
+  nlohmann::json doc = nlohmann::json::parse(lint(dir, ". --fail-on none --format json").out);
+  std::vector<std::string> got;
+  for (const auto& f : doc["findings"])
+    got.push_back(f["path"].get<std::string>() + " " + std::to_string(f["start"]["line"].get<int>()) + ":" +
+                  std::to_string(f["start"]["column"].get<int>()));
+  EXPECT_EQ(got, (std::vector<std::string>{"caf\uFFFD.usf 1:4", "caf\uFFFD.usf 2:8", "caf\uFFFD.usf 2:27"}));
+  nlohmann::json sarif = nlohmann::json::parse(lint(dir, ". --fail-on none --format sarif").out);
+  EXPECT_EQ(sarif["runs"][0]["results"].size(), 3u);
+  std::string text = lint(dir, ". --fail-on none").out;
+  EXPECT_NE(text.find("caf\\xE9.usf:2:27:"), std::string::npos) << text;
+  EXPECT_NE(text.find("/*\\xE9*/ float3 P"), std::string::npos) << text;
+  EXPECT_NE(text.find("| " + std::string(29, ' ') + "^"), std::string::npos) << text;  // under P, past the 4-wide escape
+}
+
 TEST(Cli, SuppressionsOnTheLineAboveAndForTheFileAndUnusedOnes) {
   std::string dir = test::scratch("suppress");
   test::write(dir + "/a.usf",

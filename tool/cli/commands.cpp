@@ -293,6 +293,15 @@ LoadedFile load(const InputFile& file, const Options& o, IncludeSummaries& inclu
   return out;
 }
 
+// A failure inside one file's work (an exception from any stage) is that file's error; the run
+// goes on with the other files.
+FileReport failed_file(const InputFile& file, const std::exception& e) {
+  Source empty(file.display, "");
+  return FileReport{file.display,
+                    {locate(empty, input_finding(Severity::error, 0, std::string("internal error: ") + e.what(),
+                                                 "the other files were analysed; please report this with the file"))}};
+}
+
 // `included`: another target includes it, so its summary is wanted.
 FileReport lint_file(const InputFile& file, const Options& o, IncludeSummaries& includes, bool included) {
   LoadedFile f = load(file, o, includes);
@@ -418,7 +427,14 @@ int lint(const Options& o, std::ostream& out, std::ostream& err) {
   CodeCounter counter(files);
   LintOrder order = includes_first(files, includes);
   run_in_order<FileReport>(
-      files.size(), job_count(o), [&](size_t i) { return lint_file(files[i], o, includes, order.included[i]); },
+      files.size(), job_count(o),
+      [&](size_t i) {
+        try {
+          return lint_file(files[i], o, includes, order.included[i]);
+        } catch (const std::exception& e) {
+          return failed_file(files[i], e);
+        }
+      },
       [&](const FileReport& r) {
         counter.add(r);
         writer.file(r);
@@ -780,7 +796,16 @@ int fix(const Options& o, std::ostream& out, std::ostream& err) {
   CodeCounter counter(files);
   std::map<std::string, LibraryFile> libraries;  // by path
   run_in_order<FixedFile>(
-      files.size(), verifier ? 1 : job_count(o), [&](size_t i) { return fix_file(files[i], o, includes, verifier ? &*verifier : nullptr); },
+      files.size(), verifier ? 1 : job_count(o),
+      [&](size_t i) {
+        try {
+          return fix_file(files[i], o, includes, verifier ? &*verifier : nullptr);
+        } catch (const std::exception& e) {
+          FixedFile failed;
+          failed.report = failed_file(files[i], e);
+          return failed;
+        }
+      },
       [&](const FixedFile& r) {
         applied += r.applied;
         changed_files += r.changed;
@@ -842,9 +867,9 @@ int parse_only(const Options& o, std::ostream& out, std::ostream& err) {
   std::vector<InputFile> files = discover(o.paths.empty() ? std::vector<std::string>{"."} : o.paths, configs, &skipped);
   std::vector<int> errors(files.size());
   std::vector<std::string> details(files.size());
-  std::vector<bool> has_code(files.size(), false);
+  std::vector<char> has_code(files.size(), 0);  // written by worker threads: not vector<bool>
   std::atomic<size_t> bytes{0};
-  parallel_for(files.size(), job_count(o), [&](size_t i) {
+  auto parse_file = [&](size_t i) {
     ReadResult r = read_file(files[i].path, files[i].config->max_file_bytes);
     AnalyzeOptions a;
     a.lang = o.lang;
@@ -863,6 +888,15 @@ int parse_only(const Options& o, std::ostream& out, std::ostream& err) {
         errors[i] += tree.error_count;
         if (o.verbose && tree.error_count) details[i] += syntax_error_lines(tree);
       }
+    }
+  };
+  parallel_for(files.size(), job_count(o), [&](size_t i) {
+    try {
+      parse_file(i);
+    } catch (const std::exception& e) {
+      errors[i] = 1;
+      details[i] = fmt::format("{}: internal error: {}\n", files[i].display, e.what());
+      has_code[i] = true;
     }
   });
   size_t with_errors = 0, parsed = 0;

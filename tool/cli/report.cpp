@@ -59,19 +59,18 @@ const char* severity_color(Severity s) {
   return s == Severity::error ? "\x1b[1;31m" : s == Severity::warning ? "\x1b[1;33m" : "\x1b[1;36m";
 }
 
-// Code points of a line up to a 1-based column, with tabs kept so the caret lines up.
+// The caret under a finding: one column per character (a byte that is not UTF-8 is one, shown as
+// `\xNN`), tabs kept so the caret lines up.
 std::string caret_line(const ReportedFinding& f) {
   std::string out;
-  int column = 1;
   const std::string& line = f.line_text;
   int end_column = f.end.line == f.start.line ? f.end.column : 1 << 30;
-  int width = 0;
-  for (size_t i = 0; i < line.size(); ++i) {
-    unsigned char c = static_cast<unsigned char>(line[i]);
-    if ((c & 0xC0) == 0x80) continue;
-    if (column < f.start.column) out += c == '\t' ? '\t' : ' ';
-    else if (column < end_column) ++width;
-    ++column;
+  int width = 0, column = 1;
+  for (size_t i = 0; i < line.size(); ++column) {
+    size_t len = utf8_sequence(line, i);
+    if (column < f.start.column) out += line[i] == '\t' ? "\t" : len ? " " : "    ";
+    else if (column < end_column) width += len ? 1 : 4;
+    i += len ? len : 1;
   }
   out += '^';
   if (width > 1) out += std::string(width - 1, '~');
@@ -81,11 +80,11 @@ std::string caret_line(const ReportedFinding& f) {
 void write_text_file(std::ostream& out, const FileReport& file, bool color, bool explain) {
   auto paint = [&](const char* code, const std::string& s) { return color ? code + s + "\x1b[0m" : s; };
   for (const auto& f : file.findings) {
-    out << paint("\x1b[1m", fmt::format("{}:{}:{}:", file.path, f.start.line, f.start.column)) << ' '
-        << paint(severity_color(f.severity), std::string(severity_name(f.severity)) + ":") << ' ' << f.message << ' '
+    out << paint("\x1b[1m", fmt::format("{}:{}:{}:", escape_invalid_utf8(file.path), f.start.line, f.start.column)) << ' '
+        << paint(severity_color(f.severity), std::string(severity_name(f.severity)) + ":") << ' ' << escape_invalid_utf8(f.message) << ' '
         << paint("\x1b[2m", "[" + f.rule + "]") << '\n';
     if (!f.line_text.empty()) {
-      out << paint("\x1b[34m", fmt::format("{:>5} | ", f.start.line)) << f.line_text << '\n';
+      out << paint("\x1b[34m", fmt::format("{:>5} | ", f.start.line)) << escape_invalid_utf8(f.line_text) << '\n';
       out << paint("\x1b[34m", std::string(6, ' ') + "| ") << paint("\x1b[1;32m", caret_line(f)) << '\n';
     }
     if (!f.hint.empty()) out << std::string(6, ' ') << paint("\x1b[1;36m", "= help:") << ' ' << f.hint << '\n';
@@ -197,7 +196,7 @@ std::pair<std::string, std::string> sarif_frame(const ReportOptions& o) {
          {"originalUriBaseIds", {{"SRCROOT", {{"uri", "file://" + uri_encode(root)}}}}},
          {"columnKind", "unicodeCodePoints"},
          {"results", nlohmann::json::array()}}}}};
-  std::string text = doc.dump(1);
+  std::string text = json_text(doc, 1);
   size_t at = text.find("\"results\": []");
   at += std::string("\"results\": [").size();
   return {text.substr(0, at) + "\n", text.substr(at)};
@@ -221,12 +220,17 @@ void write_github_file(std::ostream& out, const FileReport& file) {
   for (const auto& f : file.findings) {
     const char* command = f.severity == Severity::error ? "error" : f.severity == Severity::warning ? "warning" : "notice";
     out << fmt::format("::{} file={},line={},col={},endLine={},endColumn={},title={}::{}\n", command,
-                       gh_escape(file.path, true), f.start.line, f.start.column, f.end.line, f.end.column,
-                       gh_escape(f.rule, true), gh_escape(f.message + (f.hint.empty() ? "" : ". Fix: " + f.hint), false));
+                       gh_escape(escape_invalid_utf8(file.path), true), f.start.line, f.start.column, f.end.line, f.end.column,
+                       gh_escape(f.rule, true),
+                       gh_escape(escape_invalid_utf8(f.message + (f.hint.empty() ? "" : ". Fix: " + f.hint)), false));
   }
 }
 
 }  // namespace
+
+std::string json_text(const nlohmann::json& value, int indent) {
+  return value.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+}
 
 ReportWriter::ReportWriter(std::ostream& out, ReportOptions options) : out_(out), options_(std::move(options)) { begin(); }
 
@@ -259,7 +263,7 @@ void ReportWriter::file(const FileReport& report) {
         } else {
           j = sarif_result(report.path, f);
         }
-        out_ << (first_ ? "\n  " : ",\n  ") << j.dump();
+        out_ << (first_ ? "\n  " : ",\n  ") << json_text(j);
         first_ = false;
       }
       break;

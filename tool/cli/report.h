@@ -11,6 +11,10 @@
 
 namespace lwc {
 
+// JSON text of a value; bytes in its strings that are not UTF-8 become U+FFFD (a source or a path
+// may hold any bytes: output must never abort on them).
+std::string json_text(const nlohmann::json& value, int indent = -1);
+
 struct ReportedEdit {
   Position start, end;
   std::string text;  // with the file's line endings

@@ -1,5 +1,7 @@
 #include "cli/verify_report.h"
 
+#include "cli/report.h"
+
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -142,7 +144,7 @@ void print_library_json(std::ostream& out, const std::string& device, const Driv
   j["operations"] = ops;
   j["timing"] = {{"pipelineSeconds", accuracy.pipeline_seconds}, {"dispatchSeconds", accuracy.dispatch_seconds}};
   j["failed"] = accuracy.failed();
-  out << j.dump(2) << '\n';
+  out << json_text(j, 2) << '\n';
 }
 
 namespace {
@@ -218,7 +220,7 @@ void print_functions_json(std::ostream& out, const std::string& device, const Dr
   json time = {{"wallSeconds", wall_seconds}, {"functionsPerSecond", results.size() / wall_seconds}, {"compileSeconds", t.compile},
                {"pipelineSeconds", t.pipeline}, {"dispatchSeconds", t.dispatch}};
   json j = {{"device", device}, {"probes", describe_probes(probes)}, {"functions", fns}, {"time", time}};
-  out << j.dump(2) << '\n';
+  out << json_text(j, 2) << '\n';
 }
 
 }  // namespace lwc

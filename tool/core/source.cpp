@@ -1,5 +1,7 @@
 #include "core/source.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cstring>
 
@@ -18,6 +20,46 @@ Source::Source(std::string path, std::string text) : path_(std::move(path)), tex
 
 static bool is_continuation(unsigned char c) { return (c & 0xC0) == 0x80; }
 
+size_t utf8_sequence(std::string_view text, size_t i) {
+  const auto* s = reinterpret_cast<const unsigned char*>(text.data());
+  unsigned char c = s[i];
+  if (c < 0x80) return 1;
+  size_t len;
+  uint32_t min;
+  if ((c & 0xE0) == 0xC0) { len = 2; min = 0x80; }
+  else if ((c & 0xF0) == 0xE0) { len = 3; min = 0x800; }
+  else if ((c & 0xF8) == 0xF0) { len = 4; min = 0x10000; }
+  else return 0;
+  if (i + len > text.size()) return 0;
+  uint32_t cp = c & (0x7F >> len);
+  for (size_t k = 1; k < len; ++k) {
+    if (!is_continuation(s[i + k])) return 0;
+    cp = (cp << 6) | (s[i + k] & 0x3F);
+  }
+  // Overlong forms, surrogates and values past U+10FFFF are not UTF-8.
+  if (cp < min || (cp >= 0xD800 && cp <= 0xDFFF) || cp > 0x10FFFF) return 0;
+  return len;
+}
+
+// One column per character: a valid UTF-8 sequence, or a byte that is not part of one (as an
+// editor shows it: one replacement character each).
+static size_t column_bytes(std::string_view text, size_t i) { return std::max<size_t>(1, utf8_sequence(text, i)); }
+
+std::string escape_invalid_utf8(std::string_view text) {
+  std::string out;
+  for (size_t i = 0; i < text.size();) {
+    size_t len = utf8_sequence(text, i);
+    if (len == 0) {
+      out += fmt::format("\\x{:02X}", static_cast<unsigned char>(text[i]));
+      ++i;
+    } else {
+      out.append(text, i, len);
+      i += len;
+    }
+  }
+  return out;
+}
+
 Position Source::position(uint32_t offset) const {
   offset = std::min<uint32_t>(offset, text_.size());
   auto it = std::upper_bound(line_starts_.begin(), line_starts_.end(), offset);
@@ -25,9 +67,7 @@ Position Source::position(uint32_t offset) const {
   uint32_t start = line_starts_[line - 1];
   if (line == 1 && bom_) start = std::min<uint32_t>(3, offset);
   int column = 1;
-  for (uint32_t i = start; i < offset; ++i) {
-    if (!is_continuation(static_cast<unsigned char>(text_[i]))) ++column;
-  }
+  for (size_t i = start; i < offset; i += column_bytes(text_, i)) ++column;
   return {line, column};
 }
 
@@ -38,10 +78,8 @@ uint32_t Source::offset(Position pos) const {
   if (pos.line == 1 && bom_) i = 3;
   std::string_view line = line_text(pos.line);
   uint32_t end = static_cast<uint32_t>(line.data() - text_.data() + line.size());
-  for (int column = 1; column < pos.column && i < end; ++i) {
-    if (i + 1 >= end || !is_continuation(static_cast<unsigned char>(text_[i + 1]))) ++column;
-  }
-  return i;
+  for (int column = 1; column < pos.column && i < end; ++column) i += column_bytes(text_, i);
+  return std::min(i, end);
 }
 
 std::string_view Source::line_text(int line) const {
@@ -62,25 +100,9 @@ std::optional<uint32_t> find_binary_marker(std::string_view text) {
 }
 
 std::optional<uint32_t> find_invalid_utf8(std::string_view text) {
-  const auto* s = reinterpret_cast<const unsigned char*>(text.data());
-  size_t n = text.size(), i = 0;
-  while (i < n) {
-    unsigned char c = s[i];
-    if (c < 0x80) { ++i; continue; }
-    size_t len;
-    uint32_t min;
-    if ((c & 0xE0) == 0xC0) { len = 2; min = 0x80; }
-    else if ((c & 0xF0) == 0xE0) { len = 3; min = 0x800; }
-    else if ((c & 0xF8) == 0xF0) { len = 4; min = 0x10000; }
-    else return static_cast<uint32_t>(i);
-    if (i + len > n) return static_cast<uint32_t>(i);
-    uint32_t cp = c & (0x7F >> len);
-    for (size_t k = 1; k < len; ++k) {
-      if (!is_continuation(s[i + k])) return static_cast<uint32_t>(i);
-      cp = (cp << 6) | (s[i + k] & 0x3F);
-    }
-    // Overlong forms, surrogates and values past U+10FFFF are not UTF-8.
-    if (cp < min || (cp >= 0xD800 && cp <= 0xDFFF) || cp > 0x10FFFF) return static_cast<uint32_t>(i);
+  for (size_t i = 0; i < text.size();) {
+    size_t len = utf8_sequence(text, i);
+    if (len == 0) return static_cast<uint32_t>(i);
     i += len;
   }
   return std::nullopt;

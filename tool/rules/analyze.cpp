@@ -541,7 +541,7 @@ std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options
   }
   if (auto bad = find_invalid_utf8(file_text)) {
     findings.push_back(input_finding(Severity::warning, *bad,
-                                     fmt::format("invalid UTF-8 (byte 0x{:02X}); analysed as bytes, columns on this line may be off",
+                                     fmt::format("invalid UTF-8 (byte 0x{0:02X}); each such byte is read as one character (shown as \\x{0:02X}; U+FFFD in JSON and SARIF)",
                                                  static_cast<unsigned char>(file_text[*bad])),
                                      "save the file as UTF-8"));
   }
