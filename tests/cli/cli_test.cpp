@@ -112,6 +112,29 @@ TEST(Cli, ConfigFoundUpwardSetsSeverityExcludesAndWorldSources) {
   EXPECT_NE(r.out.find(".lwcport.json: invalid JSON at byte"), std::string::npos) << r.out;
 }
 
+// Every value of .lwcport.json is checked before any work: the file, the key and why, exit 2.
+TEST(Cli, AConfigValueOfTheWrongTypeOrMeaningStopsTheRunWithItsReason) {
+  std::string dir = test::scratch("bad-config");
+  test::write(dir + "/a.usf", "float3 F() { return View.WorldCameraOrigin; }\n");
+  const std::pair<const char*, const char*> cases[] = {
+      {R"({"world-sources": [{"match": "X.Y", "kind": "absolute-position", "languages": [5]}]})", "world-sources[0]: unknown language 5"},
+      {R"({"world-sources": [{"match": "X.Y", "kind": "absolute-position", "languages": ["metal"]}]})", "unknown language \"metal\""},
+      {R"({"world-sources": [{"match": "", "kind": "absolute-position"}]})", "\"match\" must be a non-empty path pattern"},
+      {R"({"world-sources": [{"match": "A", "kind": "absolute-position", "langs": ["hlsl"]}]})", "unknown key \"langs\""},
+      {R"({"world-sources": [{"match": "A", "kind": "far-away"}]})", "unknown world-space kind \"far-away\""},
+      {R"({"max-file-bytes": 0})", "\"max-file-bytes\" must be a positive integer"},
+      {R"({"virtual-roots": {"/Engine/": "../Engine/Shaders"}})", "\"..\" in its folder"},
+      {R"({"virtual-roots": {"Engine": "Shaders"}})", "a prefix starts and ends with '/'"},
+  };
+  for (const auto& [config, why] : cases) {
+    test::write(dir + "/.lwcport.json", config);
+    auto r = test::run("cd " + dir + " && " + test::binary() + " lint a.usf 2>&1");
+    EXPECT_EQ(r.exit_code, 2) << config << "\n" << r.out;
+    EXPECT_NE(r.out.find(".lwcport.json: "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(why), std::string::npos) << config << "\n" << r.out;
+  }
+}
+
 TEST(Cli, IncludesTeachDeclarationsAndMissingOnesAreFine) {
   std::string dir = test::scratch("includes");
   test::write(dir + "/.lwcport.json", R"({"virtual-roots": {"/Engine/": "engine"}, "include-dirs": ["shared"]})");

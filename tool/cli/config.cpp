@@ -100,7 +100,12 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
   if (j.contains("virtual-roots")) {
     if (!j.at("virtual-roots").is_object()) fail("\"virtual-roots\" must map prefixes such as \"/Engine/\" to folders");
     for (auto& [prefix, folder] : j.at("virtual-roots").items()) {
-      if (!folder.is_string()) fail(fmt::format("virtual root \"{}\" must name a folder", prefix));
+      if (!folder.is_string() || folder.get<std::string>().empty()) fail(fmt::format("virtual root \"{}\" must name a folder", prefix));
+      if (prefix.empty() || prefix.front() != '/' || prefix.back() != '/')
+        fail(fmt::format("virtual root \"{}\": a prefix starts and ends with '/' (\"/Engine/\")", prefix));
+      for (const auto& part : fs::path(folder.get<std::string>()))
+        if (part == "..")
+          fail(fmt::format("virtual root \"{}\": \"..\" in its folder; name the folder from the project, or use \"include-dirs\"", prefix));
       c.virtual_roots.emplace_back(prefix, c.dir / folder.get<std::string>());
     }
   }
@@ -108,14 +113,32 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
   if (j.contains("world-sources")) {
     c.world_sources = j.at("world-sources");
     if (!c.world_sources.is_array()) fail("\"world-sources\" must be an array of {\"match\", \"kind\"}");
-    for (const auto& s : c.world_sources) {
-      if (!s.is_object() || !s.contains("match") || !s.contains("kind") || !s.at("match").is_string() || !s.at("kind").is_string())
-        fail("each world source needs a \"match\" pattern and a \"kind\"");
-      if (!parse_kind(s.at("kind").get<std::string>())) fail(fmt::format("unknown world-space kind {}", s.at("kind").dump()));
+    for (size_t i = 0; i < c.world_sources.size(); ++i) {
+      const auto& s = c.world_sources[i];
+      auto bad = [&](const std::string& why) { fail(fmt::format("world-sources[{}]: {}", i, why)); };
+      if (!s.is_object() || !s.contains("match") || !s.contains("kind")) bad("needs a \"match\" pattern and a \"kind\"");
+      for (auto& [key, value] : s.items()) {
+        (void)value;
+        if (key != "match" && key != "kind" && key != "languages" && key != "by-name")
+          bad(fmt::format("unknown key \"{}\" (known: match, kind, languages, by-name)", key));
+      }
+      if (!s.at("match").is_string() || s.at("match").get<std::string>().empty())
+        bad("\"match\" must be a non-empty path pattern such as \"View.WorldCameraOrigin\" or \"*.CameraPos\"");
+      if (!s.at("kind").is_string() || !parse_kind(s.at("kind").get<std::string>()))
+        bad(fmt::format("unknown world-space kind {}", s.at("kind").dump()));
+      if (s.contains("languages")) {
+        const auto& langs = s.at("languages");
+        if (!langs.is_array() || langs.empty()) bad("\"languages\" must be a non-empty array of \"hlsl\" and \"glsl\"");
+        for (const auto& l : langs)
+          if (!l.is_string() || (l != "hlsl" && l != "glsl")) bad(fmt::format("unknown language {} (hlsl or glsl)", l.dump()));
+      }
+      if (s.contains("by-name") && !s.at("by-name").is_boolean() && s.at("by-name") != "plain")
+        bad("\"by-name\" must be true, false or \"plain\"");
     }
   }
   if (j.contains("max-file-bytes")) {
-    if (!j.at("max-file-bytes").is_number_unsigned()) fail("\"max-file-bytes\" must be a positive integer");
+    if (!j.at("max-file-bytes").is_number_unsigned() || j.at("max-file-bytes").get<size_t>() == 0)
+      fail("\"max-file-bytes\" must be a positive integer (bytes; the default is 16 MiB)");
     c.max_file_bytes = j.at("max-file-bytes").get<size_t>();
   }
   if (j.contains("macros")) add_macros(j.at("macros"), file.string(), c.macros);
