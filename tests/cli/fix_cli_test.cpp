@@ -1,10 +1,15 @@
 // `lwcport fix` end to end: in-place writes that keep the file's form, refusals, --diff, and the
 // guarantees over the whole corpus (idempotent; nothing a safe fix could remove is left).
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <sys/xattr.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
+#include <random>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -62,6 +67,98 @@ TEST(FixCli, ReplaceFileRefusesAFileThatChangedSinceItWasRead) {
   EXPECT_EQ(test::read(dir + "/a.usf"), "edited by someone else\n");
   EXPECT_EQ(replace_file(dir + "/a.usf", "edited by someone else\n", "fixed\n"), "");
   EXPECT_EQ(test::read(dir + "/a.usf"), "fixed\n");
+}
+
+// An editor saving while lwcport writes: whenever the save lands (before the read, during the
+// write, after it), the user's edit survives: either the fix is refused or the edit comes after.
+// Saves alternate between the two ways editors write: a new file renamed over, and in place.
+TEST(FixCli, AnEditSavedWhileFixWritesIsNeverLost) {
+  std::string dir = test::scratch("fix-race");
+  std::string path = dir + "/a.usf";
+  auto save_in_place = [](const std::string& p, const std::string& text) {
+    int fd = ::open(p.c_str(), O_WRONLY | O_TRUNC);
+    if (fd >= 0) {
+      EXPECT_EQ(::write(fd, text.data(), text.size()), static_cast<ssize_t>(text.size()));
+      ::close(fd);
+    }
+  };
+  auto save_by_rename = [](const std::string& p, const std::string& text) {
+    test::write(p + ".save", text);
+    ::rename((p + ".save").c_str(), p.c_str());
+  };
+  // How long one replacement takes here (the fastest of 5): saves are spread over twice that.
+  long fastest = 1L << 40;
+  for (int i = 0; i < 5; ++i) {
+    test::write(path, "original\n");
+    auto start = std::chrono::steady_clock::now();
+    ASSERT_EQ(replace_file(path, "original\n", "fixed\n"), "");
+    fastest = std::min<long>(fastest, std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - start).count());
+  }
+  long span = std::max<long>(50, 2 * fastest);
+  std::mt19937 random(12345);
+  int lost = 0, written = 0, refused = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    test::write(path, "original\n");
+    std::string edit = "edit " + std::to_string(trial) + "\n";
+    long delay = std::uniform_int_distribution<long>(0, span)(random);
+    std::thread editor([&] {
+      std::this_thread::sleep_for(std::chrono::microseconds(delay));
+      if (trial % 2) save_in_place(path, edit);
+      else save_by_rename(path, edit);
+    });
+    std::string why = replace_file(path, "original\n", "fixed\n");
+    editor.join();
+    (why.empty() ? written : refused) += 1;
+    if (test::read(path) != edit) ++lost;
+  }
+  EXPECT_EQ(lost, 0) << written << " written, " << refused << " refused";
+  for (const auto& e : fs::directory_iterator(dir)) EXPECT_EQ(e.path().filename().string().find(".lwcport-"), std::string::npos) << e.path();
+}
+
+// Interrupted at any moment, fix leaves no temporary file behind: each file is either the old or
+// the new text, whole.
+TEST(FixCli, AnInterruptedFixLeavesNoTemporaryFile) {
+  std::string dir = ue54_project("fix-interrupted");
+  const std::string before = "float3 F(float3 P)\n{\n\treturn P - View.WorldCameraOrigin;\n}\n";
+  const std::string after = "float3 F(float3 P)\n{\n\treturn DFSubtractDemote(P, PrimaryView.WorldCameraOrigin);\n}\n";
+  std::mt19937 random(7);
+  for (int trial = 0; trial < 12; ++trial) {
+    for (int i = 0; i < 150; ++i) test::write(dir + "/f" + std::to_string(i) + ".usf", before);
+    int delay_ms = std::uniform_int_distribution<int>(5, 120)(random);
+    const char* sig = trial % 2 ? "INT" : "TERM";
+    test::run("cd " + dir + " && { " + test::binary() + " fix . --select lwc-primary-view --jobs 2 > /dev/null 2>&1 & pid=$!; sleep " +
+              std::to_string(delay_ms / 1000.0) + "; kill -" + sig + " $pid; wait $pid; }");
+    for (const auto& e : fs::directory_iterator(dir)) {
+      std::string name = e.path().filename().string();
+      EXPECT_EQ(name.find(".lwcport-"), std::string::npos) << "trial " << trial << ": " << name;
+      if (name.ends_with(".usf")) {
+        std::string text = test::read(e.path().string());
+        EXPECT_TRUE(text == before || text == after) << name;
+      }
+    }
+  }
+}
+
+TEST(FixCli, AHardLinkedFileIsNotSplitAndModeBitsAndAttributesAreKept) {
+  std::string dir = test::scratch("fix-links");
+  test::write(dir + "/a.usf", "read\n");
+  ASSERT_EQ(::link((dir + "/a.usf").c_str(), (dir + "/b.usf").c_str()), 0);
+  std::string why = replace_file(dir + "/a.usf", "read\n", "fixed\n");
+  EXPECT_NE(why.find("2 hard links"), std::string::npos) << why;
+  EXPECT_EQ(test::read(dir + "/b.usf"), "read\n");
+  ASSERT_EQ(::unlink((dir + "/b.usf").c_str()), 0);
+  ASSERT_EQ(::chmod((dir + "/a.usf").c_str(), 06754), 0);
+  bool xattrs = ::setxattr((dir + "/a.usf").c_str(), "user.lwcport-test", "kept", 4, 0) == 0;  // tmpfs may refuse user.*
+  EXPECT_EQ(replace_file(dir + "/a.usf", "read\n", "fixed\n"), "");
+  EXPECT_EQ(test::read(dir + "/a.usf"), "fixed\n");
+  struct stat st;
+  ASSERT_EQ(::stat((dir + "/a.usf").c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 07777, 06754u);
+  if (xattrs) {
+    char value[16] = {};
+    EXPECT_EQ(::getxattr((dir + "/a.usf").c_str(), "user.lwcport-test", value, sizeof value), 4);
+    EXPECT_STREQ(value, "kept");
+  }
 }
 
 TEST(FixCli, ASymlinkStaysALinkAndItsTargetIsFixed) {
@@ -168,6 +265,9 @@ TEST(FixCli, TheHighLowRewriteWritesTheLibraryBesideTheFixedFile) {
   r = test::run(fix + " 2>&1");
   EXPECT_NE(r.out.find("lwc_doublefloat.glsl: exists and was not written by lwcport; not changed"), std::string::npos) << r.out;
   EXPECT_EQ(test::read(dir + "/lwc_doublefloat.glsl"), "// mine\n");
+  // ... and a file that would include it is not changed either: nothing includes what is missing.
+  EXPECT_EQ(test::read(dir + "/b.vert"), kPlainVertex);
+  EXPECT_NE(r.out.find("b.vert:1:1: error: cannot write the fixes: the library it includes could not be written"), std::string::npos) << r.out;
 }
 
 TEST(FixCli, TheHostNotesReachJsonAndSarif) {

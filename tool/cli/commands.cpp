@@ -226,6 +226,7 @@ void run_in_order(size_t count, unsigned jobs, Work work, Emit emit, const std::
   std::vector<std::thread> workers;
   for (unsigned t = 0; t < std::min<size_t>(jobs, count); ++t) {
     workers.emplace_back([&]() {
+      block_interrupts_in_this_thread();
       for (size_t k; (k = next.fetch_add(1)) < count;) {
         size_t i = order ? (*order)[k] : k;
         Result r = work(i);
@@ -663,6 +664,9 @@ struct FixedFile {
   std::optional<Lang> library_lang;
   std::set<std::string> library_names;
   std::optional<BuildCheck::Outcome> build;  // --check-build
+  // A fixed text that includes the library waits to be written until the library is (fix()).
+  std::optional<LoadedFile> pending;
+  std::string pending_text;
 };
 
 // The library file one folder of fixed files includes (lwc_doublefloat.hlsl / .glsl).
@@ -739,6 +743,11 @@ FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& in
     out.diff = unified_diff(file.display, source.text(), fixed.text);
     return out;
   }
+  if (out.library_lang) {
+    out.pending_text = std::move(fixed.text);
+    out.pending.emplace(std::move(f));
+    return out;
+  }
   std::string why = replace_file(file.path, source.text(), fixed.text);
   if (!why.empty())
     keep_original(out, source, f.options, input_finding(Severity::error, 0, "cannot write the fixes: " + why, "the other files were still fixed"));
@@ -747,7 +756,8 @@ FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& in
 
 // Writes (or, with --diff, prints) the library file of one folder: what the fixed files there
 // call, plus what an earlier run's file already holds (files fixed then still include it).
-void write_library(const LibraryFile& lib, const Options& o, std::ostream& out, std::ostream& err) {
+// False (with the reason printed) when the library could not be written.
+bool write_library(const LibraryFile& lib, const Options& o, std::ostream& out, std::ostream& err) {
   std::set<std::string> names = lib.names;
   std::string before;
   bool exists = std::filesystem::exists(lib.path);
@@ -755,31 +765,36 @@ void write_library(const LibraryFile& lib, const Options& o, std::ostream& out, 
     ReadResult r = read_file(lib.path, SIZE_MAX);
     if (!r.error.empty()) {
       err << fmt::format("{}: cannot read: {}; the fixed files need it\n", lib.display, r.error);
-      return;
+      return false;
     }
     if (!is_written_library(r.text)) {
       err << fmt::format("{}: exists and was not written by lwcport; not changed (the fixed files need: {})\n", lib.display,
                          fmt::join(lib.names, ", "));
-      return;
+      return false;
     }
     before = std::move(r.text);
     std::set<std::string> kept = library_names_used(lib.lang, before);
     names.insert(kept.begin(), kept.end());
   }
   std::string after = library_text(lib.lang, names);
-  if (after == before) return;
+  if (after == before) return true;
   if (o.diff) {
     std::string diff = unified_diff(lib.display, before, after);
     if (!exists) diff.replace(0, diff.find('\n'), "--- /dev/null");  // a new file, as git shows one
     out << diff;
-    return;
+    return true;
   }
   std::string why = exists ? replace_file(lib.path, before, after) : create_file(lib.path, after);
-  if (!why.empty()) err << fmt::format("{}: cannot write the shader library: {}; the fixed files need it\n", lib.display, why);
-  else err << fmt::format("Wrote {} ({} name(s) and what they use).\n", lib.display, names.size());
+  if (!why.empty()) {
+    err << fmt::format("{}: cannot write the shader library: {}; the files that need it were not changed\n", lib.display, why);
+    return false;
+  }
+  err << fmt::format("Wrote {} ({} name(s) and what they use).\n", lib.display, names.size());
+  return true;
 }
 
 int fix(const Options& o, std::ostream& out, std::ostream& err) {
+  remove_temporary_files_on_signals();
   std::vector<InputFile> files = input_files(o);
   // --verify: one device, used by one file at a time (started before any thread: it forks).
   std::optional<Verifier> verifier;
@@ -795,6 +810,7 @@ int fix(const Options& o, std::ostream& out, std::ostream& err) {
   std::map<BuildCheck::Outcome, int> builds;
   CodeCounter counter(files);
   std::map<std::string, LibraryFile> libraries;  // by path
+  std::vector<FixedFile> done;                    // in path order
   run_in_order<FixedFile>(
       files.size(), verifier ? 1 : job_count(o),
       [&](size_t i) {
@@ -806,12 +822,7 @@ int fix(const Options& o, std::ostream& out, std::ostream& err) {
           return failed;
         }
       },
-      [&](const FixedFile& r) {
-        applied += r.applied;
-        changed_files += r.changed;
-        unsafe_left += r.unsafe_left;
-        if (r.build) ++builds[*r.build];
-        counter.add(r.report);
+      [&](FixedFile& r) {
         if (r.library_lang) {
           std::string name = library_file_name(*r.library_lang);
           std::filesystem::path dir = std::filesystem::path(r.path).parent_path();
@@ -819,10 +830,35 @@ int fix(const Options& o, std::ostream& out, std::ostream& err) {
           LibraryFile& lib = libraries.try_emplace((dir / name).string(), LibraryFile{dir / name, display, *r.library_lang, {}}).first->second;
           lib.names.insert(r.library_names.begin(), r.library_names.end());
         }
-        if (o.diff) *target.stream << r.diff;
-        else writer->file(r.report);
+        done.push_back(std::move(r));
       });
-  for (const auto& [path, lib] : libraries) write_library(lib, o, *target.stream, err);
+  // A library is written before the files that include it; a file whose library could not be
+  // written is not changed, so no file ever includes a library that is missing.
+  std::set<std::string> missing_libraries;
+  if (!o.diff)
+    for (const auto& [path, lib] : libraries)
+      if (!write_library(lib, o, *target.stream, err)) missing_libraries.insert(path);
+  for (FixedFile& r : done) {
+    if (r.pending) {
+      const Source& source = *r.pending->source;
+      std::string library = (std::filesystem::path(r.path).parent_path() / library_file_name(*r.library_lang)).string();
+      std::string why = missing_libraries.count(library) ? "the library it includes could not be written"
+                                                         : replace_file(r.path, source.text(), r.pending_text);
+      if (!why.empty())
+        keep_original(r, source, r.pending->options,
+                      input_finding(Severity::error, 0, "cannot write the fixes: " + why, "the other files were still fixed"));
+      r.pending.reset();
+    }
+    applied += r.applied;
+    changed_files += r.changed;
+    unsafe_left += r.unsafe_left;
+    if (r.build) ++builds[*r.build];
+    counter.add(r.report);
+    if (o.diff) *target.stream << r.diff;
+    else writer->file(r.report);
+  }
+  if (o.diff)
+    for (const auto& [path, lib] : libraries) write_library(lib, o, *target.stream, err);
   bool arguments_ok = every_argument_had_code(o, counter.with_code, err);
   std::string unsafe = unsafe_left ? fmt::format(" {} more fix(es) are unsafe: rerun with --unsafe-fixes.", unsafe_left) : "";
   if (o.check_build)

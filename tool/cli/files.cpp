@@ -1,12 +1,16 @@
 #include "cli/files.h"
 
 #include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
 #include <sys/stat.h>
+#include <sys/xattr.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <set>
@@ -148,62 +152,194 @@ bool write_all(int fd, std::string_view text) {
 }
 
 
-// Writes text, with the given mode (and owner, when root), to a new temporary file beside
-// `target` and syncs it: "" and its path in `temp`, or the reason nothing was written.
-std::string write_temp_beside(const fs::path& target, std::string_view text, mode_t mode, const struct stat* owner, std::string& temp) {
-  temp = (target.parent_path() / ("." + target.filename().string() + ".lwcport-XXXXXX")).string();
-  int fd = ::mkstemp(temp.data());
+// Temporary files being written, removed if the run is interrupted (SIGINT, SIGTERM, SIGHUP):
+// fixed slots, so the signal handler only reads memory and calls unlink.
+constexpr int kTempSlots = 64;
+char temp_paths[kTempSlots][4096];
+std::atomic<bool> temp_used[kTempSlots];
+std::atomic<bool> dying{false};   // a signal came: create no more
+std::atomic<int> creating{0};     // temporary files being created and not yet in a slot
+
+// Blocks the interrupting signals in the calling thread; returns the mask to restore.
+sigset_t block_interrupts() {
+  sigset_t set, old;
+  sigemptyset(&set);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&set, sig);
+  ::pthread_sigmask(SIG_BLOCK, &set, &old);
+  return old;
+}
+
+// Creates a temporary file from `name` (a mkstemp template, given back with the file's name).
+// mkstemp fills in the name inside its slot, so a signal at any moment finds it there.
+int make_temp(std::string& name, int& slot) {
+  // No signal in this thread while the file is made and recorded; the handler (on another
+  // thread) waits for `creating` to drop before it removes what is recorded.
+  sigset_t old = block_interrupts();
+  ++creating;
+  struct Done {
+    sigset_t old;
+    ~Done() {
+      --creating;
+      ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
+    }
+  } done{old};
+  if (dying) {
+    errno = EINTR;
+    return -1;
+  }
+  slot = -1;
+  if (name.size() < sizeof(temp_paths[0]))
+    for (int i = 0; i < kTempSlots && slot < 0; ++i) {
+      bool expected = false;
+      if (!temp_used[i].load() && temp_used[i].compare_exchange_strong(expected, true)) slot = i;
+    }
+  if (slot < 0) return ::mkstemp(name.data());  // more writers than slots: not cleaned up on a signal
+  std::memcpy(temp_paths[slot], name.c_str(), name.size() + 1);
+  int fd = ::mkstemp(temp_paths[slot]);
+  name = temp_paths[slot];
+  return fd;
+}
+
+void release_temp(int slot) {
+  if (slot >= 0) temp_used[slot].store(false);
+}
+
+extern "C" void remove_temps_and_die(int sig) {
+  dying = true;
+  while (creating.load() > 0) {
+  }
+  for (int i = 0; i < kTempSlots; ++i)
+    if (temp_used[i].load()) ::unlink(temp_paths[i]);
+  ::signal(sig, SIG_DFL);
+  ::raise(sig);
+}
+
+// A temporary file beside a target, registered for removal on a signal and removed when done
+// unless kept.
+struct TempFile {
+  std::string path;
+  int slot = -1;
+  bool keep = false;
+  ~TempFile() {
+    if (!path.empty() && !keep) ::unlink(path.c_str());
+    release_temp(slot);
+  }
+};
+
+// Copies the extended attributes of `from` (an open file) to `to`; "" or the reason.
+std::string copy_xattrs(int from, int to) {
+  ssize_t size = ::flistxattr(from, nullptr, 0);
+  if (size < 0) return errno == ENOTSUP ? "" : fmt::format("cannot read its extended attributes: {}", std::strerror(errno));
+  std::string names(static_cast<size_t>(size), '\0');
+  size = ::flistxattr(from, names.data(), names.size());
+  if (size < 0) return fmt::format("cannot read its extended attributes: {}", std::strerror(errno));
+  for (size_t at = 0; at < static_cast<size_t>(size); at += std::strlen(names.c_str() + at) + 1) {
+    const char* name = names.c_str() + at;
+    ssize_t n = ::fgetxattr(from, name, nullptr, 0);
+    if (n < 0) return fmt::format("cannot read extended attribute {}: {}", name, std::strerror(errno));
+    std::string value(static_cast<size_t>(n), '\0');
+    n = ::fgetxattr(from, name, value.data(), value.size());
+    if (n < 0 || ::fsetxattr(to, name, value.data(), static_cast<size_t>(n), 0) != 0)
+      return fmt::format("cannot keep extended attribute {}: {}", name, std::strerror(errno));
+  }
+  return "";
+}
+
+// Writes text to a new temporary file beside `target` and syncs it, with the mode, owner (when
+// root) and extended attributes of `original` (an open file) when given, else `mode`: "" and
+// its path in `temp`, or the reason nothing was written.
+std::string write_temp_beside(const fs::path& target, std::string_view text, mode_t mode, int original, TempFile& temp) {
+  std::string name = (target.parent_path() / ("." + target.filename().string() + ".lwcport-XXXXXX")).string();
+  int fd = make_temp(name, temp.slot);
   if (fd < 0) return fmt::format("cannot create a temporary file beside it: {}", std::strerror(errno));
+  temp.path = name;
   auto fail = [&](std::string why) {
     ::close(fd);
-    ::unlink(temp.c_str());
     return why;
   };
   if (!write_all(fd, text)) return fail(fmt::format("cannot write: {}", std::strerror(errno)));
-  if (::fchmod(fd, mode) != 0) return fail(fmt::format("cannot keep the file mode: {}", std::strerror(errno)));
-  if (owner && ::geteuid() == 0 && ::fchown(fd, owner->st_uid, owner->st_gid) != 0)
-    return fail(fmt::format("cannot keep the owner: {}", std::strerror(errno)));
-  if (::fsync(fd) != 0) return fail(fmt::format("cannot write: {}", std::strerror(errno)));
-  if (::close(fd) != 0) {
-    ::unlink(temp.c_str());
-    return fmt::format("cannot write: {}", std::strerror(errno));
+  if (original >= 0) {
+    struct stat st;
+    if (::fstat(original, &st) != 0) return fail(std::strerror(errno));
+    // Owner first: chown clears the setuid and setgid bits, which the mode then restores.
+    if (::geteuid() == 0 && ::fchown(fd, st.st_uid, st.st_gid) != 0)
+      return fail(fmt::format("cannot keep the owner: {}", std::strerror(errno)));
+    mode = st.st_mode & 07777;
+    if (std::string why = copy_xattrs(original, fd); !why.empty()) return fail(why);
   }
+  if (::fchmod(fd, mode) != 0) return fail(fmt::format("cannot keep the file mode: {}", std::strerror(errno)));
+  if (::fsync(fd) != 0) return fail(fmt::format("cannot write: {}", std::strerror(errno)));
+  if (::close(fd) != 0) return fmt::format("cannot write: {}", std::strerror(errno));
   return "";
 }
 
 }  // namespace
 
+void block_interrupts_in_this_thread() { block_interrupts(); }
+
+void remove_temporary_files_on_signals() {
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction action {};
+    action.sa_handler = remove_temps_and_die;
+    sigemptyset(&action.sa_mask);
+    ::sigaction(sig, &action, nullptr);
+  }
+}
+
 std::string replace_file(const fs::path& path, std::string_view expected, std::string_view text) {
+  const std::string changed = "changed since it was read; not written (run lwcport fix again)";
   std::error_code ec;
   fs::path target = fs::canonical(path, ec);
   if (ec) return ec.message();
+  int original = ::open(target.c_str(), O_RDONLY | O_CLOEXEC);
+  if (original < 0) return std::strerror(errno);
   struct stat st;
-  if (::stat(target.c_str(), &st) != 0) return std::strerror(errno);
+  bool stat_ok = ::fstat(original, &st) == 0;
+  auto done = [&](std::string why) {
+    ::close(original);
+    return why;
+  };
+  if (!stat_ok) return done(std::strerror(errno));
   // Read-only is the user's (or the version control's: Perforce) word that the file must not change.
   if (!(st.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) || ::access(target.c_str(), W_OK) != 0)
-    return fmt::format("read-only file (mode {:04o}); not changed", st.st_mode & 07777);
-  ReadResult now = read_file(target, SIZE_MAX);
-  if (!now.error.empty()) return now.error;
-  if (now.text != expected) return "changed since it was read; not written (run lwcport fix again)";
-  std::string temp;
-  if (std::string why = write_temp_beside(target, text, st.st_mode & 07777, &st, temp); !why.empty()) return why;
-  if (::rename(temp.c_str(), target.c_str()) != 0) {
-    std::string why = std::strerror(errno);
-    ::unlink(temp.c_str());
-    return "cannot replace the file: " + why;
+    return done(fmt::format("read-only file (mode {:04o}); not changed", st.st_mode & 07777));
+  // A new file renamed over one name would leave the other names with the old content.
+  if (st.st_nlink > 1)
+    return done(fmt::format("it has {} hard links and replacing it would split them; not changed (fix a copy, or break the links)",
+                            st.st_nlink));
+  if (read_file(target, SIZE_MAX).text != expected) return done(changed);
+  TempFile temp;
+  if (std::string why = write_temp_beside(target, text, 0, original, temp); !why.empty()) return done(why);
+  ::close(original);
+  // The swap: the file as it is at this instant comes out at the temporary path and is checked
+  // there, so an edit saved at any moment before is caught and put back, never overwritten.
+  if (::renameat2(AT_FDCWD, temp.path.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) == 0) {
+    if (read_file(temp.path, SIZE_MAX).text == expected) return "";
+    ::renameat2(AT_FDCWD, temp.path.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE);
+    // What is now at the temporary path should be our text; anything else is an edit made in
+    // the moment between the two swaps: kept, and said where.
+    if (read_file(temp.path, SIZE_MAX).text != text) {
+      temp.keep = true;
+      return changed + "; an edit made while writing is kept in " + temp.path;
+    }
+    return changed;
   }
+  if (errno != EINVAL && errno != ENOSYS && errno != ENOTSUP) return "cannot replace the file: " + std::string(std::strerror(errno));
+  // A file system without the swap: check once more right before the rename.
+  if (read_file(target, SIZE_MAX).text != expected) return changed;
+  if (::rename(temp.path.c_str(), target.c_str()) != 0) return "cannot replace the file: " + std::string(std::strerror(errno));
+  temp.path.clear();
   return "";
 }
 
 std::string create_file(const fs::path& path, std::string_view text) {
   mode_t mask = ::umask(0);
   ::umask(mask);
-  std::string temp;
-  if (std::string why = write_temp_beside(path, text, 0666 & ~mask, nullptr, temp); !why.empty()) return why;
+  TempFile temp;
+  if (std::string why = write_temp_beside(path, text, 0666 & ~mask, -1, temp); !why.empty()) return why;
   // link() never replaces: a file that appeared meanwhile is kept.
-  int linked = ::link(temp.c_str(), path.c_str());
+  int linked = ::link(temp.path.c_str(), path.c_str());
   int error = errno;
-  ::unlink(temp.c_str());
   if (linked != 0) return error == EEXIST ? "exists already; not changed" : fmt::format("cannot create: {}", std::strerror(error));
   return "";
 }

@@ -44,13 +44,21 @@ ReadResult read_file(const std::filesystem::path& path, size_t max_bytes);
 
 namespace lwc {
 
-// Replaces a file's content atomically: a temporary file beside it, given the file's mode (and
-// owner, where permitted), then renamed over it; a symlink is followed and the target replaced.
-// Refuses, with a reason and nothing written, a file marked read-only or one whose content is no
-// longer `expected` (changed since it was read). Returns "" on success, else the reason.
+// Replaces a file's content atomically: a temporary file beside it, given the file's mode (setuid
+// and setgid bits included), owner (where permitted) and extended attributes, synced, then
+// swapped with it and the old content checked once more at that instant; a symlink is followed
+// and the target replaced. Refuses, with a reason and nothing written, a file marked read-only,
+// one with other hard links (a rename would split them), or one whose content is no longer
+// `expected` (changed since it was read, up to the swap). Returns "" on success, else the reason.
 std::string replace_file(const std::filesystem::path& path, std::string_view expected, std::string_view text);
 // Creates a file that does not exist yet, atomically (temporary file, then link), with the
 // umask's mode. Refuses, with a reason, if it exists. Returns "" on success, else the reason.
 std::string create_file(const std::filesystem::path& path, std::string_view text);
+// Makes SIGINT, SIGTERM and SIGHUP remove the temporary files being written before the process
+// ends as the signal says.
+void remove_temporary_files_on_signals();
+// Worker threads block those signals, so the handler runs on the main thread and never inside
+// the creation of a temporary file.
+void block_interrupts_in_this_thread();
 
 }  // namespace lwc
