@@ -76,11 +76,11 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
   auto known_rule = [&](const std::string& id) {
     if (!find_rule(id)) fail(fmt::format("unknown rule id \"{}\"", id));
   };
-  for (auto& [key, value] : j.items()) {
+  for (const auto& item : j.items()) {
     static const char* known[] = {"severity", "select", "ignore", "include-dirs", "virtual-roots", "exclude", "world-sources", "max-file-bytes", "macros", "unreal", "library-definitions", "extensions"};
+    const std::string& key = item.key();
     if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) == std::end(known))
       fail(fmt::format("unknown key \"{}\"", key));
-    (void)value;
   }
   if (j.contains("severity")) {
     if (!j.at("severity").is_object()) fail("\"severity\" must map rule ids to note|warning|error");

@@ -495,8 +495,9 @@ MaskResult mask_source(std::string_view original, Lang lang, const MaskOptions& 
     }
     for (uint32_t k = t.begin; k < t.end; ++k) {
       size_t after = continuation_end(source, k);
-      size_t eol = after - (source[after - 2] == '\r' ? 2 : 1);
-      if (after == k || eol == k + 1) continue;
+      if (after == k) continue;
+      size_t eol = after - (source[after - 2] == '\r' ? 2 : 1);  // after k: at least `\` and a newline
+      if (eol == k + 1) continue;
       text[k] = ' ';
       text[eol - 1] = '\\';
       k = static_cast<uint32_t>(after - 1);

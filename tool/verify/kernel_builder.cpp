@@ -521,8 +521,8 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
       if (keep && glsl_main && name == "main")
         item.replace(t.at(id).begin - t.at(c).begin, 4, "lwc_entry");
       // Blocks come before the functions that use them: their runtime-sized arrays are known.
-      for (const auto& [pattern, first] : runtime_arrays)
-        replace_bracketed(item, std::regex("\\b" + pattern + R"(\s*\[)"), [&](const std::string&) { return first; });
+      for (const auto& array : runtime_arrays)
+        replace_bracketed(item, std::regex("\\b" + array.first + R"(\s*\[)"), [&](const std::string&) { return array.second; });
     } else if (t.is(c, "declaration") || t.is(c, "linkage_specification")) {
       std::vector<const Global*> mine;
       for (const Global& g : globals)
