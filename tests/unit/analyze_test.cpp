@@ -1,7 +1,9 @@
 // analyze(): what it makes of files the parser reads in variants or with syntax errors.
 #include <gtest/gtest.h>
 
+#include "cli/report.h"
 #include "fix/apply.h"
+#include "rules/rule.h"
 #include "support.h"
 
 namespace lwc {
@@ -206,6 +208,52 @@ TEST(TileOffset, NeverRenamesIntoAnExistingOverload) {
   for (size_t i : {1, 2}) {
     ASSERT_EQ(findings[i].fixes.size(), 1u);
     EXPECT_EQ(findings[i].fixes[0].applicability, Applicability::unsafe);
+  }
+}
+
+// What one finding says never grows with its line: 2,000 findings on one line each quote a
+// bounded window of it, and a rewrite that would copy the whole expression again is withheld
+// with the reason (else the report is quadratic in the line).
+TEST(BoundedWork, AFindingOnAHugeLineStaysSmall) {
+  std::string code = "float3 F() { return View.WorldCameraOrigin";
+  for (int i = 1; i < 2000; ++i) code += " + View.WorldCameraOrigin";
+  code += "; }\n";
+  Source src("huge.usf", code);
+  std::vector<Finding> findings = analyze(src, {});
+  ASSERT_EQ(count(findings, "lwc-primary-view"), 2000u);
+  size_t withheld = 0;
+  for (const Finding& f : findings) {
+    EXPECT_LT(f.message.size(), 1200u);
+    for (const Fix& fix : f.fixes) {
+      size_t bytes = 0;
+      for (const Edit& e : fix.edits) bytes += e.text.size();
+      EXPECT_LE(bytes, kMaxFixText);
+    }
+    for (const std::string& why : f.withheld) withheld += why.find("split the expression") != std::string::npos;
+    ReportedFinding r = locate(src, f);
+    EXPECT_LE(r.line_text.size(), 240u);
+    EXPECT_EQ(r.line_column + static_cast<int>(r.line_text.size()) > r.start.column, true);
+  }
+  EXPECT_GT(withheld, 1000u);
+}
+
+// Nesting 100,000 deep (parentheses, calls, braces, #if groups): analysed without a crash; the
+// bench (tests/bench/scaling.sh) shows the time grows linearly.
+TEST(BoundedWork, DeepNestingIsAnalysedWithoutACrash) {
+  const int n = 100000;
+  std::string parens = "float F() { return " + std::string(n, '(') + "1" + std::string(n, ')') + "; }\n";
+  std::string calls = "float F() { return ";
+  for (int i = 0; i < n; ++i) calls += "f(";
+  calls += "1" + std::string(n, ')') + "; }\n";
+  std::string braces = "void F() " + std::string(n, '{') + std::string(n, '}') + "\n";
+  std::string ifs;
+  for (int i = 0; i < n; ++i) ifs += "#if A\n";
+  ifs += "float x;\n";
+  for (int i = 0; i < n; ++i) ifs += "#endif\n";
+  for (const std::string& code : {parens, calls, braces, ifs}) {
+    std::vector<Finding> findings = analyze(Source("deep.usf", code), {});
+    FixOutcome fixed = fix_source(Source("deep.usf", code), {}, true);
+    EXPECT_EQ(fixed.text.size() >= code.size() / 2, true);
   }
 }
 

@@ -10,9 +10,35 @@
 namespace lwc {
 
 ReportedFinding locate(const Source& source, const Finding& f) {
-  ReportedFinding r{f.rule, f.severity, f.message, f.hint, source.position(f.span.begin), source.position(f.span.end), {}, {}, f.decision, f.not_needed,
-                    f.not_needed ? std::vector<std::string>{} : f.withheld};
-  r.line_text = std::string(source.line_text(r.start.line));
+  ReportedFinding r;
+  r.rule = f.rule;
+  r.severity = f.severity;
+  r.message = f.message;
+  r.hint = f.hint;
+  r.start = source.position(f.span.begin);
+  r.end = source.position(f.span.end);
+  r.decision = f.decision;
+  r.not_needed = f.not_needed;
+  if (!f.not_needed) r.withheld = f.withheld;
+  // A long line is shown around the finding only: a finding's report never grows with its line.
+  constexpr size_t kMaxLineShown = 240;
+  std::string_view line = source.line_text(r.start.line);
+  if (line.size() <= kMaxLineShown) {
+    r.line_text = std::string(line);
+  } else {
+    size_t line_start = static_cast<size_t>(line.data() - source.text().data());
+    size_t at = std::min<size_t>(f.span.begin - std::min<size_t>(f.span.begin, line_start), line.size());
+    auto boundary = [&](size_t i) {
+      while (i > 0 && i < line.size() && (static_cast<unsigned char>(line[i]) & 0xC0) == 0x80) --i;
+      return i;
+    };
+    size_t from = boundary(at > kMaxLineShown / 3 ? at - kMaxLineShown / 3 : 0);
+    size_t to = boundary(std::min(line.size(), from + kMaxLineShown));
+    r.line_text = std::string(line.substr(from, to - from));
+    r.line_column = source.position(static_cast<uint32_t>(line_start + from)).column;
+    r.cut_before = from > 0;
+    r.cut_after = to < line.size();
+  }
   if (!f.fixes.empty()) {
     const Fix& fix = f.fixes.front();
     ReportedFix rf{fix.title, fix.applicability, fix.reason, fix.strategy, {}, fix.library, fix.notes};
@@ -65,7 +91,8 @@ std::string caret_line(const ReportedFinding& f) {
   std::string out;
   const std::string& line = f.line_text;
   int end_column = f.end.line == f.start.line ? f.end.column : 1 << 30;
-  int width = 0, column = 1;
+  int width = 0, column = f.line_column;
+  if (f.cut_before) out += ' ';  // under the ellipsis
   for (size_t i = 0; i < line.size(); ++column) {
     size_t len = utf8_sequence(line, i);
     if (column < f.start.column) out += line[i] == '\t' ? "\t" : len ? " " : "    ";
@@ -84,7 +111,8 @@ void write_text_file(std::ostream& out, const FileReport& file, bool color, bool
         << paint(severity_color(f.severity), std::string(severity_name(f.severity)) + ":") << ' ' << escape_invalid_utf8(f.message) << ' '
         << paint("\x1b[2m", "[" + f.rule + "]") << '\n';
     if (!f.line_text.empty()) {
-      out << paint("\x1b[34m", fmt::format("{:>5} | ", f.start.line)) << escape_invalid_utf8(f.line_text) << '\n';
+      out << paint("\x1b[34m", fmt::format("{:>5} | ", f.start.line)) << (f.cut_before ? "\u2026" : "") << escape_invalid_utf8(f.line_text)
+          << (f.cut_after ? "\u2026" : "") << '\n';
       out << paint("\x1b[34m", std::string(6, ' ') + "| ") << paint("\x1b[1;32m", caret_line(f)) << '\n';
     }
     if (!f.hint.empty()) out << std::string(6, ' ') << paint("\x1b[1;36m", "= help:") << ' ' << f.hint << '\n';

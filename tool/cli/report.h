@@ -36,7 +36,11 @@ struct ReportedFinding {
   std::string message;
   std::string hint;
   Position start, end;
-  std::string line_text;  // the start line, for carets and snippets
+  // The start line, for carets and snippets; a long line only around the finding (kMaxLineShown
+  // bytes), from column line_column, cut before and/or after.
+  std::string line_text;
+  int line_column = 1;
+  bool cut_before = false, cut_after = false;
   std::optional<ReportedFix> fix;
   std::string decision;
   bool not_needed = false;

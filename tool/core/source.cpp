@@ -10,12 +10,16 @@ namespace lwc {
 Source::Source(std::string path, std::string text) : path_(std::move(path)), text_(std::move(text)) {
   bom_ = text_.size() >= 3 && std::memcmp(text_.data(), "\xEF\xBB\xBF", 3) == 0;
   line_starts_.push_back(0);
+  ascii_lines_.push_back(1);
   for (uint32_t i = 0; i < text_.size(); ++i) {
+    if (static_cast<unsigned char>(text_[i]) >= 0x80) ascii_lines_.back() = 0;
     if (text_[i] == '\n') {
       line_starts_.push_back(i + 1);
+      ascii_lines_.push_back(1);
       if (i > 0 && text_[i - 1] == '\r') crlf_ = true;
     }
   }
+  if (bom_) ascii_lines_[0] = 0;
 }
 
 static bool is_continuation(unsigned char c) { return (c & 0xC0) == 0x80; }
@@ -66,6 +70,7 @@ Position Source::position(uint32_t offset) const {
   int line = static_cast<int>(it - line_starts_.begin());
   uint32_t start = line_starts_[line - 1];
   if (line == 1 && bom_) start = std::min<uint32_t>(3, offset);
+  if (ascii_lines_[line - 1]) return {line, static_cast<int>(offset - start) + 1};  // one byte, one column
   int column = 1;
   for (size_t i = start; i < offset; i += column_bytes(text_, i)) ++column;
   return {line, column};
@@ -78,6 +83,7 @@ uint32_t Source::offset(Position pos) const {
   if (pos.line == 1 && bom_) i = 3;
   std::string_view line = line_text(pos.line);
   uint32_t end = static_cast<uint32_t>(line.data() - text_.data() + line.size());
+  if (ascii_lines_[pos.line - 1]) return pos.column < 1 ? i : static_cast<uint32_t>(std::min<size_t>(i + pos.column - 1, end));
   for (int column = 1; column < pos.column && i < end; ++column) i += column_bytes(text_, i);
   return std::min(i, end);
 }

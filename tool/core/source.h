@@ -44,6 +44,7 @@ class Source {
   bool bom_ = false;
   bool crlf_ = false;
   std::vector<uint32_t> line_starts_;
+  std::vector<char> ascii_lines_;  // per line: only ASCII, so a column is a byte (position() in O(1))
 };
 
 // The first NUL byte in the first 8 KiB marks a binary file (as git and grep decide).

@@ -11,7 +11,12 @@ struct Group {
   bool closed = false;
   bool has_else = false;
   std::vector<bool> zero;          // per arm: its condition is a literal 0
+  size_t nesting = 0;              // groups open around it
 };
+
+// Groups nested deeper than this are read as the grammar sees them: resolving one costs a walk of
+// its arms, and real code nests a handful deep, so the bound keeps the work linear in the file.
+constexpr size_t kMaxResolvedNesting = 32;
 
 std::string_view word(std::string_view text, const Token& t) { return text.substr(t.begin, t.end - t.begin); }
 
@@ -37,8 +42,8 @@ ConditionalPlan plan_conditionals(std::string_view text, const std::vector<Token
     if (tokens[i].kind != Tok::directive) continue;
     Directive d = read_directive(word(text, tokens[i]));
     if (d.keyword == "if" || d.keyword == "ifdef" || d.keyword == "ifndef") {
-      open.push_back(groups.size());
-      groups.push_back({{i}, false, false, {d.keyword == "if" && literal_zero(d.rest)}});
+      groups.push_back({{i}, false, false, {d.keyword == "if" && literal_zero(d.rest)}, open.size()});
+      open.push_back(groups.size() - 1);
       any = true;
     } else if ((d.keyword == "elif" || d.keyword == "else") && !open.empty()) {
       Group& g = groups[open.back()];
@@ -77,16 +82,18 @@ ConditionalPlan plan_conditionals(std::string_view text, const std::vector<Token
     }
     prev_word = w;
   }
-  auto code_before = [&](size_t i) -> std::string_view {
-    while (i-- > 0)
-      if (tokens[i].kind != Tok::directive) return word(text, tokens[i]);
-    return {};
-  };
-  auto code_after = [&](size_t i) -> std::string_view {
-    while (++i < n)
-      if (tokens[i].kind != Tok::directive) return word(text, tokens[i]);
-    return {};
-  };
+  // The nearest code token before and after each token (directives skipped), worked out once.
+  std::vector<size_t> before_code(n, n), after_code(n, n);
+  for (size_t i = 0, last = n; i < n; ++i) {
+    before_code[i] = last;
+    if (tokens[i].kind != Tok::directive) last = i;
+  }
+  for (size_t i = n, next = n; i-- > 0;) {
+    after_code[i] = next;
+    if (tokens[i].kind != Tok::directive) next = i;
+  }
+  auto code_before = [&](size_t i) { return before_code[i] < n ? word(text, tokens[before_code[i]]) : std::string_view(); };
+  auto code_after = [&](size_t i) { return after_code[i] < n ? word(text, tokens[after_code[i]]) : std::string_view(); };
   // The grammar reads a directive between whole statements or declarations only.
   auto readable_at = [&](size_t i) {
     std::string_view before = code_before(i);
@@ -107,7 +114,7 @@ ConditionalPlan plan_conditionals(std::string_view text, const std::vector<Token
   };
 
   for (const Group& g : groups) {
-    if (!g.closed) continue;
+    if (!g.closed || g.nesting >= kMaxResolvedNesting) continue;
     bool resolve = std::find(g.zero.begin(), g.zero.end(), true) != g.zero.end();
     for (size_t k = 0; k < g.directives.size() && !resolve; ++k) resolve = !readable_at(g.directives[k]);
     for (size_t k = 0; k + 1 < g.directives.size() && !resolve; ++k) resolve = !balanced(g.directives[k], g.directives[k + 1]);

@@ -42,7 +42,9 @@ class Masker {
  public:
   Masker(std::string_view src, std::string& out, std::vector<Token> tokens, Lang lang, const MacroTable& table,
          const MacroTable& learnt)
-      : src_(src), out_(out), t_(std::move(tokens)), masked_(t_.size(), false), lang_(lang), table_(table), learnt_(learnt) {}
+      : src_(src), out_(out), t_(std::move(tokens)), masked_(t_.size(), false), lang_(lang), table_(table), learnt_(learnt) {
+    match_brackets();
+  }
 
   void run() {
     std::vector<int> pending_ternary{0};  // per nesting level, the `?` still waiting for their `:`
@@ -127,16 +129,26 @@ class Masker {
     blank(t_[from].begin, t_[to].end);
     for (size_t k = from; k <= to; ++k) masked_[k] = true;
   }
-  size_t matching(size_t open) const {
-    std::string_view o = word(open);
-    std::string_view c = o == "[" ? "]" : o == "(" ? ")" : "}";
-    int depth = 0;
-    for (size_t k = open; k < t_.size(); ++k) {
+  // The bracket that closes the one at `open` (counting that kind of bracket only), or the end.
+  size_t matching(size_t open) const { return open < closer_.size() ? closer_[open] : t_.size(); }
+
+  // Every bracket's partner, worked out once (one stack per kind): a lookup is O(1), so nesting
+  // costs linear time however deep it goes.
+  void match_brackets() {
+    closer_.assign(t_.size(), t_.size());
+    std::vector<size_t> open[3];
+    for (size_t k = 0; k < t_.size(); ++k) {
       if (t_[k].kind != Tok::punct) continue;
-      if (word(k) == o) ++depth;
-      else if (word(k) == c && --depth == 0) return k;
+      std::string_view w = word(k);
+      int kind = w == "(" || w == ")" ? 0 : w == "[" || w == "]" ? 1 : w == "{" || w == "}" ? 2 : -1;
+      if (kind < 0) continue;
+      if (w == "(" || w == "[" || w == "{") {
+        open[kind].push_back(k);
+      } else if (!open[kind].empty()) {
+        closer_[open[kind].back()] = k;
+        open[kind].pop_back();
+      }
     }
-    return t_.size();
   }
 
   // ---- scopes: what a `{` opens decides whether a call-like line can be a declaration macro
@@ -385,6 +397,7 @@ class Masker {
   std::string& out_;
   std::vector<Token> t_;
   std::vector<bool> masked_;
+  std::vector<size_t> closer_;  // per opening bracket token: its closing one (t_.size() if none)
   Lang lang_;
   const MacroTable& table_;
   const MacroTable& learnt_;

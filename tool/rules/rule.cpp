@@ -1,5 +1,7 @@
 #include "rules/rule.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <stdexcept>
 
@@ -77,6 +79,18 @@ const RuleInfo* find_rule(std::string_view id) {
 
 const nlohmann::json& world_space_data() { return loaded().world_space; }
 
+// A value quoted in a message, at most kMaxQuoted bytes: the start and the end of a longer one
+// around an ellipsis (cut at UTF-8 boundaries), so a finding's text never grows with its line.
+static std::string shortened(std::string_view value) {
+  if (value.size() <= kMaxQuoted) return std::string(value);
+  auto boundary = [&](size_t i) {
+    while (i > 0 && i < value.size() && (static_cast<unsigned char>(value[i]) & 0xC0) == 0x80) --i;
+    return i;
+  };
+  size_t head = boundary(kMaxQuoted * 2 / 3), tail = boundary(value.size() - kMaxQuoted / 4);
+  return std::string(value.substr(0, head)) + " \u2026 " + std::string(value.substr(tail));
+}
+
 std::string expand(std::string_view tmpl, const Vars& vars) {
   std::string out;
   size_t i = 0;
@@ -87,7 +101,7 @@ std::string expand(std::string_view tmpl, const Vars& vars) {
     if (close == std::string_view::npos) break;
     out.append(tmpl.substr(i, open - i));
     auto it = vars.find(std::string(tmpl.substr(open + 1, close - open - 1)));
-    if (it != vars.end()) out += it->second;
+    if (it != vars.end()) out += shortened(it->second);
     else out.append(tmpl.substr(open, close - open + 1));
     i = close + 1;
   }
@@ -120,8 +134,16 @@ Fix make_fix(const RuleInfo& rule, std::string_view kind, const Vars& vars, std:
 
 Finding& CheckContext::report(Span span, const Vars& vars) const { return out.emplace_back(make_finding(rule, span, vars)); }
 
-Fix& CheckContext::fix(Finding& finding, std::string_view kind, const Vars& vars, std::vector<Edit> edits) const {
-  return finding.fixes.emplace_back(make_fix(rule, kind, vars, std::move(edits)));
+Fix* CheckContext::fix(Finding& finding, std::string_view kind, const Vars& vars, std::vector<Edit> edits) const {
+  size_t bytes = 0;
+  for (const Edit& e : edits) bytes += e.text.size();
+  if (bytes > kMaxFixText) {
+    Fix f = make_fix(rule, kind, {}, {});
+    finding.withheld.push_back(fmt::format("{}{}the rewrite would write {} bytes of this expression again; split the expression, or port it "
+                                           "by hand", f.strategy, f.strategy.empty() ? "" : ": ", bytes));
+    return nullptr;
+  }
+  return &finding.fixes.emplace_back(make_fix(rule, kind, vars, std::move(edits)));
 }
 
 }  // namespace lwc

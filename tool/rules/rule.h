@@ -41,6 +41,10 @@ const nlohmann::json& world_space_data();
 
 using Vars = std::map<std::string, std::string>;
 // Replaces each {key} in a template with its value; unknown keys stay as written.
+// Longest value a message quotes, and the most text one rewrite may write (bytes): what lwcport
+// prints for a finding never grows with the length of its line.
+constexpr size_t kMaxQuoted = 400;
+constexpr size_t kMaxFixText = 4096;
 std::string expand(std::string_view tmpl, const Vars& vars);
 
 // A finding of a rule at a span, its message and hint filled from vars.
@@ -57,8 +61,10 @@ struct CheckContext {
 
   // Reports the rule at a span, its message and hint filled from vars.
   Finding& report(Span span, const Vars& vars) const;
-  // Adds a candidate rewrite of the rule's kind (rules/<id>.json "fixes") to a finding.
-  Fix& fix(Finding& finding, std::string_view kind, const Vars& vars, std::vector<Edit> edits) const;
+  // Adds a candidate rewrite of the rule's kind (rules/<id>.json "fixes") to a finding; null
+  // when its edits would copy more than kMaxFixText bytes (a pathological expression: the
+  // finding says so instead, and output stays linear in the input).
+  Fix* fix(Finding& finding, std::string_view kind, const Vars& vars, std::vector<Edit> edits) const;
 };
 
 // A check: the code half of a rule (its data half is rules/<id>.json).

@@ -1109,6 +1109,22 @@ class Analyzer {
 WorldModel::WorldModel(const SyntaxTree& tree, const WorldData& data, const ModelContext& context)
     : tree_(tree), data_(data), names_as_evidence_(context.names_as_evidence), plain_names_(context.plain_names), era_(context.era), includes_(context.includes) {
   Analyzer(*this, context.includes).run();
+  for (size_t i = 0; i < variables_.size(); ++i) {
+    const Variable& v = variables_[i];
+    if (v.decl >= 0) declared_at_.emplace(v.decl, static_cast<int>(i));
+    if (v.role == Variable::Role::global) globals_by_name_[v.name].push_back(static_cast<int>(i));
+  }
+}
+
+int WorldModel::variable_declared_at(int identifier) const {
+  auto it = declared_at_.find(identifier);
+  return it != declared_at_.end() ? it->second : -1;
+}
+
+const std::vector<int>& WorldModel::globals_named(const std::string& name) const {
+  static const std::vector<int> none;
+  auto it = globals_by_name_.find(name);
+  return it != globals_by_name_.end() ? it->second : none;
 }
 
 WorldModel::~WorldModel() = default;
@@ -1237,9 +1253,9 @@ bool WorldModel::used_where_precision_matters(int var, int depth) const {
   // A global declared in several #if arms is one name: every declaration's uses count.
   std::vector<int> list = uses(var);
   if (variables_[var].role == Variable::Role::global)
-    for (size_t other = 0; other < variables_.size(); ++other)
-      if (static_cast<int>(other) != var && variables_[other].role == Variable::Role::global && variables_[other].name == variables_[var].name) {
-        std::vector<int> more = uses(static_cast<int>(other));
+    for (int other : globals_named(variables_[var].name))
+      if (other != var) {
+        std::vector<int> more = uses(other);
         list.insert(list.end(), more.begin(), more.end());
       }
   if (list.empty()) return true;  // declared for the host and not read here: its name is the evidence
@@ -1259,9 +1275,8 @@ bool WorldModel::used_where_precision_matters(int var, int depth) const {
       continue;
     }
     if (type == "init_declarator") {  // a copy: its own uses decide
-      int name = tree_.declarator_name(tree_.child_by_field(p, "declarator"));
-      for (size_t i = 0; i < variables_.size(); ++i)
-        if (variables_[i].decl == name && used_where_precision_matters(static_cast<int>(i), depth + 1)) return true;
+      int copy = variable_declared_at(tree_.declarator_name(tree_.child_by_field(p, "declarator")));
+      if (copy >= 0 && used_where_precision_matters(copy, depth + 1)) return true;
       continue;
     }
     if (type == "binary_expression") {
@@ -1415,6 +1430,11 @@ void FileSummary::merge(const FileSummary& from) {
   macros.insert(from.macros.begin(), from.macros.end());
   field_types.insert(from.field_types.begin(), from.field_types.end());
   parameter_uses.insert(from.parameter_uses.begin(), from.parameter_uses.end());
+}
+
+std::string WorldModel::function_return_type(const std::string& name) const {
+  auto it = return_types_.find(name);
+  return it != return_types_.end() ? it->second : "";
 }
 
 FileSummary WorldModel::summary() const {

@@ -171,6 +171,10 @@ class WorldModel {
   int variable_at(int identifier) const;
   // Identifier nodes that refer to a variable (its declaration excluded).
   std::vector<int> uses(int variable) const;
+  // The variable a declarator's identifier declares, or -1.
+  int variable_declared_at(int identifier) const;
+  // Every global of that name (one per #if arm that declares it).
+  const std::vector<int>& globals_named(const std::string& name) const;
   const std::vector<AbsoluteHolder>& absolute_holders() const { return holders_; }
   // Every use of a variable keeps only what float32 holds well far from the origin: a matrix's
   // rotation (a 3x3 cast, a basis row or column, a copy whose translation is then cleared), or a
@@ -186,6 +190,8 @@ class WorldModel {
   // Nodes whose analysis was cut because they nest too deeply.
   const std::vector<int>& too_deep() const { return too_deep_; }
   FileSummary summary() const;
+  // The declared return type of a function of this file, or "".
+  std::string function_return_type(const std::string& name) const;
   const SyntaxTree& tree() const { return tree_; }
   const WorldData& data() const { return data_; }
 
@@ -195,6 +201,8 @@ class WorldModel {
   const WorldData& data_;
   std::vector<Variable> variables_;
   std::unordered_map<int, int> refs_;  // identifier node -> variable
+  std::unordered_map<int, int> declared_at_;                         // declarator identifier -> variable
+  std::unordered_map<std::string, std::vector<int>> globals_by_name_;  // filled once the analysis is done
   mutable std::vector<std::vector<int>> uses_;  // variable -> its identifier nodes, built on first use
   std::unordered_map<int, Kind> kinds_;
   std::vector<AbsoluteHolder> holders_;

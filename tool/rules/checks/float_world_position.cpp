@@ -83,14 +83,16 @@ class FloatWorldPosition : public Check {
     } else {
       std::string interface;
       for (const std::string& rename : plan.interface) interface += (interface.empty() ? "" : ", ") + rename;
-      Fix& fix = ctx.fix(f, input ? "translated-input" : "high-low",
+      Fix* fix = ctx.fix(f, input ? "translated-input" : "high-low",
                          {{"name", v.name},
                           {"new-name", translated_name(v.name)},
                           {"interface", interface},
                           {"interface-change", interface.empty() ? "" : "; the stage interface changes too (" + interface + "): the next stage must follow"}},
                          plan.edits);
-      fix.library = plan.library;
-      fix.notes = plan.notes;
+      if (fix) {
+        fix->library = plan.library;
+        fix->notes = plan.notes;
+      }
     }
     f.withheld.push_back("DoubleFloat: this code has no DoubleFloat matrices to start from (the translated rewrite keeps its translations as High/Low pairs instead)");
   }

@@ -91,8 +91,7 @@ class HackMarker : public Check {
     if (t.is(args[0], "identifier")) {
       if (int v = ctx.world.variable_at(args[0]); v >= 0) type = ctx.world.variables()[static_cast<size_t>(v)].type;
     } else if (t.is(args[0], "call_expression")) {
-      auto returns = ctx.world.summary().function_return_types;
-      if (auto it = returns.find(std::string(call_name(t, args[0]))); it != returns.end()) type = it->second;
+      type = ctx.world.function_return_type(std::string(call_name(t, args[0])));
     }
     if (!type.starts_with(target)) return;
     std::string text(t.text(args[0]));

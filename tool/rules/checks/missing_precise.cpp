@@ -412,10 +412,7 @@ class MissingPrecise : public Check {
     for (int a = t.at(id).parent; a >= 0; a = t.at(a).parent) {
       std::string_view type = t.at(a).type;
       if (type == "init_declarator") {
-        int d = t.child_by_field(a, "declarator");
-        for (const Variable& v : ctx.world.variables())
-          if (v.decl == d) return static_cast<int>(&v - ctx.world.variables().data());
-        return -1;
+        return ctx.world.variable_declared_at(t.child_by_field(a, "declarator"));
       }
       if (type == "assignment_expression") {
         int left = strip(t, t.child_by_field(a, "left"));
