@@ -123,6 +123,7 @@ TEST(Cli, AConfigValueOfTheWrongTypeOrMeaningStopsTheRunWithItsReason) {
       {R"({"world-sources": [{"match": "A", "kind": "absolute-position", "langs": ["hlsl"]}]})", "unknown key \"langs\""},
       {R"({"world-sources": [{"match": "A", "kind": "far-away"}]})", "unknown world-space kind \"far-away\""},
       {R"({"max-file-bytes": 0})", "\"max-file-bytes\" must be a positive integer"},
+      {R"({"max-parse-seconds": 0})", "\"max-parse-seconds\" must be a number of seconds above 0"},
       {R"({"virtual-roots": {"/Engine/": "../Engine/Shaders"}})", "\"..\" in its folder"},
       {R"({"virtual-roots": {"Engine": "Shaders"}})", "a prefix starts and ends with '/'"},
   };

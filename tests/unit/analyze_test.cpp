@@ -257,5 +257,21 @@ TEST(BoundedWork, DeepNestingIsAnalysedWithoutACrash) {
   }
 }
 
+// The parser's budget: a file it cannot finish in time is one clear error, the run goes on.
+TEST(BoundedWork, AParseOverItsBudgetIsAnErrorNotAHang) {
+  std::string code;
+  for (int i = 0; i < 20000; ++i) code += "float3 F" + std::to_string(i) + "(float3 P) { return P - View.WorldCameraOrigin; }\n";
+  for (const char* path : {"slow.usf", "slow.vert", "slow.glsl.js"}) {
+    AnalyzeOptions options;
+    options.max_parse_seconds = 1e-6;
+    std::string text = std::string(path).ends_with(".js") ? "const s = /* glsl */`" + code + "`;\n" : code;
+    std::vector<Finding> findings = analyze(Source(path, text), options);
+    ASSERT_FALSE(findings.empty()) << path;
+    bool gave_up = false;
+    for (const Finding& f : findings) gave_up |= f.rule == "lwc-input" && f.message.find("the parser gave up") != std::string::npos;
+    EXPECT_TRUE(gave_up) << path;
+  }
+}
+
 }  // namespace
 }  // namespace lwc

@@ -284,6 +284,7 @@ LoadedFile load(const InputFile& file, const Options& o, IncludeSummaries& inclu
   a.lint_library = config.lint_library;
   a.formats = &config.formats;
   a.max_bytes = config.max_file_bytes;
+  a.max_parse_seconds = config.max_parse_seconds;
   a.strategy = o.strategy;
   if (o.scene) a.scene = o.scene->for_path(file.display);
   out.source.emplace(file.display, std::move(r.text));
@@ -917,9 +918,14 @@ int parse_only(const Options& o, std::ostream& out, std::ostream& err) {
     has_code[i] = true;
     bytes += src.text().size();
     for (const Source* unit : code.units(src)) {
-      MaskOptions mask{&known_macros(*code.lang), 0};
+      MaskOptions mask{&known_macros(*code.lang), 0, files[i].config->max_parse_seconds};
       for (int variants = 1; mask.variant < variants; ++mask.variant) {
         SyntaxTree tree = parse(*unit, *code.lang, mask);
+        if (tree.timed_out) {
+          errors[i] += 1;
+          details[i] += fmt::format("{}: the parser gave up after {:g} s\n", unit->path(), mask.max_parse_seconds);
+          break;
+        }
         variants = tree.variants;
         errors[i] += tree.error_count;
         if (o.verbose && tree.error_count) details[i] += syntax_error_lines(tree);

@@ -77,7 +77,7 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
     if (!find_rule(id)) fail(fmt::format("unknown rule id \"{}\"", id));
   };
   for (const auto& item : j.items()) {
-    static const char* known[] = {"severity", "select", "ignore", "include-dirs", "virtual-roots", "exclude", "world-sources", "max-file-bytes", "macros", "unreal", "library-definitions", "extensions"};
+    static const char* known[] = {"severity", "select", "ignore", "include-dirs", "virtual-roots", "exclude", "world-sources", "max-file-bytes", "max-parse-seconds", "macros", "unreal", "library-definitions", "extensions"};
     const std::string& key = item.key();
     if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) == std::end(known))
       fail(fmt::format("unknown key \"{}\"", key));
@@ -140,6 +140,12 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
     if (!j.at("max-file-bytes").is_number_unsigned() || j.at("max-file-bytes").get<size_t>() == 0)
       fail("\"max-file-bytes\" must be a positive integer (bytes; the default is 16 MiB)");
     c.max_file_bytes = j.at("max-file-bytes").get<size_t>();
+  }
+  if (j.contains("max-parse-seconds")) {
+    const auto& v = j.at("max-parse-seconds");
+    if (!v.is_number() || v.get<double>() <= 0 || v.get<double>() > 86400)
+      fail("\"max-parse-seconds\" must be a number of seconds above 0 (the default is 30)");
+    c.max_parse_seconds = v.get<double>();
   }
   if (j.contains("macros")) add_macros(j.at("macros"), file.string(), c.macros);
   if (j.contains("unreal")) {

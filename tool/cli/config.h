@@ -25,6 +25,7 @@ struct ProjectConfig {
   std::vector<std::string> exclude;  // .gitignore-style patterns, relative to dir
   nlohmann::json world_sources = nlohmann::json::array();
   size_t max_file_bytes = 16u << 20;
+  double max_parse_seconds = 30;  // the parser's budget per file
   MacroTable macros;  // macros used as syntax, by use (lang/macros.h)
   std::optional<UnrealEra> unreal;  // the engine the project builds against (else inferred per file)
   FormatTable formats = FormatTable::defaults();  // which extensions are shaders, and how

@@ -110,7 +110,8 @@ const FileSummary& IncludeSummaries::summarised(const Entry& e, const ProjectCon
   ReadResult r = read_file(e.file, config.max_file_bytes);
   if (r.error.empty() && !r.too_large) {
     Source src(e.file.string(), r.text);
-    *summary = include_summary(src, parse(src, *e.lang, {&macros, 0}), config.world_sources, model_context(src, *e.lang, nullptr));
+    *summary = include_summary(src, parse(src, *e.lang, {&macros, 0, config.max_parse_seconds}), config.world_sources,
+                               model_context(src, *e.lang, nullptr));
   }
   std::lock_guard lock(mutex_);
   if (!e.own) e.own = std::move(summary);

@@ -24,6 +24,8 @@ enum class Lang;
 struct MaskOptions {
   const MacroTable* macros = nullptr;  // the macros known (default: known_macros); the file's own #defines are added
   int variant = 0;
+  // The parser's budget (parse()): its error recovery on some broken input has no bound.
+  double max_parse_seconds = 30;
 };
 
 struct MaskResult {

@@ -1,5 +1,7 @@
 #include "lang/syntax.h"
 
+#include <algorithm>
+
 #include "lang/formats.h"
 
 #include <tree_sitter/api.h>
@@ -157,8 +159,15 @@ SyntaxTree parse(const Source& source, Lang lang, const MaskOptions& options) {
   out.unterminated_comment = masked.unterminated_comment;
   out.variants = masked.variants;
   out.resolved_conditionals = std::move(masked.resolved_conditionals);
-  std::unique_ptr<TSTree, TreeDeleter> tree(ts_parser_parse_string(
-      thread_parser(lang), nullptr, masked.text.data(), static_cast<uint32_t>(masked.text.size())));
+  TSParser* parser = thread_parser(lang);
+  ts_parser_set_timeout_micros(parser, static_cast<uint64_t>(std::max(1e-6, options.max_parse_seconds) * 1e6));
+  std::unique_ptr<TSTree, TreeDeleter> tree(
+      ts_parser_parse_string(parser, nullptr, masked.text.data(), static_cast<uint32_t>(masked.text.size())));
+  if (!tree) {  // out of budget: the parser keeps its state for a resume that will not come
+    ts_parser_reset(parser);
+    out.timed_out = true;
+    return out;
+  }
   flatten(tree.get(), out);
   return out;
 }

@@ -43,6 +43,7 @@ class SyntaxTree {
   int error_count = 0;
   uint32_t first_error = 0;
   std::optional<uint32_t> unterminated_comment;  // offset of a `/*` that never ends
+  bool timed_out = false;  // the parser ran out of its budget (MaskOptions::max_parse_seconds): no nodes
   int variants = 1;  // how many variants the file's preprocessor groups need (lang/conditionals.h)
   std::vector<Span> resolved_conditionals;  // groups resolved per variant: no rewrite touches them
 

@@ -79,8 +79,8 @@ MacroTable macro_table(Lang lang, const MacroTable* included, const MacroTable& 
 
 FileSummary include_summary(const Source& source, const SyntaxTree& tree, const nlohmann::json& world_sources,
                             const ModelContext& context) {
-  WorldModel model(tree, world_data(tree.lang, world_sources), context);
-  FileSummary summary = model.summary();
+  FileSummary summary;
+  if (!tree.timed_out) summary = WorldModel(tree, world_data(tree.lang, world_sources), context).summary();
   learn_macros(source.text(), known_macros(tree.lang), summary.macros);
   return summary;
 }
@@ -446,7 +446,13 @@ void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, co
   std::optional<uint32_t> first_error, first_too_deep;
   std::optional<SyntaxTree> first;  // variant 0, kept for the suppressions' own fixes
   for (int variant = 0, variants = 1; variant < variants; ++variant) {
-    SyntaxTree tree = parse(code, lang, {&macros, variant});
+    SyntaxTree tree = parse(code, lang, {&macros, variant, options.max_parse_seconds});
+    if (tree.timed_out) {
+      findings.push_back(input_finding(
+          Severity::error, 0, fmt::format("the parser gave up after {:g} s (its error recovery on this file found no end); not analysed", options.max_parse_seconds),
+          "look for a stray or binary byte sequence in the file, or raise \"max-parse-seconds\" in .lwcport.json"));
+      return;
+    }
     variants = tree.variants;
     if (tree.error_count > 0) {
       errors += tree.error_count;
@@ -558,8 +564,8 @@ std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options
   std::vector<FileSummary> summaries;
   for (const Source& view : shader.views) {
     MacroTable macros = macro_table(*lang, options);
-    SyntaxTree tree = parse(view, *lang, {&macros, 0});
-    summaries.push_back(WorldModel(tree, world_data(*lang, options.world_sources), {options.includes}).summary());
+    SyntaxTree tree = parse(view, *lang, {&macros, 0, options.max_parse_seconds});
+    summaries.push_back(tree.timed_out ? FileSummary{} : WorldModel(tree, world_data(*lang, options.world_sources), {options.includes}).summary());
   }
   for (size_t i = 0; i < shader.views.size(); ++i) {
     FileSummary known = options.includes ? *options.includes : FileSummary{};
