@@ -970,6 +970,7 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
   std::vector<InputFile> files = input_files(o);
   IncludeSummaries includes;
   std::vector<FunctionResult> results;
+  std::vector<std::string> unverified;  // files with findings where no function ran at all
   for (const InputFile& file : files) {
     LoadedFile f = load(file, o, includes);
     if (f.problem) {
@@ -999,13 +1000,20 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
         variants.push_back({variants[i].label.substr(0, variants[i].label.find(" (")) + ", DFFast*", fast, variants[i].ue_version,
                             variants[i].hand_fixes});
     HarnessSetup setup = harness_setup(file, f, *lang, includes);
-    for (const std::string& name : names)
+    bool any_ran = false;
+    for (const std::string& name : names) {
       results.push_back(verify_function(*verifier.device, verifier.probes, setup, name, variants));
+      for (const auto& v : results.back().variants) any_ran |= v.measured;
+    }
+    if (!any_ran) unverified.push_back(file.display);
   }
   double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (o.report.format == Format::json) print_functions_json(out, verifier.device->name(), verifier.probes, results, wall);
   else print_functions_text(out, verifier.device->name(), verifier.probes, results, wall);
+  for (const std::string& path : unverified)
+    err << fmt::format("lwcport: {}: nothing in it could be verified (no function ran; the reasons are above)\n", path);
   if (!o.fail_on) return 0;
+  if (!unverified.empty()) return 1;
   for (const FunctionResult& r : results)
     for (size_t i = 1; i < r.variants.size(); ++i)
       if (r.variants[i].refuted()) return 1;

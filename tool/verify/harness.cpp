@@ -583,23 +583,23 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
       check.entry = "lwcport_compile_check";
       check.text += "\nvoid lwcport_compile_check() {}\n";
     }
-    if (!float64) {
-      CompileResult whole = compile_shader(check);
-      if (!whole.ok) {
-        k.problem = "does not compile: " + format_messages(whole);
-        for (const CompileMessage& m : whole.messages)
-          if (auto hand = v.hand_fixes.find(m.line); m.source == setup.display && hand != v.hand_fixes.end()) {
-            k.problem = fmt::format("incomplete: line {} is in code lwcport could not port (no automatic fix for {} there), and "
-                                    "the file does not compile until it is fixed by hand: {}", m.line, hand->second, format_messages(whole));
-            break;
-          }
-        return k;
-      }
-    }
+    // A file that does not compile as a whole may still hold this function compiling on its own
+    // (the error is in another function): the harness kernel, cut down to what the function
+    // needs, decides; if it fails too, the file's own error (its own line numbers) is the reason.
+    std::optional<CompileResult> whole_failed;
+    if (!float64)
+      if (CompileResult whole = compile_shader(check); !whole.ok) whole_failed = std::move(whole);
+    auto file_problem = [&]() {
+      for (const CompileMessage& m : whole_failed->messages)
+        if (auto hand = v.hand_fixes.find(m.line); m.source == setup.display && hand != v.hand_fixes.end())
+          return fmt::format("incomplete: line {} is in code lwcport could not port (no automatic fix for {} there), and "
+                             "the file does not compile until it is fixed by hand: {}", m.line, hand->second, format_messages(*whole_failed));
+      return "does not compile: " + format_messages(*whole_failed);
+    };
     std::string text = float64 ? promote_to_double(setup.lang, pre.text) : pre.text;
     k.code = build_harness_kernel(setup.lang, text, function, float64);
     if (!k.code.problem.empty()) {
-      k.problem = "not verifiable: " + k.code.problem;
+      k.problem = whole_failed ? file_problem() : "not verifiable: " + k.code.problem;
       return k;
     }
     KernelSpec spec;
@@ -615,7 +615,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     std::smatch es;
     if (std::regex_search(v.text, es, es_version)) spec.glsl_version = es[1] == "2" ? "320 es" : "310 es";
     k.compiled = compile_kernel(spec);
-    if (!k.compiled.ok) k.problem = "the harness kernel does not compile: " + format_messages(k.compiled);
+    if (!k.compiled.ok) k.problem = whole_failed ? file_problem() : "the harness kernel does not compile: " + format_messages(k.compiled);
     return k;
   };
   auto build = [&](const FileVariant& v, bool float64) {
@@ -698,7 +698,9 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
   Kernel reference = build(variants.front(), true);
   Run ref_run;
   if (reference.problem.empty()) ref_run = run(reference, true, 1, inputs_for(reference.code, true));
-  if (!reference.problem.empty() || !ref_run.problem.empty()) {
+  if (!reference.problem.empty() && !build(variants.front(), false).problem.empty()) {
+    result.reference = "no float64 reference: the original does not compile (its error, with the file's lines, is below)";
+  } else if (!reference.problem.empty() || !ref_run.problem.empty()) {
     result.reference = "no float64 reference: " + (reference.problem.empty() ? ref_run.problem : reference.problem);
   } else {
     result.reference = "the original promoted to float64 (transcendentals in float32)";
