@@ -62,6 +62,22 @@ TEST(VerifyCli, AFunctionThatCompilesOnItsOwnIsVerifiedBesideOneThatDoesNot) {
   EXPECT_NE(only.out.find("only_bad.vert: nothing in it could be verified"), std::string::npos) << only.out;
 }
 
+// The verifier's regular expressions recurse per character they match: a struct of 2,000 members
+// once overflowed the stack and killed the run; now it is verified like any other file.
+TEST(VerifyCli, AHugeStructDoesNotKillTheRun) {
+  std::string dir = test::scratch("verify-huge");
+  std::string members;
+  for (int i = 0; i < 2000; ++i) members += "  float m" + std::to_string(i) + ";\n";
+  test::write(dir + "/big.vert", "#version 450\nstruct Big {\n" + members + "};\nuniform Big big;\nuniform vec3 cameraPosition;\n"
+              "uniform mat4 modelMatrix;\nin vec3 position;\nout float d;\n"
+              "float Good(vec3 p) { vec3 w = (modelMatrix * vec4(p, 1.0)).xyz; return length(w - cameraPosition) + big.m5; }\n"
+              "void main() { d = Good(position); }\n");
+  test::Run r = test::run(test::binary() + " verify " + dir + "/big.vert --fail-on none 2>&1");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("big.vert: Good"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Verified 2 function(s)"), std::string::npos) << r.out;
+}
+
 TEST(VerifyCli, FixVerifyAppliesThePassingRewriteAndHoldsBackTheOthersWithTheirReason) {
   std::string dir = test::scratch("fix-verify");
   // Adding `precise` to a plain TwoSum passes; forward.vert's translated-world rewrite misses 1/16 cm

@@ -1,5 +1,7 @@
 #include "cli/commands.h"
 
+#include <pthread.h>
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <unistd.h>
@@ -457,6 +459,38 @@ std::string fast_double_float_form(const std::string& text) {
   return std::regex_replace(text, accurate, "DFFast$1$2");
 }
 
+// Runs `work` on a thread with a 1 GiB stack (reserved address space, touched only as needed):
+// the verifier's std::regex recurses once per character a pattern matches, so a long struct or
+// name (2,000 members) overflowed the main thread's 8 MiB and killed the whole run.
+template <typename Work>
+auto on_big_stack(Work work) -> decltype(work()) {
+  using Result = decltype(work());
+  struct Job {
+    Work* work;
+    std::optional<Result> result;
+    std::exception_ptr error;
+  } job{&work, std::nullopt, nullptr};
+  pthread_attr_t attr;
+  pthread_attr_init(&attr);
+  pthread_attr_setstacksize(&attr, size_t{1} << 30);
+  auto entry = [](void* p) -> void* {
+    auto* j = static_cast<Job*>(p);
+    try {
+      j->result.emplace((*j->work)());
+    } catch (...) {
+      j->error = std::current_exception();
+    }
+    return nullptr;
+  };
+  pthread_t thread;
+  bool started = pthread_create(&thread, &attr, entry, &job) == 0;
+  pthread_attr_destroy(&attr);
+  if (!started) return work();
+  pthread_join(thread, nullptr);
+  if (job.error) std::rethrow_exception(job.error);
+  return std::move(*job.result);
+}
+
 // The device and what its driver does to float arithmetic, for `verify` and `fix --verify`.
 struct Verifier {
   std::unique_ptr<WorkerDevice> device;
@@ -578,7 +612,7 @@ std::string verify_fix(Verifier& verifier, const InputFile& file, const LoadedFi
   HarnessSetup setup = harness_setup(file, f, lang, includes);
   std::vector<FileVariant> variants = {{"original (float32)", source.text(), unreal_era(source.text()), {}}, fixed_variant("fixed", fixed, lang)};
   for (const std::string& name : names) {
-    FunctionResult r = verify_function(*verifier.device, verifier.probes, setup, name, variants);
+    FunctionResult r = on_big_stack([&] { return verify_function(*verifier.device, verifier.probes, setup, name, variants); });
     const VariantResult &v = r.variants.back(), &original = r.variants.front();
     // Input-limited: right on what it is handed, but a value its callers pass (unchanged by the
     // fix) is float32; written when it is no further from the reference than the original was.
@@ -716,7 +750,7 @@ FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& in
   std::optional<Lang> lang = language_for(source, f.options);
   if (verifier && lang) {
     std::vector<std::string> verified;
-    if (std::string why = verify_fix(*verifier, file, f, *lang, fixed, includes, verified); !why.empty()) {
+    if (std::string why = on_big_stack([&] { return verify_fix(*verifier, file, f, *lang, fixed, includes, verified); }); !why.empty()) {
       keep_original(out, source, f.options, input_finding(Severity::warning, 0, "fix held back: " + why,
                                                           "run `lwcport verify` on the file for every variant's numbers"));
       return out;
@@ -1002,7 +1036,7 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
     HarnessSetup setup = harness_setup(file, f, *lang, includes);
     bool any_ran = false;
     for (const std::string& name : names) {
-      results.push_back(verify_function(*verifier.device, verifier.probes, setup, name, variants));
+      results.push_back(on_big_stack([&] { return verify_function(*verifier.device, verifier.probes, setup, name, variants); }));
       for (const auto& v : results.back().variants) any_ran |= v.measured;
     }
     if (!any_ran) unverified.push_back(file.display);
