@@ -136,6 +136,17 @@ TEST(Cli, AConfigValueOfTheWrongTypeOrMeaningStopsTheRunWithItsReason) {
   }
 }
 
+// Settings that are valid but look wrong are warned about once, and the run goes on.
+TEST(Cli, AnIncludeDirThatIsNotThereIsAWarning) {
+  std::string dir = test::scratch("config-warning");
+  test::write(dir + "/a.usf", "float F(float3 P) { return P.x; }\n");
+  test::write(dir + "/.lwcport.json", R"({"include-dirs": ["Shaders/Shared", "/"]})");
+  auto r = test::run("cd " + dir + " && " + test::binary() + " lint a.usf 2>&1");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find(".lwcport.json: include dir \"Shaders/Shared\" is not a folder here"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("include dir \"/\" is the file system's root"), std::string::npos) << r.out;
+}
+
 TEST(Cli, IncludesTeachDeclarationsAndMissingOnesAreFine) {
   std::string dir = test::scratch("includes");
   test::write(dir + "/.lwcport.json", R"({"virtual-roots": {"/Engine/": "engine"}, "include-dirs": ["shared"]})");

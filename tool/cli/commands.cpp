@@ -384,9 +384,13 @@ bool open_target(const Options& o, std::ostream& out, std::ostream& err, ReportT
   return true;
 }
 
-std::vector<InputFile> input_files(const Options& o) {
+// The files to work on; each config's warnings are printed once, naming the config.
+std::vector<InputFile> input_files(const Options& o, std::ostream& err) {
   ConfigFinder configs;
-  return discover(o.paths.empty() ? std::vector<std::string>{"."} : o.paths, configs);
+  std::vector<InputFile> files = discover(o.paths.empty() ? std::vector<std::string>{"."} : o.paths, configs);
+  for (const auto& config : configs.loaded())
+    for (const std::string& w : config->warnings) err << fmt::format("lwcport: warning: {}: {}\n", (config->dir / ".lwcport.json").string(), w);
+  return files;
 }
 
 // Nothing is silent: a path given on the command line that yields no shader code is an error
@@ -422,7 +426,7 @@ struct CodeCounter {
 };
 
 int lint(const Options& o, std::ostream& out, std::ostream& err) {
-  std::vector<InputFile> files = input_files(o);
+  std::vector<InputFile> files = input_files(o, err);
   ReportTarget target;
   ReportOptions ro;
   if (!open_target(o, out, err, target, ro)) return 2;
@@ -830,7 +834,7 @@ bool write_library(const LibraryFile& lib, const Options& o, std::ostream& out, 
 
 int fix(const Options& o, std::ostream& out, std::ostream& err) {
   remove_temporary_files_on_signals();
-  std::vector<InputFile> files = input_files(o);
+  std::vector<InputFile> files = input_files(o, err);
   // --verify: one device, used by one file at a time (started before any thread: it forks).
   std::optional<Verifier> verifier;
   if (o.verify && !start_verifier(o, verifier.emplace(), err)) return 2;
@@ -1001,7 +1005,7 @@ int parse_only(const Options& o, std::ostream& out, std::ostream& err) {
 // `lwcport verify PATHS`: every function with a finding, in its original form and each rewrite.
 int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, std::ostream& err) {
   auto start = std::chrono::steady_clock::now();
-  std::vector<InputFile> files = input_files(o);
+  std::vector<InputFile> files = input_files(o, err);
   IncludeSummaries includes;
   std::vector<FunctionResult> results;
   std::vector<std::string> unverified;  // files with findings where no function ran at all

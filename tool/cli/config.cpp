@@ -96,7 +96,15 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
   c.ignore = strings("ignore");
   for (const auto& id : c.select) known_rule(id);
   for (const auto& id : c.ignore) known_rule(id);
-  for (const auto& d : strings("include-dirs")) c.include_dirs.push_back(c.dir / d);
+  for (const auto& d : strings("include-dirs")) {
+    c.include_dirs.push_back(c.dir / d);
+    std::error_code ec;
+    if (!fs::is_directory(c.include_dirs.back(), ec))
+      c.warnings.push_back(fmt::format("include dir \"{}\" is not a folder here ({}); includes are not looked for in it", d,
+                                       c.include_dirs.back().lexically_normal().string()));
+    else if (fs::weakly_canonical(c.include_dirs.back(), ec) == fs::path("/"))
+      c.warnings.push_back(fmt::format("include dir \"{}\" is the file system's root: every include is looked for in all of it", d));
+  }
   if (j.contains("virtual-roots")) {
     if (!j.at("virtual-roots").is_object()) fail("\"virtual-roots\" must map prefixes such as \"/Engine/\" to folders");
     for (auto& [prefix, folder] : j.at("virtual-roots").items()) {
@@ -166,6 +174,14 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
     c.lint_library = l == "lint";
   }
   return c;
+}
+
+std::vector<std::shared_ptr<const ProjectConfig>> ConfigFinder::loaded() {
+  std::lock_guard lock(mutex_);
+  std::vector<std::shared_ptr<const ProjectConfig>> out;
+  for (const auto& [dir, config] : by_dir_)
+    if (!config->dir.empty() && std::find(out.begin(), out.end(), config) == out.end()) out.push_back(config);
+  return out;
 }
 
 bool ProjectConfig::excluded(const fs::path& path, bool is_dir) const {

@@ -26,6 +26,7 @@ struct ProjectConfig {
   nlohmann::json world_sources = nlohmann::json::array();
   size_t max_file_bytes = 16u << 20;
   double max_parse_seconds = 30;  // the parser's budget per file
+  std::vector<std::string> warnings;  // settings that are valid but look wrong, each a sentence
   MacroTable macros;  // macros used as syntax, by use (lang/macros.h)
   std::optional<UnrealEra> unreal;  // the engine the project builds against (else inferred per file)
   FormatTable formats = FormatTable::defaults();  // which extensions are shaders, and how
@@ -41,6 +42,8 @@ class ConfigFinder {
  public:
   // Throws std::runtime_error for a config that cannot be read or parsed.
   std::shared_ptr<const ProjectConfig> for_dir(const std::filesystem::path& dir);
+  // Each config read so far, once.
+  std::vector<std::shared_ptr<const ProjectConfig>> loaded();
 
  private:
   std::mutex mutex_;
