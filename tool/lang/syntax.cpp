@@ -28,7 +28,8 @@ std::optional<Lang> lang_from_path(std::string_view path) {
   return format ? std::optional<Lang>(format->lang) : std::nullopt;
 }
 
-std::string_view SyntaxTree::text(int id) const { return source->slice(span(id)); }
+// No node (-1, a field the parser left out under error recovery) has no text.
+std::string_view SyntaxTree::text(int id) const { return id < 0 ? std::string_view() : source->slice(span(id)); }
 
 int SyntaxTree::child_by_field(int id, std::string_view field) const {
   for (int c = nodes[id].first_child; c >= 0; c = nodes[c].next_sibling)

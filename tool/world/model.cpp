@@ -1293,6 +1293,7 @@ bool WorldModel::used_where_precision_matters(int var, int depth) const {
     }
     if (type == "argument_list") {
       int call = tree_.at(p).parent;
+      if (!tree_.is(call, "call_expression")) continue;  // an argument list the parser recovered without its call
       std::string_view callee = tree_.text(tree_.child_by_field(call, "function"));
       if (callee == "distance") return true;
       if (callee == "mul") {
