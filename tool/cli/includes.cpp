@@ -13,9 +13,6 @@ namespace lwc {
 namespace {
 constexpr int kMaxIncludeDepth = 16;
 
-}  // namespace
-
-namespace {
 std::optional<fs::path> find_include(const std::string& include, const fs::path& from, const ProjectConfig& config) {
   std::error_code ec;
   for (const auto& [prefix, folder] : config.virtual_roots) {

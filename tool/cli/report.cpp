@@ -28,12 +28,8 @@ ReportedFinding locate(const Source& source, const Finding& f) {
   } else {
     size_t line_start = static_cast<size_t>(line.data() - source.text().data());
     size_t at = std::min<size_t>(f.span.begin - std::min<size_t>(f.span.begin, line_start), line.size());
-    auto boundary = [&](size_t i) {
-      while (i > 0 && i < line.size() && (static_cast<unsigned char>(line[i]) & 0xC0) == 0x80) --i;
-      return i;
-    };
-    size_t from = boundary(at > kMaxLineShown / 3 ? at - kMaxLineShown / 3 : 0);
-    size_t to = boundary(std::min(line.size(), from + kMaxLineShown));
+    size_t from = utf8_char_start(line, at > kMaxLineShown / 3 ? at - kMaxLineShown / 3 : 0);
+    size_t to = utf8_char_start(line, std::min(line.size(), from + kMaxLineShown));
     r.line_text = std::string(line.substr(from, to - from));
     r.line_column = source.position(static_cast<uint32_t>(line_start + from)).column;
     r.cut_before = from > 0;

@@ -49,6 +49,11 @@ size_t utf8_sequence(std::string_view text, size_t i) {
 // editor shows it: one replacement character each).
 static size_t column_bytes(std::string_view text, size_t i) { return std::max<size_t>(1, utf8_sequence(text, i)); }
 
+size_t utf8_char_start(std::string_view text, size_t i) {
+  while (i > 0 && i < text.size() && is_continuation(static_cast<unsigned char>(text[i]))) --i;
+  return i;
+}
+
 std::string escape_invalid_utf8(std::string_view text) {
   std::string out;
   for (size_t i = 0; i < text.size();) {

@@ -53,6 +53,9 @@ std::optional<uint32_t> find_binary_marker(std::string_view text);
 std::optional<uint32_t> find_invalid_utf8(std::string_view text);
 // The length of the valid UTF-8 sequence that starts at byte `i`, or 0 when none does there.
 size_t utf8_sequence(std::string_view text, size_t i);
+// The start of the character that holds byte `i` (back over continuation bytes): where a text
+// may be cut without splitting a character.
+size_t utf8_char_start(std::string_view text, size_t i);
 // The text with each byte that is not valid UTF-8 shown as `\xNN` (for text output).
 std::string escape_invalid_utf8(std::string_view text);
 

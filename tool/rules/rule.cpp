@@ -79,16 +79,16 @@ const RuleInfo* find_rule(std::string_view id) {
 
 const nlohmann::json& world_space_data() { return loaded().world_space; }
 
-// A value quoted in a message, at most kMaxQuoted bytes: the start and the end of a longer one
+// Appends a value quoted in a message, at most kMaxQuoted bytes: the start and the end of a longer one
 // around an ellipsis (cut at UTF-8 boundaries), so a finding's text never grows with its line.
-static std::string shortened(std::string_view value) {
-  if (value.size() <= kMaxQuoted) return std::string(value);
-  auto boundary = [&](size_t i) {
-    while (i > 0 && i < value.size() && (static_cast<unsigned char>(value[i]) & 0xC0) == 0x80) --i;
-    return i;
-  };
-  size_t head = boundary(kMaxQuoted * 2 / 3), tail = boundary(value.size() - kMaxQuoted / 4);
-  return std::string(value.substr(0, head)) + " \u2026 " + std::string(value.substr(tail));
+static void append_shortened(std::string& out, std::string_view value) {
+  if (value.size() <= kMaxQuoted) {
+    out += value;
+    return;
+  }
+  out += value.substr(0, utf8_char_start(value, kMaxQuoted * 2 / 3));
+  out += " \u2026 ";
+  out += value.substr(utf8_char_start(value, value.size() - kMaxQuoted / 4));
 }
 
 std::string expand(std::string_view tmpl, const Vars& vars) {
@@ -101,7 +101,7 @@ std::string expand(std::string_view tmpl, const Vars& vars) {
     if (close == std::string_view::npos) break;
     out.append(tmpl.substr(i, open - i));
     auto it = vars.find(std::string(tmpl.substr(open + 1, close - open - 1)));
-    if (it != vars.end()) out += shortened(it->second);
+    if (it != vars.end()) append_shortened(out, it->second);
     else out.append(tmpl.substr(open, close - open + 1));
     i = close + 1;
   }
