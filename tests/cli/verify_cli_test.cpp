@@ -62,8 +62,8 @@ TEST(VerifyCli, AFunctionThatCompilesOnItsOwnIsVerifiedBesideOneThatDoesNot) {
   EXPECT_NE(only.out.find("only_bad.vert: nothing in it could be verified"), std::string::npos) << only.out;
 }
 
-// The verifier's regular expressions recurse per character they match: a struct of 2,000 members
-// once overflowed the stack and killed the run; now it is verified like any other file.
+// A struct of 2,000 members once overflowed the stack (the verifier read text with std::regex,
+// which recursed per matched character) and killed the run; now it is verified like any other file.
 TEST(VerifyCli, AHugeStructDoesNotKillTheRun) {
   std::string dir = test::scratch("verify-huge");
   std::string members;

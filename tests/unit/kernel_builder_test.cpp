@@ -88,5 +88,50 @@ TEST(KernelBuilder, GlslInterfaceBlocksAndUniformArraysAreFilled) {
   EXPECT_EQ(k.declarations.find("binding"), std::string::npos) << k.declarations;
 }
 
+// The builder reads text by tokens in one pass: a 40,000-character name, a 2,000-member struct and
+// runs of 100,000 blanks cost no stack (std::regex recursed once per matched character and
+// overflowed this thread's stack on each of them).
+TEST(KernelBuilder, LongNamesWideStructsAndLongBlanksCostNoStack) {
+  std::string name(40000, 'x'), blanks(100000, ' '), members;
+  for (int i = 0; i < 2000; ++i) members += "\tfloat m" + std::to_string(i) + ";\n";
+  std::string text = "#version" + blanks + "450\nprecision" + blanks + "highp float;\nstruct Big {\n" + members + "};\nuniform Big big;\n"
+                     "uniform float " + name + ";\nuniform sampler2D tex;\n"
+                     "float Wide(vec3 p)" + blanks + "{ return big.m1999 + " + name + " + sin" + blanks + "(p.x) + texture" + blanks +
+                     "(tex, p.xy).x; }\n";
+  std::string promoted = promote_to_double(Lang::glsl, text);
+  EXPECT_NE(promoted.find("lwc_f32_sin" + blanks + "(p.x)"), std::string::npos);
+  EXPECT_EQ(promoted.find("precision"), std::string::npos);
+  HarnessKernel k = build_harness_kernel(Lang::glsl, promoted, "Wide", true);
+  ASSERT_EQ(k.problem, "");
+  EXPECT_NE(find_leaf(k.inputs, "big.m1999"), nullptr);
+  EXPECT_NE(find_leaf(k.inputs, name), nullptr);
+  EXPECT_EQ(std::count_if(k.inputs.begin(), k.inputs.end(), [](const Leaf& l) { return l.path.starts_with("big."); }), 2000);
+  EXPECT_NE(k.declarations.find("+ lwc_texel_tex.x;"), std::string::npos);
+  EXPECT_EQ(k.declarations.find("#version"), std::string::npos);
+}
+
+// Struct fields as the harness reads them: qualifiers skipped, several declarators, arrays and
+// semantics; a declarator it cannot read is left out without losing its neighbours.
+TEST(KernelBuilder, StructFieldsWithQualifiersArraysAndSemantics) {
+  std::string text = "struct VSOut { nointerpolation float3 A : TEXCOORD0, B[2]; float4 Pos : SV_POSITION; float C = 1, D; };\n"
+                     "VSOut Make(float3 P) { VSOut o; o.A = P; o.B[0] = P; o.B[1] = P; o.Pos = float4(P, 1); o.D = P.x; return o; }\n";
+  HarnessKernel k = build_harness_kernel(Lang::hlsl, text, "Make", false);
+  ASSERT_EQ(k.problem, "");
+  const Leaf* a = find_leaf(k.outputs, "lwc_result.A");
+  ASSERT_NE(a, nullptr);
+  EXPECT_EQ(a->semantic, "TEXCOORD0");
+  EXPECT_NE(find_leaf(k.outputs, "lwc_result.B[1]"), nullptr);
+  EXPECT_EQ(find_leaf(k.outputs, "lwc_result.Pos")->semantic, "SV_POSITION");
+  EXPECT_EQ(find_leaf(k.outputs, "lwc_result.C"), nullptr);
+  EXPECT_NE(find_leaf(k.outputs, "lwc_result.D"), nullptr);
+}
+
+TEST(KernelBuilder, PromotesEveryFloatTypeAndNothingElse) {
+  EXPECT_EQ(promote_to_double(Lang::hlsl, "float a; half3 b; min16float2x3 c; float3x4 d; floatx e; float_t f; uint2 g; // float\n"),
+            "double a; double3 b; double2x3 c; double3x4 d; floatx e; float_t f; uint2 g; // float\n");
+  EXPECT_EQ(promote_to_double(Lang::glsl, "precision highp float;\nprecision highp int;\nvec3 a; mat4x3 b; ivec2 c; dvec2 d; float e = pow(x, 2.0);"),
+            "\nprecision highp int;\ndvec3 a; dmat4x3 b; ivec2 c; dvec2 d; double e = lwc_f32_pow(x, 2.0);");
+}
+
 }  // namespace
 }  // namespace lwc

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <charconv>
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
@@ -16,7 +17,6 @@
 #include <iostream>
 #include <map>
 #include <optional>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -31,6 +31,7 @@
 #include "fix/scene.h"
 #include "rules/analyze.h"
 #include "rules/rule.h"
+#include "lang/tokens.h"
 #include "shaderlib/shaderlib.h"
 #include "verify/harness.h"
 #include "verify/kernel_builder.h"
@@ -459,13 +460,18 @@ int unreal_era(const std::string& text) { return static_cast<int>(infer_unreal_e
 // The same code with each accurate DoubleFloat addition replaced by its DFFast* twin: fewer flops,
 // exact only within their preconditions (same signs, |a| >= |b|), which the harness's cases probe.
 std::string fast_double_float_form(const std::string& text) {
-  static const std::regex accurate(R"(\bDF(Add|Subtract|AddDemote|SubtractDemote)(\s*\())");
-  return std::regex_replace(text, accurate, "DFFast$1$2");
+  TokenText t(text);
+  std::vector<Edit> edits;
+  for (size_t i = 0; i < t.size(); ++i)
+    if (std::string_view f = t[i]; (f == "DFAdd" || f == "DFSubtract" || f == "DFAddDemote" || f == "DFSubtractDemote") && t[i + 1] == "(")
+      edits.push_back({{t.tokens[i].begin, t.tokens[i].begin + 2}, "DFFast"});
+  return splice(text, edits);
 }
 
 // Runs `work` on a thread with a 1 GiB stack (reserved address space, touched only as needed):
-// the verifier's std::regex recurses once per character a pattern matches, so a long struct or
-// name (2,000 members) overflowed the main thread's 8 MiB and killed the whole run.
+// glslang parses and walks its tree recursively, up to its parser's depth limit (10,000), and an
+// overflow there would kill the whole run. (Our own text handling no longer recurses: it once
+// used std::regex, which overflowed the main thread's 8 MiB on a 2,000-member struct.)
 template <typename Work>
 auto on_big_stack(Work work) -> decltype(work()) {
   using Result = decltype(work());
@@ -524,15 +530,13 @@ std::vector<std::string> functions_with_findings(const Source& source, const Ana
   std::vector<uint32_t> offsets;
   for (const Finding& finding : findings) offsets.push_back(finding.span.begin);
   std::vector<std::string> found = enclosing_functions(lang, text, offsets);
-  static const std::regex identifier(R"(\w+)");
+  std::set<std::string_view> global_names;  // what findings outside any function name
+  for (size_t i = 0; i < findings.size(); ++i)
+    if (found[i].empty()) global_names.insert(std::string_view(text).substr(findings[i].span.begin, findings[i].span.end - findings[i].span.begin));
   std::vector<uint32_t> uses;
-  for (size_t i = 0; i < findings.size(); ++i) {
-    std::string name = text.substr(findings[i].span.begin, findings[i].span.end - findings[i].span.begin);
-    if (!found[i].empty() || !std::regex_match(name, identifier)) continue;
-    std::regex use("\\b" + name + "\\b");
-    for (auto m = std::sregex_iterator(text.begin(), text.end(), use); m != std::sregex_iterator(); ++m)
-      uses.push_back(static_cast<uint32_t>(m->position()));
-  }
+  TokenText tokens(text);
+  for (size_t i = 0; i < tokens.size(); ++i)
+    if (tokens.ident(i) && global_names.count(tokens[i])) uses.push_back(tokens.tokens[i].begin);
   std::vector<std::string> users = enclosing_functions(lang, text, uses);
   found.insert(found.end(), users.begin(), users.end());
   std::vector<std::string> names;
@@ -547,11 +551,9 @@ std::vector<std::string> functions_a_fix_changes(Lang lang, const std::string& o
   Source source("original", original);
   std::vector<uint32_t> offsets;
   std::istringstream diff(unified_diff("f", original, fixed, 0));
-  static const std::regex hunk(R"(^@@ -(\d+))");
   int line = 0;
   for (std::string row; std::getline(diff, row);) {
-    std::smatch m;
-    if (std::regex_search(row, m, hunk)) line = std::stoi(m[1]);
+    if (row.starts_with("@@ -")) std::from_chars(row.data() + 4, row.data() + row.size(), line);
     else if (row.starts_with("-") && !row.starts_with("---")) offsets.push_back(source.offset({std::min(std::max(line++, 1), source.line_count()), 1}));
     else if (row.starts_with("+") && !row.starts_with("+++")) offsets.push_back(source.offset({std::min(std::max(line, 1), source.line_count()), 1}));
   }

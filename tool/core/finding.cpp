@@ -32,4 +32,17 @@ void sort_findings(std::vector<Finding>& findings) {
   });
 }
 
+std::string splice(std::string_view text, const std::vector<Edit>& edits) {
+  std::string out;
+  out.reserve(text.size());
+  size_t at = 0;
+  for (const Edit& e : edits) {
+    out.append(text.substr(at, e.span.begin - at));
+    out += e.text;
+    at = e.span.end;
+  }
+  out.append(text.substr(at));
+  return out;
+}
+
 }  // namespace lwc

@@ -19,6 +19,8 @@ struct Edit {
   std::string text;
   bool operator==(const Edit&) const = default;
 };
+// The text with the edits (sorted by begin, not overlapping) applied as written.
+std::string splice(std::string_view text, const std::vector<Edit>& edits);
 
 // Safe fixes keep the program's meaning except for the precision gained, and are applied by
 // `lwcport fix`; unsafe ones may change behaviour (the reason says how) and need --unsafe-fixes.

@@ -50,18 +50,14 @@ std::string apply_edits(const Source& source, std::vector<Edit> edits) {
   std::sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) {
     return a.span.begin != b.span.begin ? a.span.begin < b.span.begin : a.span.end < b.span.end;
   });
-  std::string out;
-  out.reserve(text.size());
   uint32_t at = 0;
-  for (const Edit& e : edits) {
+  for (Edit& e : edits) {
     if (e.span.begin < at || e.span.end < e.span.begin || e.span.end > text.size())
       throw std::invalid_argument("overlapping or out-of-range edit at byte " + std::to_string(e.span.begin));
-    out.append(text, at, e.span.begin - at);
-    out += in_line_endings(source, e.text);
+    e.text = in_line_endings(source, e.text);
     at = e.span.end;
   }
-  out.append(text, at, std::string::npos);
-  return out;
+  return splice(text, edits);
 }
 
 FixOutcome fix_source(const Source& source, const AnalyzeOptions& options, bool unsafe, int max_rounds) {

@@ -565,7 +565,9 @@ std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options
   for (const Source& view : shader.views) {
     MacroTable macros = macro_table(*lang, options);
     SyntaxTree tree = parse(view, *lang, {&macros, 0, options.max_parse_seconds});
-    summaries.push_back(tree.timed_out ? FileSummary{} : WorldModel(tree, world_data(*lang, options.world_sources), {options.includes}).summary());
+    ModelContext context;
+    context.includes = options.includes;
+    summaries.push_back(tree.timed_out ? FileSummary{} : WorldModel(tree, world_data(*lang, options.world_sources), context).summary());
   }
   for (size_t i = 0; i < shader.views.size(); ++i) {
     FileSummary known = options.includes ? *options.includes : FileSummary{};

@@ -4,11 +4,12 @@
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
 
+#include <charconv>
 #include <deque>
 #include <mutex>
-#include <regex>
 #include <sstream>
 
+#include "lang/tokens.h"
 #include "shaderlib/shaderlib.h"
 
 namespace lwc {
@@ -88,17 +89,20 @@ void set_source(glslang::TShader& shader, const CompileInput& input, SourceStrin
 
 // glslang's info log: "ERROR: name:line: message" (or "ERROR: message" without a place).
 void read_log(const char* log, std::vector<CompileMessage>& out) {
-  static const std::regex placed(R"(^(?:ERROR|WARNING): (.*?):(\d+): (.*)$)");
   std::istringstream in(log ? log : "");
   std::string line;
-  std::smatch m;
   while (std::getline(in, line)) {
     if (line.rfind("ERROR: ", 0) != 0) continue;
     if (line.find("compilation errors.  No code generated") != std::string::npos) continue;
-    if (std::regex_match(line, m, placed))
-      out.push_back({m[1], std::stoi(m[2]), m[3]});
-    else
-      out.push_back({"", 0, line.substr(7)});
+    out.push_back({"", 0, line.substr(7)});
+    // The place is the first ":digits: " after the prefix.
+    for (size_t colon = line.find(':', 7); colon != std::string::npos; colon = line.find(':', colon + 1)) {
+      int number = 0;
+      auto [end, error] = std::from_chars(line.data() + colon + 1, line.data() + line.size(), number);
+      if (error != std::errc() || std::string_view(end, line.data() + line.size()).substr(0, 2) != ": ") continue;
+      out.back() = {line.substr(7, colon - 7), number, std::string(end + 2)};
+      break;
+    }
   }
 }
 
@@ -188,8 +192,10 @@ CompileResult compile_file(const FileBuild& build, const std::string& text) {
     std::optional<Stage> stage = stage_from_extension(build.name);
     in.stage = stage.value_or(Stage::fragment);
     // A GLSL include (no stage in its name, no main): checked as a unit of its own.
-    static const std::regex main_definition(R"(\bvoid\s+main\s*\()");
-    if (!stage && !std::regex_search(text, main_definition)) in.text += "\nvoid main() {}\n";
+    TokenText t(text);
+    bool has_main = false;
+    for (size_t i = 0; i < t.size() && !has_main; ++i) has_main = t.spells(i, {"void", "main", "("});
+    if (!stage && !has_main) in.text += "\nvoid main() {}\n";
   }
   return compile_shader(in);
 }

@@ -12,8 +12,8 @@
 #include <limits>
 #include <map>
 #include <random>
-#include <regex>
 
+#include "lang/tokens.h"
 #include "shaderlib/shaderlib.h"
 #include "verify/kernel.h"
 #include "verify/kernel_builder.h"
@@ -24,6 +24,17 @@
 namespace lwc {
 
 namespace {
+
+// The number of a GLSL ES `#version NNN es` directive ("" for desktop GLSL or none).
+std::string_view glsl_es_version(std::string_view text) {
+  TokenText t(text);
+  for (size_t i = 0; i < t.size(); ++i) {
+    if (t.tokens[i].kind != Tok::directive || read_directive(t[i]).keyword != "version") continue;
+    TokenText rest(read_directive(t[i]).rest);
+    return rest.spells(1, {"es"}) ? rest[0] : std::string_view();
+  }
+  return {};
+}
 
 using Vec = std::array<double, 3>;
 using Mat4 = std::array<double, 16>;  // column-major, column-vector convention: M * v
@@ -611,9 +622,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     spec.out_stride = k.code.out_stride;
     spec.float64 = float64;
     // Code for GLSL ES stays ES (no `precise` before 3.20, as on the target); compute needs 3.10.
-    static const std::regex es_version(R"(#\s*version\s+3([0-2])0\s+es)");
-    std::smatch es;
-    if (std::regex_search(v.text, es, es_version)) spec.glsl_version = es[1] == "2" ? "320 es" : "310 es";
+    if (std::string_view es = glsl_es_version(v.text); es == "300" || es == "310" || es == "320") spec.glsl_version = es == "320" ? "320 es" : "310 es";
     k.compiled = compile_kernel(spec);
     if (!k.compiled.ok) k.problem = whole_failed ? file_problem() : "the harness kernel does not compile: " + format_messages(k.compiled);
     return k;

@@ -4,10 +4,10 @@
 
 #include <functional>
 #include <map>
-#include <regex>
 #include <set>
 
 #include "lang/mask.h"
+#include "lang/tokens.h"
 
 namespace lwc {
 
@@ -22,31 +22,50 @@ using Structs = std::map<std::string, std::vector<Field>>;
 // that ends a struct definition (the grammar leaves it outside the struct's node).
 bool blank(std::string_view s) { return s.find_first_not_of(" \t\r\n;") == std::string_view::npos; }
 
-// Struct definitions of a preprocessed text (macros already expanded).
-Structs read_structs(const std::string& text) {
-  Structs out;
-  static const std::regex def(R"(\bstruct\s+(\w+)\s*\{([^}]*)\})");
-  static const std::regex qualifier(R"(\b(precise|nointerpolation|linear|centroid|noperspective|sample|flat|smooth|highp|mediump|lowp)\b)");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), def); it != std::sregex_iterator(); ++it) {
-    std::vector<Field>& fields = out[(*it)[1]];
-    std::string body = (*it)[2];
-    size_t start = 0;
-    for (size_t semi; (semi = body.find(';', start)) != std::string::npos; start = semi + 1) {
-      std::string piece = std::regex_replace(body.substr(start, semi - start), qualifier, " ");
-      static const std::regex field(R"(^\s*(\w+)\s+(.+?)\s*$)");
-      std::smatch m;
-      if (!std::regex_match(piece, m, field)) continue;
-      std::string type = m[1], names = m[2];
-      size_t from = 0;
-      for (size_t comma; from <= names.size(); from = comma + 1) {
-        comma = names.find(',', from);
-        if (comma == std::string::npos) comma = names.size();
-        static const std::regex declarator(R"(^\s*(\w+)\s*(\[[^\]]*\])?\s*(?::\s*(\w+))?\s*$)");
-        std::smatch d;
-        std::string one = names.substr(from, comma - from);
-        if (std::regex_match(one, d, declarator)) fields.push_back({d[2].matched ? type + d[2].str() : type, d[1], d[3]});
-      }
+// The fields one declaration in a struct body declares (`float3 a, b[2] : TEXCOORD0`), from the
+// tokens [from, to) of the body; declarators the harness cannot read are left out.
+void read_fields(const TokenText& t, size_t from, size_t to, std::vector<Field>& fields) {
+  static const std::set<std::string_view> qualifiers = {"precise", "nointerpolation", "linear", "centroid", "noperspective",
+                                                        "sample", "flat", "smooth", "highp", "mediump", "lowp"};
+  size_t i = from;
+  while (i < to && t.ident(i) && qualifiers.count(t[i])) ++i;
+  if (i + 1 >= to || !t.ident(i)) return;
+  std::string type(t[i++]);
+  while (i < to) {
+    size_t end = i;  // this declarator: up to the next comma
+    while (end < to && t[end] != ",") ++end;
+    Field f{type, std::string(t[i]), ""};
+    size_t k = i + 1;
+    if (k < end && t[k] == "[") {
+      f.type += '[';
+      for (++k; k < end && t[k] != "]"; ++k) f.type += t[k];
+      f.type += ']';
+      ++k;
     }
+    if (k + 1 < end && t[k] == ":" && t.ident(k + 1)) {
+      f.semantic = t[k + 1];
+      k += 2;
+    }
+    if (t.ident(i) && k == end) fields.push_back(f);
+    i = end + 1;
+  }
+}
+
+// Struct definitions of a preprocessed text (macros already expanded).
+Structs read_structs(std::string_view text) {
+  Structs out;
+  TokenText t(text);
+  for (size_t i = 0; i < t.size(); ++i) {
+    if (!t.spells(i, {"struct", "", "{"})) continue;
+    size_t close = i + 3;
+    while (close < t.size() && t[close] != "}") ++close;
+    std::vector<Field>& fields = out[std::string(t[i + 1])];
+    for (size_t start = i + 3, k = start; k < close; ++k)
+      if (t[k] == ";") {
+        read_fields(t, start, k, fields);
+        start = k + 1;
+      }
+    i = close;
   }
   return out;
 }
@@ -58,24 +77,28 @@ struct Basic {
   bool matrix = false, integer = false;
   int count() const { return a * b; }
 };
-Basic basic_type(const std::string& type) {
-  static const std::regex hlsl(R"(^(float|half|double|min16float|int|uint|bool|dword)([1-4])?(?:x([1-4]))?$)");
-  static const std::regex glsl_vec(R"(^([dbiu]?)vec([2-4])$)");
-  static const std::regex glsl_mat(R"(^d?mat([2-4])(?:x([2-4]))?$)");
-  std::smatch m;
-  if (std::regex_match(type, m, hlsl)) {
+// The size digit at `s[i]` when it is in [low, 4], else 0.
+int size_digit(std::string_view s, size_t i, char low) { return i < s.size() && s[i] >= low && s[i] <= '4' ? s[i] - '0' : 0; }
+Basic basic_type(std::string_view type) {
+  for (std::string_view scalar : {"float", "half", "double", "min16float", "int", "uint", "bool", "dword"}) {
+    if (!type.starts_with(scalar)) continue;
+    std::string_view rest = type.substr(scalar.size());
     Basic b;
-    b.integer = m[1] == "int" || m[1] == "uint" || m[1] == "bool" || m[1] == "dword";
-    b.a = m[2].matched ? std::stoi(m[2]) : 1;
-    b.b = m[3].matched ? std::stoi(m[3]) : 1;
-    b.matrix = m[3].matched;
+    b.integer = scalar == "int" || scalar == "uint" || scalar == "bool" || scalar == "dword";
+    int rows = size_digit(rest, 0, '1'), columns = size_digit(rest, 2, '1');
+    if (rest.empty()) b.a = 1;
+    else if (rows && rest.size() == 1) b.a = rows;
+    else if (rows && columns && rest.size() == 3 && rest[1] == 'x') b = {rows, columns, true, b.integer};
     return b;
   }
-  if (std::regex_match(type, m, glsl_vec)) return {std::stoi(m[2]), 1, false, m[1] == "b" || m[1] == "i" || m[1] == "u"};
-  if (std::regex_match(type, m, glsl_mat)) {
-    int c = std::stoi(m[1]);
-    return {c, m[2].matched ? std::stoi(m[2]) : c, true, false};
-  }
+  std::string_view glsl = type;
+  bool float64 = glsl.starts_with('d'), integer = glsl.starts_with('b') || glsl.starts_with('i') || glsl.starts_with('u');
+  if (float64 || integer) glsl.remove_prefix(1);
+  if (glsl.starts_with("vec") && glsl.size() == 4 && size_digit(glsl, 3, '2')) return {size_digit(glsl, 3, '2'), 1, false, integer};
+  if (integer || !glsl.starts_with("mat")) return {};
+  int columns = size_digit(glsl, 3, '2'), rows = size_digit(glsl, 5, '2');
+  if (columns && glsl.size() == 4) return {columns, columns, true, false};
+  if (columns && rows && glsl.size() == 6 && glsl[4] == 'x') return {columns, rows, true, false};
   return {};
 }
 
@@ -252,33 +275,34 @@ std::string hlsl_double_matrix_functions() {
 }
 
 // The `[N]` after a declared name (`uniform vec4 planes[6];`), or "".
-std::string array_suffix(const std::string& declaration, const std::string& name) {
-  std::smatch m;
-  if (std::regex_search(declaration, m, std::regex("\\b" + name + R"(\s*(\[\s*\w*\s*\]))"))) return std::regex_replace(m[1].str(), std::regex(R"(\s)"), "");
+std::string array_suffix(std::string_view declaration, std::string_view name) {
+  TokenText t(declaration);
+  for (size_t i = 0; i < t.size(); ++i) {
+    if (!t.ident(i) || t[i] != name || t[i + 1] != "[") continue;
+    if (t[i + 2] == "]") return "[]";
+    if (i + 3 < t.size() && t.tokens[i + 2].kind != Tok::punct && t[i + 3] == "]") return "[" + std::string(t[i + 2]) + "]";
+  }
   return "";
 }
 
-// Replaces each call or index that `head` matches (from the match through the bracket closing the
-// match's last opening bracket) with what `with` makes of the text inside those brackets.
-void replace_bracketed(std::string& text, const std::regex& head, const std::function<std::string(const std::string&)>& with) {
-  std::string out;
-  size_t from = 0;
-  std::smatch m;
-  while (std::regex_search(text.cbegin() + static_cast<ptrdiff_t>(from), text.cend(), m, head)) {
-    size_t at = from + static_cast<size_t>(m.position(0));
-    size_t open = text.find_last_of("([", at + static_cast<size_t>(m.length(0)) - 1);
-    char closer = text[open] == '(' ? ')' : ']';
-    int depth = 0;
-    size_t close = open;
-    for (; close < text.size(); ++close) {
-      if (text[close] == '(' || text[close] == '[') ++depth;
-      if ((text[close] == ')' || text[close] == ']') && --depth == 0) break;
-    }
-    if (close >= text.size() || text[close] != closer) break;  // unbalanced: left to the compiler
-    out += text.substr(from, at - from) + with(text.substr(open + 1, close - open - 1));
-    from = close + 1;
+// Where a call or index starts at token `i`: the index of the bracket that opens what is replaced,
+// or npos.
+using Head = std::function<size_t(const TokenText&, size_t)>;
+
+// Replaces each call or index that `head` finds (from its first token through the bracket closing
+// the one it opens) with what `with` makes of the text inside those brackets.
+std::string replace_bracketed(std::string_view text, const Head& head, const std::function<std::string(std::string_view)>& with) {
+  TokenText t(text);
+  std::vector<Edit> edits;
+  for (size_t i = 0; i < t.size(); ++i) {
+    size_t open = head(t, i);
+    if (open == std::string_view::npos) continue;
+    size_t close = t.closing(open);
+    if (close == std::string_view::npos) break;  // unbalanced: left to the compiler
+    edits.push_back(t.replace(i, close, with(text.substr(t.tokens[open].end, t.tokens[close].begin - t.tokens[open].end))));
+    i = close;
   }
-  text = out + text.substr(from);
+  return splice(text, edits);
 }
 
 // The arguments of a call, split at top-level commas.
@@ -299,16 +323,48 @@ std::vector<std::string> split_arguments(const std::string& inside) {
 // arithmetic, not filtering: the value stands for whatever the texture holds at that pixel.
 void replace_texture_accesses(Lang lang, std::string& text, const std::string& name) {
   std::string texel = "lwc_texel_" + name;
-  auto whole = [&](const std::string&) { return texel; };
+  auto whole = [&](std::string_view) { return texel; };
+  constexpr size_t none = std::string_view::npos;
   if (lang == Lang::hlsl) {
-    replace_bracketed(text, std::regex("\\b" + name + R"(\s*\.\s*(Sample\w*|Load|Gather\w*)\s*\()"), whole);
-    replace_bracketed(text, std::regex("\\b" + name + R"(\s*\[)"), whole);
+    text = replace_bracketed(text, [&](const TokenText& t, size_t i) {
+      std::string_view method = t[i + 2];
+      bool sample = method.starts_with("Sample") || method == "Load" || method.starts_with("Gather");
+      return t.ident(i) && t[i] == name && t[i + 1] == "." && t.ident(i + 2) && sample && t[i + 3] == "(" ? i + 3 : none;
+    }, whole);
+    text = replace_bracketed(text, [&](const TokenText& t, size_t i) { return t.ident(i) && t[i] == name && t[i + 1] == "[" ? i + 1 : none; }, whole);
     return;
   }
-  replace_bracketed(text, std::regex(R"(\bimageStore\s*\(\s*)" + name + R"(\s*,)"), [&](const std::string& inside) {
-    return "(" + texel + " = " + split_arguments(inside).back() + ")";
-  });
-  replace_bracketed(text, std::regex(R"(\b(texture\w*|texelFetch\w*|imageLoad)\s*\(\s*)" + name + R"(\s*,)"), whole);
+  auto image_call = [&](const TokenText& t, size_t i) { return t[i + 1] == "(" && t.ident(i + 2) && t[i + 2] == name && t[i + 3] == ","; };
+  text = replace_bracketed(text, [&](const TokenText& t, size_t i) { return t.ident(i) && t[i] == "imageStore" && image_call(t, i) ? i + 1 : none; },
+                           [&](std::string_view inside) { return "(" + texel + " = " + split_arguments(std::string(inside)).back() + ")"; });
+  text = replace_bracketed(text, [&](const TokenText& t, size_t i) {
+    std::string_view f = t[i];
+    bool read = f.starts_with("texture") || f.starts_with("texelFetch") || f == "imageLoad";
+    return t.ident(i) && read && image_call(t, i) ? i + 1 : none;
+  }, whole);
+}
+
+// The double twin of a float type (`float3` -> `double3`, `vec3` -> `dvec3`, `mat4x3` ->
+// `dmat4x3`), or "" for any other word.
+std::string double_type(Lang lang, std::string_view word) {
+  if (lang == Lang::hlsl) {
+    for (std::string_view scalar : {"float", "half", "min16float"})
+      if (word.starts_with(scalar) && (word.size() == scalar.size() || basic_type("float" + std::string(word.substr(scalar.size()))).count()))
+        return "double" + std::string(word.substr(scalar.size()));
+    return "";
+  }
+  if (word == "float") return "double";
+  Basic b = basic_type(word);
+  return b.count() > 1 && !b.integer && (word.starts_with("vec") || word.starts_with("mat")) ? "d" + std::string(word) : "";
+}
+
+// The text without its `#version` line (the kernel has its own).
+std::string without_version(std::string_view text) {
+  TokenText t(text);
+  std::vector<Edit> edits;
+  for (size_t i = 0; i < t.size(); ++i)
+    if (t.tokens[i].kind == Tok::directive && read_directive(t[i]).keyword == "version") edits.push_back(t.replace(i, i, ""));
+  return splice(text, edits);
 }
 
 }  // namespace
@@ -337,24 +393,28 @@ std::vector<std::string> enclosing_functions(Lang lang, const std::string& text,
 }
 
 std::string promote_to_double(Lang lang, const std::string& text) {
-  std::string out;
-  if (lang == Lang::hlsl) {
-    out = std::regex_replace(text, std::regex(R"(\b(?:float|half|min16float)([1-4](?:x[1-4])?)?\b)"), "double$1");
-  } else {
-    out = std::regex_replace(text, std::regex(R"(\bfloat\b)"), "double");
-    out = std::regex_replace(out, std::regex(R"(\bvec([2-4])\b)"), "dvec$1");
-    out = std::regex_replace(out, std::regex(R"(\bmat([2-4](?:x[2-4])?)\b)"), "dmat$1");
-  }
-  // No precision statements for double.
-  out = std::regex_replace(out, std::regex(R"(\bprecision\s+\w+\s+double\s*;)"), "");
   // Transcendentals have no double form on the GPU: they run in float32 (on small values, as a rule).
-  return std::regex_replace(out, std::regex(R"(\b(sin|cos|tan|asin|acos|atan|pow|exp|log|exp2|log2)\s*\()"), "lwc_f32_$1(");
+  static const std::set<std::string_view> float32_only = {"sin", "cos", "tan", "asin", "acos", "atan", "pow", "exp", "log", "exp2", "log2"};
+  TokenText t(text);
+  std::vector<Edit> edits;
+  for (size_t i = 0; i < t.size(); ++i) {
+    if (!t.ident(i)) continue;
+    // No precision statements for double.
+    if (t[i] == "precision" && t.ident(i + 1) && (t[i + 2] == "double" || double_type(lang, t[i + 2]) == "double") && t[i + 3] == ";") {
+      edits.push_back(t.replace(i, i + 3, ""));
+      i += 3;
+    } else if (std::string twin = double_type(lang, t[i]); !twin.empty()) {
+      edits.push_back(t.replace(i, i, twin));
+    } else if (float32_only.count(t[i]) && t[i + 1] == "(") {
+      edits.push_back(t.replace(i, i, "lwc_f32_" + std::string(t[i])));
+    }
+  }
+  return splice(text, edits);
 }
 
 HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, const std::string& function, bool float64) {
   HarnessKernel k;
-  // `#version` comes from the kernel; blank it (offsets unchanged).
-  std::string text = std::regex_replace(input_text, std::regex(R"((^|\n)[ \t]*#[ \t]*version[^\n]*)"), "$1");
+  std::string text = without_version(input_text);
   Source source("kernel", text);
   SyntaxTree t = parse(source, lang);
   std::string masked = lang == Lang::hlsl ? mask_source(text, lang).text : text;
@@ -437,75 +497,96 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
 
   // The declarations: kept functions and types as written, environment globals made private.
   std::string decl;
-  static const std::regex glsl_qualifiers(
-      R"(\blayout\s*\([^)]*\)|\b(uniform|in|out|inout|varying|attribute|flat|smooth|noperspective|centroid|invariant|readonly|writeonly|coherent|volatile|restrict)\b)");
-  static const std::regex buffer(R"(^\s*(RW)?(?:Structured)?Buffer\s*<\s*(\w+)\s*>\s*(\w+))");
-  static const std::regex resource(R"(^\s*(?:RW)?(Texture|Sampler|sampler|texture|image|ByteAddressBuffer|AppendStructuredBuffer|ConsumeStructuredBuffer))");
-  static const std::regex hlsl_texture(R"(^\s*(RW)?Texture\w*\s*(?:<\s*(\w+)\s*>)?\s+\w)");
-  static const std::regex hlsl_sampler(R"(^\s*(SamplerState|SamplerComparisonState|sampler\w*)\b)");
-  static const std::regex glsl_texture(R"(\b([iu]?)(sampler|image)\w*\s+\w+\s*;)");
   std::vector<std::string> textures;  // globals whose accesses become `lwc_texel_NAME`
-  std::vector<std::pair<std::string, std::string>> runtime_arrays;  // `x[]` block members: pattern, x[0]
+  // `x[]` block members: the tokens that name one (`x`, or `block . x`), and the element read.
+  std::vector<std::pair<std::vector<std::string>, std::string>> runtime_arrays;
   std::vector<std::pair<std::string, std::string>> env_inputs, env_outputs;  // name, type
   auto global_text = [&](const Global& g) -> std::string {
     std::string original = slice(text, g.node);
-    std::smatch m;
+    TokenText d(original);
     if (lang == Lang::hlsl) {
-      if (std::regex_search(original, m, buffer)) {
-        env_inputs.push_back({m[3].str() + "[0]", m[2]});
-        if (m[1].matched) env_outputs.push_back({m[3].str() + "[0]", m[2]});
-        return fmt::format("static {} {}[1];", m[2].str(), m[3].str());
+      std::string_view kind = d[0];
+      bool writable = kind.starts_with("RW");
+      std::string_view resource = writable ? kind.substr(2) : kind;
+      if ((resource == "Buffer" || resource == "StructuredBuffer") && d.spells(1, {"<", "", ">", ""})) {
+        std::string element(d[2]), name(d[4]);
+        env_inputs.push_back({name + "[0]", element});
+        if (writable) env_outputs.push_back({name + "[0]", element});
+        return fmt::format("static {} {}[1];", element, name);
       }
-      if (std::regex_search(original, m, hlsl_texture)) {
-        std::string type = m[2].matched ? m[2].str() : float64 ? "double4" : "float4";
+      bool typed = d.spells(1, {"<", "", ">"});
+      if (resource.starts_with("Texture") && d.ident(typed ? 4 : 1)) {
+        std::string type = typed ? std::string(d[2]) : float64 ? "double4" : "float4";
         textures.push_back(g.name);
         env_inputs.push_back({"lwc_texel_" + g.name, type});
-        if (m[1].matched) env_outputs.push_back({"lwc_texel_" + g.name, type});
+        if (writable) env_outputs.push_back({"lwc_texel_" + g.name, type});
         return fmt::format("static {} lwc_texel_{};", type, g.name);
       }
-      if (std::regex_search(original, hlsl_sampler)) return "";  // only ever an argument of the samples replaced
-      if (std::regex_search(original, m, resource)) {
-        k.problem = fmt::format("`{}` is a texture or sampler: not filled by the harness", g.name);
-        return "";
-      }
+      if (kind == "SamplerState" || kind == "SamplerComparisonState" || kind.starts_with("sampler")) return "";  // only ever an argument of the samples replaced
+      for (std::string_view other : {"Texture", "Sampler", "sampler", "texture", "image", "ByteAddressBuffer", "AppendStructuredBuffer", "ConsumeStructuredBuffer"})
+        if (resource.starts_with(other)) {
+          k.problem = fmt::format("`{}` is a texture or sampler: not filled by the harness", g.name);
+          return "";
+        }
       std::string masked_decl = slice(masked, g.node);
-      static const std::regex constant(R"(^\s*(static|const)\b)");
-      if (std::regex_search(masked_decl, constant)) return masked_decl;
+      TokenText m(masked_decl);
+      if (m[0] == "static" || m[0] == "const") return masked_decl;
       env_inputs.push_back({g.name, g.type + array_suffix(original, g.name)});
       return "static " + masked_decl;
     }
     if (auto block = blocks.find(g.node); block != blocks.end()) {
       const Block& b = block->second;
       // Runtime-sized arrays hold one element: every index of them reads element 0.
-      std::string members = std::regex_replace(b.members, std::regex(R"(\[\s*\])"), "[1]");
-      std::string text_out;
+      TokenText m(b.members);
+      std::vector<Edit> sized;
+      for (size_t i = 0; i + 1 < m.size(); ++i)
+        if (m[i] == "[" && m[i + 1] == "]") sized.push_back(m.replace(i, i + 1, "[1]"));
+      std::string members = splice(b.members, sized);
       if (b.instance.empty()) {
         for (const Global& member : globals)
           if (member.node == g.node) {
             env_inputs.push_back({member.name, member.type});
             if (b.writable) env_outputs.push_back({member.name, member.type});
-            if (member.type.ends_with("[]")) runtime_arrays.push_back({member.name, member.name + "[0]"});
+            if (member.type.ends_with("[]")) runtime_arrays.push_back({{member.name}, member.name + "[0]"});
           }
         return members;
       }
       env_inputs.push_back({b.instance, g.type});
       if (b.writable) env_outputs.push_back({b.instance, g.type});
       for (const Field& f : structs[g.type])
-        if (f.type.ends_with("[]")) runtime_arrays.push_back({b.instance + R"(\s*\.\s*)" + f.name, b.instance + "." + f.name + "[0]"});
+        if (f.type.ends_with("[]")) runtime_arrays.push_back({{b.instance, ".", f.name}, b.instance + "." + f.name + "[0]"});
       return fmt::format("struct {} {{{}}};\n{} {};", g.type, members, g.type, b.instance);
     }
-    if (std::regex_search(original, m, glsl_texture)) {
-      std::string kind = m[1].str(), type = kind == "i" ? "ivec4" : kind == "u" ? "uvec4" : float64 ? "dvec4" : "vec4";
+    for (size_t i = 0; i < d.size(); ++i) {
+      // `uniform sampler2D name;`, `uniform isampler3D name;`, `writeonly image2D name;`
+      std::string_view word = d[i], kind = word.substr(0, 1);
+      if (kind == "i" || kind == "u") word.remove_prefix(1);
+      if (!word.starts_with("sampler") && !word.starts_with("image")) word = d[i], kind = "";
+      if (!d.ident(i) || !(word.starts_with("sampler") || word.starts_with("image")) || !d.spells(i + 1, {"", ";"})) continue;
+      std::string type = kind == "i" ? "ivec4" : kind == "u" ? "uvec4" : float64 ? "dvec4" : "vec4";
       textures.push_back(g.name);
       env_inputs.push_back({"lwc_texel_" + g.name, type});
-      if (m[2] == "image") env_outputs.push_back({"lwc_texel_" + g.name, type});
+      if (word.starts_with("image")) env_outputs.push_back({"lwc_texel_" + g.name, type});
       return fmt::format("{} lwc_texel_{};", type, g.name);
     }
-    static const std::regex constant(R"(^\s*const\b)"), stage_output(R"(\b(out|varying)\b)");
-    if (std::regex_search(original, constant)) return original;
-    bool output = std::regex_search(original, stage_output);
+    if (d[0] == "const") return original;
+    static const std::set<std::string_view> qualifiers = {"uniform", "in", "out", "inout", "varying", "attribute", "flat", "smooth",
+                                                          "noperspective", "centroid", "invariant", "readonly", "writeonly",
+                                                          "coherent", "volatile", "restrict"};
+    bool output = false;
+    std::vector<Edit> unqualified;
+    for (size_t i = 0; i < d.size(); ++i) {
+      if (!d.ident(i)) continue;
+      output |= d[i] == "out" || d[i] == "varying";
+      size_t last = i;
+      if (d.spells(i, {"layout", "("})) last = d.closing(i + 1);
+      else if (!qualifiers.count(d[i])) continue;
+      if (last == std::string_view::npos) break;
+      unqualified.push_back(d.replace(i, last, ""));
+      i = last;
+    }
     (output ? env_outputs : env_inputs).push_back({g.name, g.type + array_suffix(original, g.name)});
-    return std::regex_replace(original, glsl_qualifiers, "");
+    return splice(original, unqualified);
   };
   for (size_t i = 0; i < top.size(); ++i) {
     int c = top[i];
@@ -521,8 +602,14 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
       if (keep && glsl_main && name == "main")
         item.replace(t.at(id).begin - t.at(c).begin, 4, "lwc_entry");
       // Blocks come before the functions that use them: their runtime-sized arrays are known.
-      for (const auto& array : runtime_arrays)
-        replace_bracketed(item, std::regex("\\b" + array.first + R"(\s*\[)"), [&](const std::string&) { return array.second; });
+      for (const auto& array : runtime_arrays) {
+        auto head = [&](const TokenText& t, size_t i) {
+          for (const std::string& w : array.first)
+            if (t[i++] != w) return std::string_view::npos;
+          return t[i] == "[" ? i : std::string_view::npos;
+        };
+        item = replace_bracketed(item, head, [&](std::string_view) { return array.second; });
+      }
     } else if (t.is(c, "declaration") || t.is(c, "linkage_specification")) {
       std::vector<const Global*> mine;
       for (const Global& g : globals)
@@ -551,19 +638,24 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
 
 
   // GLSL stage built-ins become private globals.
-  static const std::map<std::string, std::pair<std::string, bool>> builtins = {
+  static const std::map<std::string, std::pair<std::string, bool>, std::less<>> builtins = {
       {"gl_Position", {"vec4", true}}, {"gl_PointSize", {"float", true}}, {"gl_FragCoord", {"vec4", false}},
       {"gl_VertexID", {"int", false}}, {"gl_InstanceID", {"int", false}}, {"gl_FrontFacing", {"bool", false}}};
   std::string prefix;
-  if (lang == Lang::glsl)
+  if (lang == Lang::glsl) {
+    std::set<std::string, std::less<>> seen;
+    decl = rename_identifiers(decl, [&](std::string_view word) {
+      if (!builtins.count(word)) return std::string();
+      seen.emplace(word);
+      return "lwc_" + std::string(word);
+    });
     for (const auto& [name, info] : builtins) {
-      std::regex word("\\b" + name + "\\b");
-      if (!std::regex_search(decl, word)) continue;
-      decl = std::regex_replace(decl, word, "lwc_" + name);
+      if (!seen.count(name)) continue;
       std::string type = float64 ? promote_to_double(lang, info.first) : info.first;
       prefix += type + " lwc_" + name + ";\n";
       (info.second ? env_outputs : env_inputs).push_back({"lwc_" + name, type});
     }
+  }
   if (float64) {
     // float32 transcendentals for the double reference (see promote_to_double).
     std::string d = "double", f = "float";
@@ -610,9 +702,9 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
       // before the parameter's node.
       size_t from = text.find_last_of("(,", t.at(p).begin - 1) + 1;
       std::string original = text.substr(from, t.at(p).end - from);
-      static const std::regex writes(R"(^\s*(out|inout)\b)"), only_writes(R"(^\s*out\b)");
-      bool out = std::regex_search(original, writes);
-      bool in = !std::regex_search(original, only_writes);
+      std::string_view direction = TokenText(original)[0];
+      bool out = direction == "out" || direction == "inout";
+      bool in = direction != "out";
       std::string local = fmt::format("lwc_p{}", index++);
       body += fmt::format("\t{} {};\n", ptype, local);
       if (in) add_inputs(ptype, local, pname);
