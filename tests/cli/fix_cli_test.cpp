@@ -161,6 +161,24 @@ TEST(FixCli, AHardLinkedFileIsNotSplitAndModeBitsAndAttributesAreKept) {
   }
 }
 
+// `fix` says why a hard-linked file is left alone; --force replaces that name only.
+TEST(FixCli, ForceReplacesAHardLinkedNameAndLeavesTheOthers) {
+  std::string dir = ue54_project("fix-force");
+  std::string code = "float3 F(float3 P) { return P - View.WorldCameraOrigin; }\n";
+  test::write(dir + "/a.usf", code);
+  ASSERT_EQ(::link((dir + "/a.usf").c_str(), (dir + "/b.ush").c_str()), 0);
+  std::string fix = "cd " + dir + " && " + test::binary() + " fix a.usf --select lwc-primary-view --color never";
+  auto refused = test::run(fix + " 2>&1");
+  EXPECT_EQ(refused.exit_code, 1) << refused.out;
+  EXPECT_NE(refused.out.find("a.usf:1:1: error: cannot write the fixes: it has 2 hard links"), std::string::npos) << refused.out;
+  EXPECT_NE(refused.out.find("--force"), std::string::npos) << refused.out;
+  EXPECT_EQ(test::read(dir + "/a.usf"), code);
+  auto forced = test::run(fix + " --force 2>&1");
+  EXPECT_EQ(forced.exit_code, 0) << forced.out;
+  EXPECT_NE(test::read(dir + "/a.usf").find("PrimaryView."), std::string::npos);
+  EXPECT_EQ(test::read(dir + "/b.ush"), code);
+}
+
 TEST(FixCli, ASymlinkStaysALinkAndItsTargetIsFixed) {
   std::string dir = ue54_project("fix-symlink");
   fs::create_directories(dir + "/real");

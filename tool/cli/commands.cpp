@@ -83,6 +83,9 @@ fix options:
   --check-build                     compile each file before and after fixing (glslang; Unreal
                                     code against its engine era's stub); a file whose original
                                     compiled and whose fixed text does not is held back
+  --force                           replace a file that has other hard links too (the other
+                                    names keep the old content; without it such a file is left
+                                    unchanged, with the reason)
 
 verify options:
   --format text|json                output format (default: text)
@@ -115,6 +118,7 @@ struct Options {
   bool verify = false;  // fix: apply only the rewrites that pass on the device
   bool verbose = false;  // parse: list each syntax error with the text around it
   bool check_build = false;  // fix: a file whose fix would break its build is held back
+  bool force = false;  // fix: replace files with other hard links too (splitting them)
   double timeout_seconds = 60;  // per kernel on the device
 };
 
@@ -187,6 +191,7 @@ Options parse_options(const std::vector<std::string>& args) {
     else if (a == "--verify") o.verify = true;
     else if (a == "--verbose" || a == "-v") o.verbose = true;
     else if (a == "--check-build") o.check_build = true;
+    else if (a == "--force") o.force = true;
     else if (a == "--timeout") {
       std::string n = get();
       char* end = nullptr;
@@ -789,7 +794,7 @@ FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& in
     out.pending.emplace(std::move(f));
     return out;
   }
-  std::string why = replace_file(file.path, source.text(), fixed.text);
+  std::string why = replace_file(file.path, source.text(), fixed.text, o.force);
   if (!why.empty())
     keep_original(out, source, f.options, input_finding(Severity::error, 0, "cannot write the fixes: " + why, "the other files were still fixed"));
   return out;
@@ -825,7 +830,7 @@ bool write_library(const LibraryFile& lib, const Options& o, std::ostream& out, 
     out << diff;
     return true;
   }
-  std::string why = exists ? replace_file(lib.path, before, after) : create_file(lib.path, after);
+  std::string why = exists ? replace_file(lib.path, before, after, o.force) : create_file(lib.path, after);
   if (!why.empty()) {
     err << fmt::format("{}: cannot write the shader library: {}; the files that need it were not changed\n", lib.display, why);
     return false;
@@ -884,7 +889,7 @@ int fix(const Options& o, std::ostream& out, std::ostream& err) {
       const Source& source = *r.pending->source;
       std::string library = (std::filesystem::path(r.path).parent_path() / library_file_name(*r.library_lang)).string();
       std::string why = missing_libraries.count(library) ? "the library it includes could not be written"
-                                                         : replace_file(r.path, source.text(), r.pending_text);
+                                                         : replace_file(r.path, source.text(), r.pending_text, o.force);
       if (!why.empty())
         keep_original(r, source, r.pending->options,
                       input_finding(Severity::error, 0, "cannot write the fixes: " + why, "the other files were still fixed"));

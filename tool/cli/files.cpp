@@ -286,7 +286,7 @@ void remove_temporary_files_on_signals() {
   }
 }
 
-std::string replace_file(const fs::path& path, std::string_view expected, std::string_view text) {
+std::string replace_file(const fs::path& path, std::string_view expected, std::string_view text, bool split_links) {
   const std::string changed = "changed since it was read; not written (run lwcport fix again)";
   std::error_code ec;
   fs::path target = fs::canonical(path, ec);
@@ -304,9 +304,9 @@ std::string replace_file(const fs::path& path, std::string_view expected, std::s
   if (!(st.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) || ::access(target.c_str(), W_OK) != 0)
     return done(fmt::format("read-only file (mode {:04o}); not changed", st.st_mode & 07777));
   // A new file renamed over one name would leave the other names with the old content.
-  if (st.st_nlink > 1)
-    return done(fmt::format("it has {} hard links and replacing it would split them; not changed (fix a copy, or break the links)",
-                            st.st_nlink));
+  if (st.st_nlink > 1 && !split_links)
+    return done(fmt::format("it has {} hard links and replacing it would split them; not changed (fix a copy, break the links, "
+                            "or run with --force to replace this name only)", st.st_nlink));
   if (read_file(target, SIZE_MAX).text != expected) return done(changed);
   TempFile temp;
   if (std::string why = write_temp_beside(target, text, 0, original, temp); !why.empty()) return done(why);
