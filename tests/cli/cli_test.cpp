@@ -126,6 +126,11 @@ TEST(Cli, AConfigValueOfTheWrongTypeOrMeaningStopsTheRunWithItsReason) {
       {R"({"max-parse-seconds": 0})", "\"max-parse-seconds\" must be a number of seconds above 0"},
       {R"({"virtual-roots": {"/Engine/": "../Engine/Shaders"}})", "\"..\" in its folder"},
       {R"({"virtual-roots": {"Engine": "Shaders"}})", "a prefix starts and ends with '/'"},
+      {R"({"world-sources": [{"match": "View..Origin", "kind": "absolute-position"}]})", "\"View..Origin\" can match nothing: an empty name"},
+      {R"({"world-sources": [{"match": "View.Camera Origin", "kind": "absolute-position"}]})", "holds ' ', which no name has"},
+      {R"({"world-sources": [{"match": "GetPos(Id).X", "kind": "absolute-position"}]})", "a call is written `Name(..)`"},
+      {R"({"exclude": ["../Generated/**"]})", "exclude pattern \"../Generated/**\" can match nothing"},
+      {R"({"exclude": [""]})", "\"exclude\" holds an empty pattern"},
   };
   for (const auto& [config, why] : cases) {
     test::write(dir + "/.lwcport.json", config);
@@ -140,11 +145,19 @@ TEST(Cli, AConfigValueOfTheWrongTypeOrMeaningStopsTheRunWithItsReason) {
 TEST(Cli, AnIncludeDirThatIsNotThereIsAWarning) {
   std::string dir = test::scratch("config-warning");
   test::write(dir + "/a.usf", "float F(float3 P) { return P.x; }\n");
-  test::write(dir + "/.lwcport.json", R"({"include-dirs": ["Shaders/Shared", "/"]})");
+  std::string outside = test::scratch("config-warning-engine");
+  test::write(dir + "/.lwcport.json", R"({"include-dirs": ["Shaders/Shared", "/", ")" + outside + R"(", ")" + dir +
+              R"(", "../)" + std::filesystem::path(outside).filename().string() + R"("], "virtual-roots": {"/Engine/": ")" + outside + R"("}})");
   auto r = test::run("cd " + dir + " && " + test::binary() + " lint a.usf 2>&1");
   EXPECT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find(".lwcport.json: include dir \"Shaders/Shared\" is not a folder here"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("include dir \"/\" is the file system's root"), std::string::npos) << r.out;
+  // An absolute folder outside the project is warned (one machine's layout); the project's own
+  // folder by its absolute path, and a relative folder outside, are not.
+  EXPECT_NE(r.out.find("include dir \"" + outside + "\" is an absolute path outside the project"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("virtual root \"/Engine/\" is an absolute path outside the project"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("include dir \"" + dir + "\""), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("include dir \"../"), std::string::npos) << r.out;
 }
 
 TEST(Cli, IncludesTeachDeclarationsAndMissingOnesAreFine) {

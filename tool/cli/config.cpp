@@ -63,6 +63,16 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
   if (!j.is_object()) fail("the config must be a JSON object");
   ProjectConfig c;
   c.dir = file.parent_path();
+  // An absolute folder outside the project is one machine's layout: elsewhere (CI, a colleague)
+  // it is missing and includes from it go unresolved. A relative one travels with the project.
+  auto machine_specific = [&](const std::string& folder) -> std::string {
+    fs::path p(folder);
+    if (!p.is_absolute()) return "";
+    std::string rel = p.lexically_normal().lexically_relative(fs::absolute(c.dir).lexically_normal()).generic_string();
+    if (!rel.empty() && !rel.starts_with("..")) return "";
+    return "is an absolute path outside the project: on another machine or in CI it may not be there; name it relative to the "
+           "project's folder";
+  };
   auto strings = [&](const char* key) {
     std::vector<std::string> out;
     if (!j.contains(key)) return out;
@@ -86,7 +96,7 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
     if (!j.at("severity").is_object()) fail("\"severity\" must map rule ids to note|warning|error");
     for (auto& [id, level] : j.at("severity").items()) {
       known_rule(id);
-      Severity s;
+      Severity s{};
       if (!level.is_string() || !parse_severity(level.get<std::string>(), s))
         fail(fmt::format("severity of \"{}\" must be note, warning or error", id));
       c.severity[id] = s;
@@ -104,6 +114,8 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
                                        c.include_dirs.back().lexically_normal().string()));
     else if (fs::weakly_canonical(c.include_dirs.back(), ec) == fs::path("/"))
       c.warnings.push_back(fmt::format("include dir \"{}\" is the file system's root: every include is looked for in all of it", d));
+    else if (std::string why = machine_specific(d); !why.empty())
+      c.warnings.push_back(fmt::format("include dir \"{}\" {}", d, why));
   }
   if (j.contains("virtual-roots")) {
     if (!j.at("virtual-roots").is_object()) fail("\"virtual-roots\" must map prefixes such as \"/Engine/\" to folders");
@@ -115,9 +127,16 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
         if (part == "..")
           fail(fmt::format("virtual root \"{}\": \"..\" in its folder; name the folder from the project, or use \"include-dirs\"", prefix));
       c.virtual_roots.emplace_back(prefix, c.dir / folder.get<std::string>());
+      if (std::string why = machine_specific(folder.get<std::string>()); !why.empty())
+        c.warnings.push_back(fmt::format("virtual root \"{}\" {}", prefix, why));
     }
   }
   c.exclude = strings("exclude");
+  for (const auto& p : c.exclude) {
+    if (p.empty() || p == "!") fail("\"exclude\" holds an empty pattern");
+    for (const auto& part : fs::path(p))
+      if (part == "..") fail(fmt::format("exclude pattern \"{}\" can match nothing: patterns are relative to the project's folder, and \"..\" leaves it", p));
+  }
   if (j.contains("world-sources")) {
     c.world_sources = j.at("world-sources");
     if (!c.world_sources.is_array()) fail("\"world-sources\" must be an array of {\"match\", \"kind\"}");
@@ -132,6 +151,8 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
       }
       if (!s.at("match").is_string() || s.at("match").get<std::string>().empty())
         bad("\"match\" must be a non-empty path pattern such as \"View.WorldCameraOrigin\" or \"*.CameraPos\"");
+      if (std::string why = PathPattern(s.at("match").get<std::string>()).problem(); !why.empty())
+        bad(fmt::format("\"match\" {} can match nothing: {}", s.at("match").dump(), why));
       if (!s.at("kind").is_string() || !parse_kind(s.at("kind").get<std::string>()))
         bad(fmt::format("unknown world-space kind {}", s.at("kind").dump()));
       if (s.contains("languages")) {

@@ -181,8 +181,10 @@ WorldData WorldData::load(const nlohmann::json& ws, const nlohmann::json& extra_
       if (!by_name.is_boolean() && by_name != "plain")
         throw std::runtime_error(std::string(where) + ": \"by-name\" is true, false or \"plain\": " + s.dump());
       bool plain_only = by_name == "plain";
-      if (applies_to(s, lang))
-        d.sources.push_back({PathPattern(s.at("match").get<std::string>()), *kind, plain_only || by_name == true, plain_only});
+      PathPattern pattern(s.at("match").get<std::string>());
+      if (std::string why = pattern.problem(); !why.empty())
+        throw std::runtime_error(std::string(where) + ": " + s.at("match").dump() + " can match nothing: " + why);
+      if (applies_to(s, lang)) d.sources.push_back({pattern, *kind, plain_only || by_name == true, plain_only});
     }
   };
   // The project's sources come first so they can override the built-in ones.
@@ -193,7 +195,10 @@ WorldData WorldData::load(const nlohmann::json& ws, const nlohmann::json& extra_
     std::string role = f.at("role").get<std::string>();
     auto it = std::find_if(std::begin(kRoleNames), std::end(kRoleNames), [&](auto& p) { return p.second == role; });
     if (it == std::end(kRoleNames)) throw std::runtime_error("rules/world-space.json: unknown function role " + role);
-    d.functions.push_back({PathPattern(f.at("match").get<std::string>()), it->first});
+    PathPattern pattern(f.at("match").get<std::string>());
+    if (std::string why = pattern.problem(); !why.empty())
+      throw std::runtime_error("rules/world-space.json: " + f.at("match").dump() + " can match nothing: " + why);
+    d.functions.push_back({pattern, it->first});
   }
   const auto& twins = ws.at("translated-twins");
   d.twins.objects = twins.at("objects").get<std::vector<std::string>>();

@@ -60,6 +60,18 @@ bool PathPattern::matches(const Path& path) const {
   return true;
 }
 
+std::string PathPattern::problem() const {
+  for (const auto& segment : segments_)
+    for (const Alternative& alt : segment) {
+      if (alt.glob.empty()) return "an empty name (two dots or bars in a row, or one at an end)";
+      for (char c : alt.glob)
+        if (!(c == '_' || c == '*' || c == '?' || (c >= '0' && c <= '9') || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z')))
+          return c == '(' || c == ')' ? "a call is written `Name(..)`, with two dots between the parentheses"
+                                      : "`" + alt.glob + "` holds '" + c + "', which no name has";
+    }
+  return "";
+}
+
 bool PathPattern::matches_name(std::string_view name) const {
   return matches(Path{{std::string(name), false}});
 }

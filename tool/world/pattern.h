@@ -21,6 +21,9 @@ class PathPattern {
   bool matches(const Path& path) const;
   bool matches_name(std::string_view name) const;  // a one-segment pattern against a bare name
   const std::string& text() const { return text_; }
+  // Why no path can match the pattern (an empty name, a character no name has, a call written
+  // other than `(..)`), or "" when one can.
+  std::string problem() const;
 
  private:
   struct Alternative {
