@@ -3,11 +3,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "fix/apply.h"
 #include "shaderlib/shaderlib.h"
 #include "support.h"
+#include "verify/double_intrinsics.h"
 #include "verify/harness.h"
+#include "verify/kernel.h"
 #include "verify/probes.h"
 #include "verify/worker.h"
 
@@ -190,6 +194,64 @@ TEST(HarnessOnLavapipe, DoubleFloatInverseMatrixSubtractsItsPreTranslationAsTheE
     EXPECT_LT(r.variants[i].median_error, 1e-3) << r.variants[i].label << ": " << r.variants[i].worst;
     EXPECT_LT(r.variants[i].max_error * 100, r.variants[0].max_error) << r.variants[i].label;
   }
+}
+
+// glslang's HLSL narrows `sqrt`, `floor`, `dot`... on doubles to float: the float64 reference calls
+// double versions of its own. On lavapipe they are exact (rounding functions) or within an ulp or
+// two of double (sqrt and what uses it), where the float forms are off by 2^-24.
+TEST(HarnessOnLavapipe, TheHlslReferencesDoubleIntrinsicsAreDoubleAccurate) {
+  Driver d = start_driver();
+  ASSERT_NE(d.device, nullptr);
+  const std::vector<double> xs = {1.0 + 0x1p-40, 0x1p43 - 0.5, -2.5, 2.5, 0.49999999999999994, -0.0, 0x1p52 + 1, -0x1p52 - 3,
+                                  1e-300, 1e300, 3.0000000000000004, 7.25, -7.75, 0x1p24 + 0.5, 1e-7, 123456789.123};
+  const char* names[] = {"sqrt", "floor", "ceil", "round", "trunc", "frac", "length3", "min", "lerp", "fmod"};
+  KernelSpec spec;
+  spec.lang = Lang::hlsl;
+  spec.name = "double-intrinsics";
+  spec.float64 = true;
+  spec.in_stride = 1;
+  spec.out_stride = 10;
+  spec.declarations = hlsl_double_intrinsics();
+  spec.body = "\tdouble x = IN(0);\n\tdouble y = IN(0) * 0.75 + 1.0;\n"
+              "\tOUT(0, lwc_d_sqrt(abs(x)));\n\tOUT(1, lwc_d_floor(x));\n\tOUT(2, lwc_d_ceil(x));\n\tOUT(3, lwc_d_round(x));\n"
+              "\tOUT(4, lwc_d_trunc(x));\n\tOUT(5, lwc_d_frac(x));\n\tOUT(6, lwc_d_length(double3(x, y, 1.0)));\n"
+              "\tOUT(7, lwc_d_min(x, y));\n\tOUT(8, lwc_d_lerp(x, y, 0.375));\n\tOUT(9, lwc_d_fmod(x, 3.0));\n";
+  CompileResult compiled = compile_kernel(spec);
+  ASSERT_TRUE(compiled.ok) << format_messages(compiled);
+  std::vector<double> in(kKernelGroupSize, 1.0);
+  std::copy(xs.begin(), xs.end(), in.begin());
+  std::vector<std::vector<uint8_t>> buffers = {to_bytes(in), std::vector<uint8_t>(in.size() * 10 * sizeof(double))};
+  ASSERT_EQ(d.device->run(compiled.spirv, buffers, 1), "");
+  std::vector<double> out = from_bytes<double>(buffers[1]);
+  for (size_t i = 0; i < xs.size(); ++i) {
+    double x = xs[i], y = x * 0.75 + 1.0;
+    double want[] = {std::sqrt(std::fabs(x)), std::floor(x), std::ceil(x), std::nearbyint(x), std::trunc(x), x - std::floor(x),
+                     std::sqrt(x * x + y * y + 1.0), std::min(x, y), x + (y - x) * 0.375, x - 3.0 * std::trunc(x / 3.0)};
+    for (int k = 0; k < 10; ++k) {
+      double got = out[i * 10 + k];
+      if (k == 6 && !std::isfinite(want[k])) continue;  // 1e300 squared overflows either way
+      double tolerance = k == 0 || k == 6 ? 4 * std::numeric_limits<double>::epsilon() * std::fabs(want[k]) : 0.0;
+      EXPECT_LE(std::fabs(got - want[k]), tolerance) << names[k] << "(" << x << ") = " << got << ", want " << want[k];
+      if (k >= 1 && k <= 4) EXPECT_EQ(std::signbit(got), std::signbit(want[k])) << names[k] << "(" << x << ")";
+    }
+  }
+}
+
+// An intrinsic glslang narrows that lwcport has no double version of (`ldexp`) is named: the
+// function gets no verdict against a reference that is float32 in places. One it covers (`length`)
+// keeps its float64 reference.
+TEST(HarnessOnLavapipe, AReferenceThatWouldComputeInFloat32IsNamedNotJudged) {
+  Driver d = start_driver();
+  ASSERT_NE(d.device, nullptr);
+  HarnessSetup setup = small_setup(Lang::hlsl, "narrow.usf");
+  std::string code = "float3 CameraPosition;\n"
+                     "float Far(float3 WorldPosition)\n{\n\treturn ldexp(WorldPosition.x, 2.0) + length(WorldPosition - CameraPosition);\n}\n"
+                     "float Near(float3 WorldPosition)\n{\n\treturn length(WorldPosition - CameraPosition);\n}\n";
+  FunctionResult far = verify_function(*d.device, d.probes, setup, "Far", {{"original (float32)", code}});
+  EXPECT_NE(far.reference.find("no float64 reference: the float64 reference would compute in float32"), std::string::npos) << far.reference;
+  EXPECT_NE(far.reference.find("`return ldexp("), std::string::npos) << far.reference;
+  FunctionResult near = verify_function(*d.device, d.probes, setup, "Near", {{"original (float32)", code}});
+  EXPECT_EQ(near.reference, "the original promoted to float64 (transcendentals in float32)");
 }
 
 }  // namespace

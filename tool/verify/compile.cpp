@@ -119,7 +119,8 @@ CompileResult compile_shader(const CompileInput& input) {
   set_source(shader, input, strings, stage, vulkan || hlsl);
   shader.setEntryPoint(hlsl ? input.entry.c_str() : "main");
   auto messages = static_cast<EShMessages>(EShMsgDefault | (hlsl ? EShMsgReadHlsl : EShMsgDefault) |
-                                           (vulkan ? EShMsgSpvRules | EShMsgVulkanRules : EShMsgDefault));
+                                           (vulkan ? EShMsgSpvRules | EShMsgVulkanRules : EShMsgDefault) |
+                                           (input.debug_lines ? EShMsgDebugInfo : EShMsgDefault));
   Includer includer(input);
   if (!shader.parse(GetDefaultResources(), hlsl ? 500 : 110, false, messages, includer)) {
     read_log(shader.getInfoLog(), result.messages);
@@ -134,6 +135,7 @@ CompileResult compile_shader(const CompileInput& input) {
   if (input.spirv) {
     glslang::SpvOptions options;
     options.disableOptimizer = true;  // the driver must see every operation as written
+    options.generateDebugInfo = input.debug_lines;
     glslang::GlslangToSpv(*program.getIntermediate(stage), result.spirv, &options);
   }
   result.ok = true;

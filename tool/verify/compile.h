@@ -29,6 +29,7 @@ struct CompileInput {
   // Resolves `#include "name"` from the including source's name; nullopt when not found.
   std::function<std::optional<std::string>(const std::string& name, const std::string& from)> include;
   bool spirv = false;  // also generate Vulkan SPIR-V (GLSL then needs a Vulkan-legal shader)
+  bool debug_lines = false;  // with OpLine source lines in the SPIR-V
   bool vulkan = false; // GLSL for Vulkan (descriptor sets, push constants) rather than OpenGL
 };
 

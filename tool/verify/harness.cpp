@@ -25,6 +25,24 @@ namespace lwc {
 
 namespace {
 
+// Where a float64 reference still computes in float32 (a conversion to float outside the float32
+// transcendental wrappers and the seeds of our double intrinsics: an intrinsic glslang narrows
+// that verify/double_intrinsics does not cover), the first such line of the kernel, quoted; ""
+// when it is float64 throughout.
+std::string float32_in_reference(const std::vector<uint32_t>& spirv, std::string_view kernel_text) {
+  for (const SpirvFunction& f : inspect_spirv(spirv).functions) {
+    if (f.name.starts_with("lwc_f32_") || f.name.starts_with("lwc_d_") || f.narrowing_lines.empty()) continue;
+    std::string_view line = kernel_text;
+    for (int n = 1; n < f.narrowing_lines.front() && !line.empty(); ++n) line.remove_prefix(std::min(line.size(), line.find('\n') + 1));
+    line = line.substr(0, line.find('\n'));
+    while (!line.empty() && (line.front() == ' ' || line.front() == '\t')) line.remove_prefix(1);
+    if (line.size() > 160) line = line.substr(0, utf8_char_start(line, 160));
+    return fmt::format("the float64 reference would compute in float32: glslang converts a value to float in `{}` (`{}`); "
+                       "no verdict is given against it", f.name, line);
+  }
+  return "";
+}
+
 // The number of a GLSL ES `#version NNN es` directive ("" for desktop GLSL or none).
 std::string_view glsl_es_version(std::string_view text) {
   TokenText t(text);
@@ -625,6 +643,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     if (std::string_view es = glsl_es_version(v.text); es == "300" || es == "310" || es == "320") spec.glsl_version = es == "320" ? "320 es" : "310 es";
     k.compiled = compile_kernel(spec);
     if (!k.compiled.ok) k.problem = whole_failed ? file_problem() : "the harness kernel does not compile: " + format_messages(k.compiled);
+    else if (float64) k.problem = float32_in_reference(k.compiled.spirv, kernel_source(spec));
     return k;
   };
   auto build = [&](const FileVariant& v, bool float64) {

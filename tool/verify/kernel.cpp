@@ -32,6 +32,7 @@ CompileResult compile_kernel(const KernelSpec& spec, const std::vector<std::pair
   in.text = (spec.lang == Lang::glsl ? "#version " + version + "\n" : "") + kernel_source(spec);
   in.entry = "main";
   in.spirv = true;
+  in.debug_lines = spec.float64;  // where the reference narrows to float32, by line
   return compile_shader(in);
 }
 

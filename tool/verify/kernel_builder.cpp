@@ -8,6 +8,7 @@
 
 #include "lang/mask.h"
 #include "lang/tokens.h"
+#include "verify/double_intrinsics.h"
 
 namespace lwc {
 
@@ -254,26 +255,6 @@ struct Block {
   bool writable = false;        // a `buffer` not declared readonly: its members are results too
 };
 
-// glslang's HLSL has `mul` and `transpose` for float matrices only: the double reference gets
-// its own, row by row as HLSL defines them (row vectors on the left, rows of the matrix).
-std::string hlsl_double_matrix_functions() {
-  std::string out;
-  for (int n = 2; n <= 4; ++n)
-    for (int m = 2; m <= 4; ++m) {
-      out += fmt::format("double{1} mul(double{0} v, double{0}x{1} a) {{ double{1} r = 0; for (int i = 0; i < {0}; ++i) r += v[i] * a[i]; return r; }}\n", n, m);
-      out += fmt::format("double{0} mul(double{0}x{1} a, double{1} v) {{ double{0} r; for (int i = 0; i < {0}; ++i) {{ double s = 0; "
-                         "for (int j = 0; j < {1}; ++j) s += a[i][j] * v[j]; r[i] = s; }} return r; }}\n", n, m);
-      out += fmt::format("double{1}x{0} transpose(double{0}x{1} a) {{ double{1}x{0} r; for (int i = 0; i < {0}; ++i) "
-                         "for (int j = 0; j < {1}; ++j) r[j][i] = a[i][j]; return r; }}\n", n, m);
-    }
-  for (int n = 2; n <= 4; ++n)
-    for (int k = 2; k <= 4; ++k)
-      for (int m = 2; m <= 4; ++m)
-        out += fmt::format("double{0}x{2} mul(double{0}x{1} a, double{1}x{2} b) {{ double{0}x{2} r; for (int i = 0; i < {0}; ++i) "
-                           "r[i] = mul(a[i], b); return r; }}\n", n, k, m);
-  return out;
-}
-
 // The `[N]` after a declared name (`uniform vec4 planes[6];`), or "".
 std::string array_suffix(std::string_view declaration, std::string_view name) {
   TokenText t(declaration);
@@ -407,6 +388,8 @@ std::string promote_to_double(Lang lang, const std::string& text) {
       edits.push_back(t.replace(i, i, twin));
     } else if (float32_only.count(t[i]) && t[i + 1] == "(") {
       edits.push_back(t.replace(i, i, "lwc_f32_" + std::string(t[i])));
+    } else if (lang == Lang::hlsl && narrowed_hlsl_intrinsics().count(t[i]) && t[i + 1] == "(") {
+      edits.push_back(t.replace(i, i, "lwc_d_" + std::string(t[i])));
     }
   }
   return splice(text, edits);
@@ -667,7 +650,7 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
     prefix += fmt::format("{0} lwc_f32_pow({0} x, {0} y) {{ return {0}(pow({1}(x), {1}(y))); }}\n", d, f);
     for (int n = 2; n <= 4; ++n)
       prefix += fmt::format("{0}{2} lwc_f32_pow({0}{2} x, {0}{2} y) {{ return {0}{2}(pow({1}{2}(x), {1}{2}(y))); }}\n", v, fv, n);
-    if (lang == Lang::hlsl) prefix += hlsl_double_matrix_functions();
+    if (lang == Lang::hlsl) prefix += hlsl_double_intrinsics();
   }
   k.declarations = prefix + decl;
 

@@ -45,7 +45,9 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& text, const std
 // The names of the functions whose definitions contain each offset ("" outside any function).
 std::vector<std::string> enclosing_functions(Lang lang, const std::string& text, const std::vector<uint32_t>& offsets);
 
-// Every float type written as its double twin (float3 -> double3, vec3 -> dvec3, mat4 -> dmat4).
+// Every float type written as its double twin (float3 -> double3, vec3 -> dvec3, mat4 -> dmat4);
+// transcendentals call float32 wrappers (`lwc_f32_sin`), and HLSL intrinsics that glslang would
+// narrow to float call double ones (`lwc_d_length`, verify/double_intrinsics.h).
 std::string promote_to_double(Lang lang, const std::string& text);
 
 }  // namespace lwc

@@ -13,6 +13,8 @@ struct SpirvFunction {
   std::string signature;     // the full OpName
   int float_ops = 0;         // OpFAdd, OpFSub, OpFMul, OpFDiv
   int no_contraction = 0;    // of those, the ones decorated NoContraction
+  // Source lines (from OpLine; 0 where there is none) of conversions to a 32-bit float type.
+  std::vector<int> narrowing_lines;
 };
 
 struct SpirvSummary {
