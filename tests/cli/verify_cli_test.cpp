@@ -40,6 +40,18 @@ TEST(VerifyCli, AHangingShaderTimesOutAndTheOtherFilesAreStillVerified) {
   EXPECT_EQ(r.exit_code, 1);
 }
 
+// As in lint, a path that yields no shader code is an error (exit 2), never "Verified 0".
+TEST(VerifyCli, APathWithNoShaderCodeIsAnError) {
+  std::string dir = test::scratch("verify-nothing");
+  test::write(dir + "/notes.txt", "not a shader\n");
+  test::Run missing = test::run(test::binary() + " verify " + dir + "/missing.usf --fail-on none 2>&1");
+  EXPECT_EQ(missing.exit_code, 2) << missing.out;
+  EXPECT_NE(missing.out.find("missing.usf: no such file or folder"), std::string::npos) << missing.out;
+  test::Run empty = test::run(test::binary() + " verify " + dir + " 2>&1");
+  EXPECT_EQ(empty.exit_code, 2) << empty.out;
+  EXPECT_NE(empty.out.find("verify-nothing: no shader file in it"), std::string::npos) << empty.out;
+}
+
 // A compile error in one function leaves the file's other functions verified; the error is told
 // with the file's own line numbers; a file where nothing runs at all fails the run.
 TEST(VerifyCli, AFunctionThatCompilesOnItsOwnIsVerifiedBesideOneThatDoesNot) {

@@ -1016,6 +1016,7 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
   IncludeSummaries includes;
   std::vector<FunctionResult> results;
   std::vector<std::string> unverified;  // files with findings where no function ran at all
+  std::vector<size_t> with_code;         // per command-line argument
   for (const InputFile& file : files) {
     LoadedFile f = load(file, o, includes);
     if (f.problem) {
@@ -1025,6 +1026,8 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
     const Source& source = *f.source;
     std::optional<Lang> lang = language_for(source, f.options);
     if (!lang) continue;
+    if (with_code.size() <= file.argument) with_code.resize(file.argument + 1);
+    ++with_code[file.argument];
     std::vector<std::string> names = functions_with_findings(source, f.options, *lang);
     std::vector<FileVariant> variants = {{"original (float32)", source.text(), unreal_era(source.text()), {}}};
     for (auto [strategy, label] : {std::pair{Strategy::translated, "translated world"}, std::pair{Strategy::df, "DoubleFloat"}}) {
@@ -1057,6 +1060,7 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
   else print_functions_text(out, verifier.device->name(), verifier.probes, results, wall);
   for (const std::string& path : unverified)
     err << fmt::format("lwcport: {}: nothing in it could be verified (no function ran; the reasons are above)\n", path);
+  if (!every_argument_had_code(o, with_code, err)) return 2;
   if (!o.fail_on) return 0;
   if (!unverified.empty()) return 1;
   for (const FunctionResult& r : results)
