@@ -164,7 +164,8 @@ void print_functions_text(std::ostream& out, const std::string& device, const Dr
                           const std::vector<FunctionResult>& results, double wall_seconds) {
   out << fmt::format("Verification on {}\n\nDriver probes:\n", device);
   for (const std::string& line : describe_probes(probes)) out << "  " << line << '\n';
-  size_t variants = 0, passed = 0, input_limited = 0;
+  size_t variants = 0;
+  std::vector<std::pair<std::string, size_t>> statuses;  // each kind of result, in order of first appearance
   for (const FunctionResult& r : results) {
     out << fmt::format("\n{}: {} (reference: {})\n", r.file, r.function, r.reference);
     size_t w = 20;  // the label column fits the longest label
@@ -174,9 +175,11 @@ void print_functions_text(std::ostream& out, const std::string& device, const Dr
     std::vector<std::string> details;
     for (const VariantResult& v : r.variants) {
       ++variants;
-      passed += v.passed();
-      input_limited += v.input_limited();
-      std::string result = v.status.size() > 40 ? v.status.substr(0, v.status.find(':')) : v.status;
+      std::string kind = v.status.substr(0, v.status.find(':'));
+      auto counted = std::find_if(statuses.begin(), statuses.end(), [&](const auto& s) { return s.first == kind; });
+      if (counted == statuses.end()) statuses.emplace_back(kind, 1);
+      else ++counted->second;
+      std::string result = v.status.size() > 40 ? kind : v.status;
       if (!v.measured) {
         out << fmt::format("  {:<{}} {:>11} {:>11} {:>11} {:>10} {:>9} {:>7}  {:<6} {}\n", v.label, w, "-", "-", "-", "-", "-", "-", "", result);
         details.push_back(fmt::format("{}: {}", v.label, v.status));
@@ -191,9 +194,13 @@ void print_functions_text(std::ostream& out, const std::string& device, const Dr
     out << fmt::format("  scene pick: {}\n", r.pick);
     for (const std::string& d : details) out << "    " << d << '\n';
   }
-  out << fmt::format("\nVerified {} function(s), {} variant(s): {} within the scene's precision, {} input-limited (right on the "
-                     "inputs they are handed, held back by float32 inputs their callers pass).\n",
-                     results.size(), variants, passed, input_limited);
+  // Every kind of result is counted: pass (within the scene's precision), input-limited (right on
+  // the inputs it is handed, held back by float32 inputs its callers pass), fail, incomplete, does
+  // not compile, did not run, timed only (no reference), not verifiable.
+  std::vector<std::string> counts;
+  for (const auto& [kind, count] : statuses) counts.push_back(fmt::format("{} {}", count, kind));
+  out << fmt::format("\nVerified {} function(s), {} variant(s){}{}.\n", results.size(), variants, counts.empty() ? "" : ": ",
+                     fmt::join(counts, ", "));
   TimeSplit t = time_split(results);
   out << fmt::format("Time: {:.1f} s, {:.2f} function(s) per second; glslang {:.1f} s, pipelines and JIT {:.1f} s, dispatches {:.1f} s.\n",
                      wall_seconds, results.size() / wall_seconds, t.compile, t.pipeline, t.dispatch);
