@@ -206,9 +206,13 @@ TEST(FixCli, UnsafeFixesWaitForTheFlag) {
   test::write(dir + "/a.usf", code);
   auto r = test::run("cd " + dir + " && " + test::binary() + " fix a.usf --select lwc-tile-offset --color never 2>&1");
   EXPECT_NE(r.out.find("Fixed 0 finding(s) in 0 file(s). 1 more fix(es) are unsafe: rerun with --unsafe-fixes."), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("not verified"), std::string::npos) << r.out;  // nothing was rewritten
   EXPECT_EQ(test::read(dir + "/a.usf"), code);
-  r = test::run("cd " + dir + " && " + test::binary() + " fix a.usf --select lwc-tile-offset --unsafe-fixes");
+  r = test::run("cd " + dir + " && " + test::binary() + " fix a.usf --select lwc-tile-offset --unsafe-fixes 2>&1");
   EXPECT_EQ(test::read(dir + "/a.usf"), "float3 TileOf(FDFVector3 P)\n{\n\treturn P.Tile;\n}\n");
+  // Without --verify the summary says the rewrites were not measured, and how to measure them.
+  EXPECT_NE(r.out.find("Fixed 1 finding(s) in 1 file(s). It was not verified on a device: `lwcport verify` measures each rewrite"),
+            std::string::npos) << r.out;
 }
 
 TEST(FixCli, FixesAreLabelledInJsonAndSarif) {

@@ -907,6 +907,9 @@ int fix(const Options& o, std::ostream& out, std::ostream& err) {
     for (const auto& [path, lib] : libraries) write_library(lib, o, *target.stream, err);
   bool arguments_ok = every_argument_had_code(o, counter.with_code, err);
   std::string unsafe = unsafe_left ? fmt::format(" {} more fix(es) are unsafe: rerun with --unsafe-fixes.", unsafe_left) : "";
+  if (applied && !o.verify)
+    unsafe += fmt::format(" {} not verified on a device: `lwcport verify` measures each rewrite against a float64 reference, "
+                          "and `fix --verify` applies only those that pass.", applied == 1 ? "It was" : "They were");
   if (o.check_build)
     err << fmt::format("Build check: {} fixed file(s) compile as their originals did, {} compile except in code left to port by hand, "
                        "{} held back (the fix broke the build), {} not checked (the original does not compile on its own).\n",
