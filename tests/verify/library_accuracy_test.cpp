@@ -2,6 +2,7 @@
 // meets every published bound, and the known-bad variants are caught (LWC-BRIEF §4-§5).
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <regex>
 
 #include "shaderlib/shaderlib.h"
@@ -115,6 +116,39 @@ TEST_F(LibraryOnLavapipe, SloppyAddWhereTheAccurateBoundIsNeededIsCaughtOnTheCou
   EXPECT_EQ(m.status, "fail");
   EXPECT_NE(m.worst.find("sloppy-add counterexample"), std::string::npos) << m.worst;
   EXPECT_GT(m.max_relative, 0.05);  // off by a unit in 2k + 1, k <= 7
+}
+
+// Faults injected into the library text, as a bug in it would look: each must make the operation
+// that depends on it fail, in both languages, on inputs chosen for that fault.
+TEST_F(LibraryOnLavapipe, MutantsOfTheLibraryAreEachCaughtNamingTheOperation) {
+  struct Mutant {
+    const char* name;
+    const char* from;
+    const char* to;
+    std::vector<std::pair<std::string, InputFamily>> caught_by;
+  };
+  const Mutant mutants[] = {
+      {"split constant 4096", "4097.0 * A", "4096.0 * A",
+       {{"DFTwoProductDekker(a, b)", InputFamily::product}, {"DFMultiply(A, B)", InputFamily::product}}},
+      {"product's error term dropped", "Cl3 = C.Low + Cl2;", "Cl3 = Cl2;", {{"DFMultiply(A, B)", InputFamily::product}}},
+  };
+  for (const Mutant& mutant : mutants) {
+    LibraryCheckOptions options;
+    options.inputs = 16384;
+    for (Lang lang : {Lang::glsl, Lang::hlsl}) {
+      std::string text = full_library_text(lang);
+      size_t replaced = 0;
+      for (size_t at; (at = text.find(mutant.from)) != std::string::npos; ++replaced) text.replace(at, std::strlen(mutant.from), mutant.to);
+      ASSERT_GT(replaced, 0u) << mutant.name << ": the fault is not in the " << lang_name(lang) << " library";
+      options.library[lang] = text;
+    }
+    for (const auto& [call, family] : mutant.caught_by) options.ops.push_back(library_op(call, family));
+    LibraryAccuracy result = check_library(*device_, probes_, options);
+    EXPECT_TRUE(result.failed()) << mutant.name;
+    for (const OpReport& r : result.ops)
+      for (const auto& [lang, m] : r.by_lang)
+        EXPECT_EQ(m.status, "fail") << mutant.name << " survives in " << r.op->call << " (" << lang_name(lang) << "): " << m.worst;
+  }
 }
 
 }  // namespace

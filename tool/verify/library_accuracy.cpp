@@ -168,6 +168,15 @@ std::vector<NamedCase> adversarial_cases(InputFamily family) {
     float ones = 2.0f - std::ldexp(1.0f, -23);
     return Operands{{r.sign() * std::ldexp(ones, r.integer(-40, 40)), 0}, {r.sign() * std::ldexp(ones, r.integer(-40, 40)), 0}};
   });
+  // Veltkamp's split needs its constant to be 2^12 + 1: with 2^12 the high part keeps a 13th bit for
+  // significands just above 1, and the products of the parts round.
+  add(family == F::product || family == F::quotient, "significands just above 1 (Veltkamp's 2^12 + 1)", [](Random& r) {
+    auto just_above_one = [&r]() {
+      float m = static_cast<float>(1.0 + r.integer(1, (1 << 12) - 1) * 0x1p-23);
+      return r.sign() * std::ldexp(m, r.integer(-30, 30));
+    };
+    return Operands{{just_above_one(), 0}, {just_above_one(), 0}};
+  });
   // 4097 * A overflows above 2^128 / 4097 (about 8.3e34): Dekker's split, and every product built
   // on it, gives NaN there even when the result fits (LWC-BRIEF §6).
   add(family == F::product || family == F::quotient, "beyond Dekker's split limit (|A| > 8.3e34, result in range)", [family](Random& r) {
