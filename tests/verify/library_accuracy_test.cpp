@@ -131,6 +131,7 @@ TEST_F(LibraryOnLavapipe, MutantsOfTheLibraryAreEachCaughtNamingTheOperation) {
       {"split constant 4096", "4097.0 * A", "4096.0 * A",
        {{"DFTwoProductDekker(a, b)", InputFamily::product}, {"DFMultiply(A, B)", InputFamily::product}}},
       {"product's error term dropped", "Cl3 = C.Low + Cl2;", "Cl3 = Cl2;", {{"DFMultiply(A, B)", InputFamily::product}}},
+      {"DFDemote returns High", "return V.High + V.Low; }", "return V.High; }", {{"DFDemote(A)", InputFamily::uncanonical}}},
   };
   for (const Mutant& mutant : mutants) {
     LibraryCheckOptions options;

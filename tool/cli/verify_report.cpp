@@ -28,6 +28,7 @@ const char* family_name(InputFamily f) {
     case InputFamily::product: return "2^-40..2^40";
     case InputFamily::quotient: return "2^-40..2^40";
     case InputFamily::positive: return "positive";
+    case InputFamily::uncanonical: return "Low beyond an ULP";
   }
   return "";
 }

@@ -188,6 +188,14 @@ std::vector<NamedCase> adversarial_cases(InputFamily family) {
     Pair a = r.pair(-40, 40);
     return Operands{a, a};
   });
+  add(family == F::uncanonical, "Low of many ULPs of High (not canonical)", [](Random& r) {
+    float hi = r.sign() * r.magnitude(-20, 43);
+    return Operands{{hi, static_cast<float>(r.sign() * ulp_of(hi) * r.integer(2, 1 << 20))}, {}};
+  });
+  add(family == F::uncanonical, "Low cancelling High", [](Random& r) {
+    float hi = r.sign() * r.magnitude(-20, 43);
+    return Operands{{hi, -hi * static_cast<float>(1.0 - r.uniform() * 0x1p-10)}, {}};
+  });
   add(family == F::positive, "perfect squares", [](Random& r) {
     double k = r.integer(1, 4000);
     return Operands{{static_cast<float>(k * k), 0}, {}};
@@ -229,6 +237,10 @@ Operands random_operands(Random& r, InputFamily family) {
     case F::positive: {
       Pair a = r.pair(-60, 60);
       return {a.hi < 0 ? Pair{-a.hi, -a.lo} : a, {}};
+    }
+    case F::uncanonical: {
+      float hi = r.sign() * r.magnitude(-40, 43);
+      return {{hi, r.sign() * std::ldexp(std::fabs(hi), -r.integer(0, 30))}, {}};
     }
   }
   return {};
@@ -337,6 +349,7 @@ Value sub_ref(Value a, Value b) { return dd::sub(a, b); }
 Value mul_ref(Value a, Value b) { return dd::mul(a, b); }
 Value div_ref(Value a, Value b) { return dd::div(a, b); }
 Value sqrt_ref(Value a, Value) { return dd::sqrt(a); }
+Value value_ref(Value a, Value) { return a; }
 
 LibraryOp op(std::string call, bool pa, bool pb, bool pair_result, InputFamily inputs, Bound bound,
              Value (*reference)(Value, Value), int operands = 2) {
@@ -378,6 +391,7 @@ const std::vector<LibraryOp>& library_ops() {
     v.push_back(op("DFDivide(A, b)", true, false, true, F::quotient, relative(3, "3u^2 (DWDivFP)"), div_ref));
     v.push_back(op("DFDivide(A, B)", true, true, true, F::quotient, relative(10, "~10u^2 (DWDivDW)"), div_ref));
     v.push_back(op("DFSqrt(A)", true, false, true, F::positive, {Bound::none, 0, Bound::sum, "none published"}, sqrt_ref, 1));
+    v.push_back(op("DFDemote(A)", true, false, false, F::uncanonical, rounded(0, Bound::sum, "one rounding of High + Low"), value_ref, 1));
     v.push_back(op("DFAddDemote(A, b)", true, false, false, F::sum, rounded(2, Bound::sum, "~u"), add_ref));
     v.push_back(op("DFAddDemote(A, B)", true, true, false, F::sum, rounded(3, Bound::sum, "~u"), add_ref));
     v.push_back(op("DFSubtractDemote(A, B)", true, true, false, F::sum, rounded(3, Bound::sum, "~u"), sub_ref));

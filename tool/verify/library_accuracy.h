@@ -25,6 +25,7 @@ enum class InputFamily {
   product,      // magnitudes 2^-40..2^40: no overflow in Dekker's split, no underflow in the error
   quotient,     // as product, divisor nonzero
   positive,     // one positive operand (square roots)
+  uncanonical,  // one pair whose Low may be larger than an ULP of High (what DFDemote must round)
 };
 
 // How the error is judged. u = 2^-24.
