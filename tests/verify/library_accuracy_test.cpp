@@ -132,6 +132,10 @@ TEST_F(LibraryOnLavapipe, MutantsOfTheLibraryAreEachCaughtNamingTheOperation) {
        {{"DFTwoProductDekker(a, b)", InputFamily::product}, {"DFMultiply(A, B)", InputFamily::product}}},
       {"product's error term dropped", "Cl3 = C.Low + Cl2;", "Cl3 = Cl2;", {{"DFMultiply(A, B)", InputFamily::product}}},
       {"DFDemote returns High", "return V.High + V.Low; }", "return V.High; }", {{"DFDemote(A)", InputFamily::uncanonical}}},
+      {"tile size 2^20", "#define LWC_DF_TILE_SIZE 2097152.0", "#define LWC_DF_TILE_SIZE 1048576.0",
+       {{"DFFromTileOffset(a, b)", InputFamily::tile_offset}, {"DFToTileOffset(A, Tile, Offset)", InputFamily::world}}},
+      {"tile rounded down, not to the nearest", "Tile = floor(V.High / LWC_DF_TILE_SIZE + 0.5);", "Tile = floor(V.High / LWC_DF_TILE_SIZE);",
+       {{"DFToTileOffset(A, Tile, Offset)", InputFamily::world}}},
   };
   for (const Mutant& mutant : mutants) {
     LibraryCheckOptions options;

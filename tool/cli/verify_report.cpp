@@ -29,6 +29,8 @@ const char* family_name(InputFamily f) {
     case InputFamily::quotient: return "2^-40..2^40";
     case InputFamily::positive: return "positive";
     case InputFamily::uncanonical: return "Low beyond an ULP";
+    case InputFamily::tile_offset: return "tiles to 2^22";
+    case InputFamily::world: return "to 2^43, tile edges";
   }
   return "";
 }

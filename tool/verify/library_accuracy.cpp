@@ -20,6 +20,7 @@ namespace {
 
 constexpr double kU = 5.9604644775390625e-08;  // 2^-24, float32's unit roundoff
 constexpr double kU2 = kU * kU;
+constexpr double kTile = 0x1p21;  // UE 5.0-5.3's tile size, as the engine defines it
 
 using dd::Value;
 
@@ -196,6 +197,24 @@ std::vector<NamedCase> adversarial_cases(InputFamily family) {
     float hi = r.sign() * r.magnitude(-20, 43);
     return Operands{{hi, -hi * static_cast<float>(1.0 - r.uniform() * 0x1p-10)}, {}};
   });
+  // The tile size is 2^21 here, on the CPU, whatever the library defines: a wrong size in the
+  // library cannot move the reference with it.
+  add(family == F::tile_offset, "offset of three tiles (not normalised)", [](Random& r) {
+    return Operands{{static_cast<float>(r.integer(-(1 << 22), 1 << 22)), 0}, {static_cast<float>(r.sign() * (3 * kTile + r.uniform() * 1000)), 0}};
+  });
+  add(family == F::tile_offset, "half-tile offset", [](Random& r) {
+    return Operands{{static_cast<float>(r.integer(-(1 << 22), 1 << 22)), 0}, {static_cast<float>(r.sign() * kTile / 2), 0}};
+  });
+  add(family == F::world, "half-tile tie ((k + 0.5) * 2^21)", [](Random& r) {
+    return Operands{to_pair(dd::from((r.integer(-(1 << 21), 1 << 21) + 0.5) * kTile)), {}};
+  });
+  add(family == F::world, "tile edge (k * 2^21 +- a little)", [](Random& r) {
+    return Operands{to_pair(dd::from(r.integer(-(1 << 21), 1 << 21) * kTile, r.sign() * r.uniform() * 0.01)), {}};
+  });
+  add(family == F::world, "2^43 - ulp", [](Random& r) {
+    float edge = std::nextafter(std::ldexp(1.0f, 43), 0.0f);
+    return Operands{{r.sign() * edge, static_cast<float>((r.uniform() - 0.5) * ulp_of(edge))}, {}};
+  });
   add(family == F::positive, "perfect squares", [](Random& r) {
     double k = r.integer(1, 4000);
     return Operands{{static_cast<float>(k * k), 0}, {}};
@@ -238,6 +257,9 @@ Operands random_operands(Random& r, InputFamily family) {
       Pair a = r.pair(-60, 60);
       return {a.hi < 0 ? Pair{-a.hi, -a.lo} : a, {}};
     }
+    case F::tile_offset:
+      return {{static_cast<float>(r.integer(-(1 << 22), 1 << 22)), 0}, {static_cast<float>((r.uniform() - 0.5) * kTile), 0}};
+    case F::world: return {r.pair(-10, 43), {}};
     case F::uncanonical: {
       float hi = r.sign() * r.magnitude(-40, 43);
       return {{hi, r.sign() * std::ldexp(std::fabs(hi), -r.integer(0, 30))}, {}};
@@ -280,6 +302,7 @@ double allowed_error(const Bound& bound, Value exact, const Operands& in) {
       double scale = bound.scale == Bound::sum ? a + b : bound.scale == Bound::product ? a * b : a / b;
       return kU * magnitude + bound.u2 * kU2 * scale;
     }
+    case Bound::offset: return kU * 0x1p20;
     case Bound::none: return std::numeric_limits<double>::infinity();
   }
   return 0;
@@ -297,8 +320,9 @@ std::string worst_case_text(const LibraryOp& op, const Operands& in, Value exact
 }
 
 std::string kernel_body(const LibraryOp& op) {
-  std::string result = op.pair_result ? "FDFScalar R = " + op.call + ";\n\tOUT(0, R.High);\n\tOUT(1, R.Low);"
-                                      : "float R = " + op.call + ";\n\tOUT(0, R);\n\tOUT(1, 0.0);";
+  std::string result = op.tile_result   ? "float Tile;\n\tfloat Offset;\n\t" + op.call + ";\n\tOUT(0, Tile);\n\tOUT(1, Offset);"
+                       : op.pair_result ? "FDFScalar R = " + op.call + ";\n\tOUT(0, R.High);\n\tOUT(1, R.Low);"
+                                        : "float R = " + op.call + ";\n\tOUT(0, R);\n\tOUT(1, 0.0);";
   return "\tFDFScalar A = MakeDFScalar(IN(0), IN(1));\n\tFDFScalar B = MakeDFScalar(IN(2), IN(3));\n"
          "\tfloat a = IN(0);\n\tfloat b = IN(2);\n\t" + result;
 }
@@ -317,7 +341,8 @@ OpMeasurement measure(const LibraryOp& op, const std::vector<Operands>& inputs, 
     const Operands& in = inputs[i];
     Value exact = op.reference(in.a.value(), in.b.value());
     float hi = out[2 * i], lo = out[2 * i + 1];
-    double error = std::fabs(dd::sub(dd::from(hi, lo), exact).approx());
+    Value got = op.tile_result ? dd::add(dd::from(static_cast<double>(hi) * kTile), dd::from(lo)) : dd::from(hi, lo);
+    double error = std::fabs(dd::sub(got, exact).approx());
     if (!std::isfinite(hi) || !std::isfinite(lo)) error = std::numeric_limits<double>::infinity();
     double magnitude = std::fabs(exact.approx());
     double rel = error == 0 ? 0 : magnitude == 0 ? std::numeric_limits<double>::infinity() : error / magnitude;
@@ -329,6 +354,7 @@ OpMeasurement measure(const LibraryOp& op, const std::vector<Operands>& inputs, 
       continue;
     }
     if (op.pair_result && std::isfinite(hi) && hi + lo != hi) ++m.non_canonical;
+    if (op.tile_result && (hi != std::nearbyint(hi) || std::fabs(lo) > kTile / 2 + std::fabs(in.a.lo) + 1)) ++m.non_canonical;
     relative.push_back(rel);
     m.max_relative = std::max(m.max_relative, rel);
     m.max_bound_ratio = std::max(m.max_bound_ratio, ratio);
@@ -350,6 +376,7 @@ Value mul_ref(Value a, Value b) { return dd::mul(a, b); }
 Value div_ref(Value a, Value b) { return dd::div(a, b); }
 Value sqrt_ref(Value a, Value) { return dd::sqrt(a); }
 Value value_ref(Value a, Value) { return a; }
+Value tile_ref(Value tile, Value offset) { return dd::add(dd::mul(tile, dd::from(kTile)), offset); }
 
 LibraryOp op(std::string call, bool pa, bool pb, bool pair_result, InputFamily inputs, Bound bound,
              Value (*reference)(Value, Value), int operands = 2) {
@@ -392,6 +419,11 @@ const std::vector<LibraryOp>& library_ops() {
     v.push_back(op("DFDivide(A, B)", true, true, true, F::quotient, relative(10, "~10u^2 (DWDivDW)"), div_ref));
     v.push_back(op("DFSqrt(A)", true, false, true, F::positive, {Bound::none, 0, Bound::sum, "none published"}, sqrt_ref, 1));
     v.push_back(op("DFDemote(A)", true, false, false, F::uncanonical, rounded(0, Bound::sum, "one rounding of High + Low"), value_ref, 1));
+    v.push_back(op("DFFromTileOffset(a, b)", false, false, true, F::tile_offset, exact, tile_ref));
+    LibraryOp to_tile = op("DFToTileOffset(A, Tile, Offset)", true, false, false, F::world,
+                           {Bound::offset, 0, Bound::sum, "one rounding of the offset (u * 2^20)"}, value_ref, 1);
+    to_tile.tile_result = true;
+    v.push_back(to_tile);
     v.push_back(op("DFAddDemote(A, b)", true, false, false, F::sum, rounded(2, Bound::sum, "~u"), add_ref));
     v.push_back(op("DFAddDemote(A, B)", true, true, false, F::sum, rounded(3, Bound::sum, "~u"), add_ref));
     v.push_back(op("DFSubtractDemote(A, B)", true, true, false, F::sum, rounded(3, Bound::sum, "~u"), sub_ref));

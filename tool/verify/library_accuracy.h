@@ -26,11 +26,14 @@ enum class InputFamily {
   quotient,     // as product, divisor nonzero
   positive,     // one positive operand (square roots)
   uncanonical,  // one pair whose Low may be larger than an ULP of High (what DFDemote must round)
+  tile_offset,  // a UE 5.0 tile (an integer) and an offset (up to three tiles: not normalised)
+  world,        // one pair of world magnitude (to 2^43), with tile edges and half-tile ties
 };
 
 // How the error is judged. u = 2^-24.
 struct Bound {
-  enum Kind { exact, relative, rounded, none } kind = none;
+  // offset: one rounding of an offset within half a tile, |error| <= u * 2^20.
+  enum Kind { exact, relative, rounded, offset, none } kind = none;
   double u2 = 0;             // relative: |error| <= u2 * u^2 * |exact|; rounded: the u^2 term below
   enum Scale { sum, product, quotient } scale = sum;
   // rounded: |error| <= u * |exact| + u2 * u^2 * scale, where scale is |A| + |B|, |A * B| or |A / B|:
@@ -43,6 +46,9 @@ struct LibraryOp {
   bool pair_operands[2] = {false, false};
   int operands = 2;
   bool pair_result = true;
+  // The result is a UE 5.0 tile and offset (`DFToTileOffset`'s out parameters), read as
+  // Tile * 2^21 + Offset, with |Offset| at most half a tile beyond the input's low part.
+  bool tile_result = false;
   InputFamily inputs = InputFamily::sum;
   Bound bound;
   bool needs_fused_fma = false;
