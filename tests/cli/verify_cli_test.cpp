@@ -40,6 +40,21 @@ TEST(VerifyCli, AHangingShaderTimesOutAndTheOtherFilesAreStillVerified) {
   EXPECT_EQ(r.exit_code, 1);
 }
 
+// On a terminal, verify shows which function it is on, out of how many, on one line rewritten in
+// place (`script` gives the run a terminal); redirected, it prints nothing of the kind.
+TEST(VerifyCli, ProgressIsShownOnATerminalOnly) {
+  std::string dir = test::scratch("verify-progress");
+  std::string corpus = test::source_dir() + "/corpus/glsl/";
+  std::string verify = test::binary() + " verify " + corpus + "forward.vert " + corpus + "cull.comp --fail-on none";
+  test::Run tty = test::run("script -qec '" + verify + " > " + dir + "/out.txt' " + dir + "/typescript > /dev/null; cat " + dir + "/typescript");
+  EXPECT_NE(tty.out.find("\r\x1b[K[1/2] "), std::string::npos) << tty.out;
+  EXPECT_NE(tty.out.find("[2/2] "), std::string::npos) << tty.out;
+  EXPECT_EQ(test::read(dir + "/out.txt").find("[1/2]"), std::string::npos);
+  test::Run piped = test::run(verify + " 2>&1");
+  EXPECT_EQ(piped.out.find("[1/2]"), std::string::npos) << piped.out;
+  EXPECT_NE(piped.out.find("Verified 2 function(s)"), std::string::npos) << piped.out;
+}
+
 // As in lint, a path that yields no shader code is an error (exit 2), never "Verified 0".
 TEST(VerifyCli, APathWithNoShaderCodeIsAnError) {
   std::string dir = test::scratch("verify-nothing");

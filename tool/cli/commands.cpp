@@ -1020,6 +1020,15 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
   std::vector<FunctionResult> results;
   std::vector<std::string> unverified;  // files with findings where no function ran at all
   std::vector<size_t> with_code;         // per command-line argument
+  // What to run, gathered first so that progress can count it: per file, its functions and variants.
+  struct FileWork {
+    const InputFile* file;
+    HarnessSetup setup;
+    std::vector<std::string> names;
+    std::vector<FileVariant> variants;
+  };
+  std::vector<FileWork> work;
+  size_t total = 0;
   for (const InputFile& file : files) {
     LoadedFile f = load(file, o, includes);
     if (f.problem) {
@@ -1050,14 +1059,22 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
       if (std::string fast = fast_double_float_form(variants[i].text); fast != variants[i].text)
         variants.push_back({variants[i].label.substr(0, variants[i].label.find(" (")) + ", DFFast*", fast, variants[i].ue_version,
                             variants[i].hand_fixes});
-    HarnessSetup setup = harness_setup(file, f, *lang, includes);
+    total += names.size();
+    work.push_back({&file, harness_setup(file, f, *lang, includes), std::move(names), std::move(variants)});
+  }
+  // Progress on a terminal (standard error), one line rewritten in place; nothing when redirected.
+  bool progress = ::isatty(STDERR_FILENO);
+  size_t done = 0;
+  for (const FileWork& w : work) {
     bool any_ran = false;
-    for (const std::string& name : names) {
-      results.push_back(on_big_stack([&] { return verify_function(*verifier.device, verifier.probes, setup, name, variants); }));
+    for (const std::string& name : w.names) {
+      if (progress) err << fmt::format("\r\x1b[K[{}/{}] {}: {}", ++done, total, w.file->display, name) << std::flush;
+      results.push_back(on_big_stack([&] { return verify_function(*verifier.device, verifier.probes, w.setup, name, w.variants); }));
       for (const auto& v : results.back().variants) any_ran |= v.measured;
     }
-    if (!any_ran) unverified.push_back(file.display);
+    if (!any_ran) unverified.push_back(w.file->display);
   }
+  if (progress && done) err << "\r\x1b[K" << std::flush;
   double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (o.report.format == Format::json) print_functions_json(out, verifier.device->name(), verifier.probes, results, wall);
   else print_functions_text(out, verifier.device->name(), verifier.probes, results, wall);
