@@ -84,6 +84,10 @@ TEST(VerifyCli, AFunctionThatCompilesOnItsOwnIsVerifiedBesideOneThatDoesNot) {
   EXPECT_NE(both.out.find("both.vert:7: 'undefined_thing' : undeclared identifier"), std::string::npos) << both.out;
   EXPECT_EQ(both.out.find("both.vert:5"), std::string::npos) << "no harness line numbers:\n" << both.out;
   EXPECT_EQ(both.out.find("nothing in it could be verified"), std::string::npos) << both.out;
+  // One verdict line per function comes first, before the probes and the tables.
+  size_t verdict = both.out.find("both.vert: Bad: original (float32) does not compile\n");
+  ASSERT_NE(verdict, std::string::npos) << both.out;
+  EXPECT_LT(verdict, both.out.find("Driver probes:")) << both.out;
   // The summary counts every kind of result, not only the passes.
   EXPECT_NE(both.out.find("Verified 2 function(s), 2 variant(s): 1 fail, 1 does not compile."), std::string::npos) << both.out;
   test::Run only = test::run(test::binary() + " verify " + dir + "/only_bad.vert 2>&1");

@@ -165,7 +165,18 @@ TimeSplit time_split(const std::vector<FunctionResult>& results) {
 
 void print_functions_text(std::ostream& out, const std::string& device, const DriverProbes& probes,
                           const std::vector<FunctionResult>& results, double wall_seconds) {
-  out << fmt::format("Verification on {}\n\nDriver probes:\n", device);
+  out << fmt::format("Verification on {}\n\n", device);
+  // The verdicts first, one line per function; the tables and the reasons follow.
+  for (const FunctionResult& r : results) {
+    std::vector<std::string> verdicts;
+    for (const VariantResult& v : r.variants) {
+      std::string kind = v.status.substr(0, v.status.find(':'));
+      verdicts.push_back(v.measured && std::isfinite(v.max_error) && v.max_error > 0 ? fmt::format("{} {} ({})", v.label, kind, cm(v.max_error))
+                                                                                    : fmt::format("{} {}", v.label, kind));
+    }
+    out << fmt::format("{}: {}: {}\n", r.file, r.function, fmt::join(verdicts, "; "));
+  }
+  out << "\nDriver probes:\n";
   for (const std::string& line : describe_probes(probes)) out << "  " << line << '\n';
   size_t variants = 0;
   std::vector<std::pair<std::string, size_t>> statuses;  // each kind of result, in order of first appearance
