@@ -276,6 +276,16 @@ const std::vector<Case>& cases() {
       for (double& c : s.camera) c = r.sign() * std::exp(r.uniform(0, 43 * std::log(2.0)));
       s.origin = near(r, s.camera, 1, 1e4);
     }});
+    // Camera-to-object distances over every decade, 1 cm to the world's size (20 to 1000 km
+    // included): what a planet-scale scene draws; each is judged only within the scene's view
+    // distance.
+    v.push_back({"camera-object distance log-uniform 1..2^43 cm", [](Rng& r, State& s) {
+      double edge = std::ldexp(1, 43);
+      for (double& c : s.camera) c = r.sign() * std::exp(r.uniform(0, 42 * std::log(2.0)));
+      Vec d = r.unit();
+      double k = std::exp(r.uniform(0, 43 * std::log(2.0)));
+      for (int i = 0; i < 3; ++i) s.origin[i] = std::clamp(s.camera[i] + d[i] * k, -edge, edge);
+    }});
     v.push_back({"ill-conditioned object matrix (scales 1e-4..1e4)", [](Rng& r, State& s) {
       s.camera = {std::ldexp(1, 31), 0, 0};
       s.origin = near(r, s.camera, 10, 1000);
