@@ -254,5 +254,24 @@ TEST(HarnessOnLavapipe, AReferenceThatWouldComputeInFloat32IsNamedNotJudged) {
   EXPECT_EQ(near.reference, "the original promoted to float64 (transcendentals in float32)");
 }
 
+// A variant in which the fix left this function and all it uses as they were (it changed another
+// function of the file) is "unchanged": not a refuted rewrite, however the original fares.
+TEST(HarnessOnLavapipe, AVariantThatLeavesTheFunctionAsItWasIsUnchangedNotRefuted) {
+  Driver d = start_driver();
+  ASSERT_NE(d.device, nullptr);
+  std::string original = "#version 450\nuniform vec3 cameraPosition;\n"
+                         "vec3 toCamera(vec3 worldPosition) { return worldPosition - cameraPosition; }\n"
+                         "float other(float x) { return x * 2.0; }\nvoid main() {}\n";
+  std::string rewrite = original;
+  rewrite.replace(rewrite.find("x * 2.0"), 7, "x + x");
+  FunctionResult r = verify_function(*d.device, d.probes, glsl_setup(), "toCamera", {{"original (float32)", original}, {"fixed", rewrite}});
+  ASSERT_EQ(r.variants.size(), 2u);
+  EXPECT_NE(r.variants[0].status, "pass") << r.variants[0].worst;  // float32 world positions
+  EXPECT_TRUE(r.variants[1].status.starts_with("unchanged")) << r.variants[1].status;
+  EXPECT_FALSE(r.variants[1].refuted());
+  FunctionResult changed = verify_function(*d.device, d.probes, glsl_setup(), "other", {{"original (float32)", original}, {"fixed", rewrite}});
+  EXPECT_FALSE(changed.variants[1].status.starts_with("unchanged")) << changed.variants[1].status;
+}
+
 }  // namespace
 }  // namespace lwc

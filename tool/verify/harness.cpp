@@ -900,6 +900,13 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
       result.variants.push_back(vr);
       continue;
     }
+    // A rewrite that leaves this function and everything it uses as they were is not a rewrite
+    // of it: neither passed nor refuted, whatever the original does.
+    if (original_kernel && k.code.declarations == original_kernel->code.declarations && k.code.body == original_kernel->code.body) {
+      vr.status = "unchanged: the fix leaves this function and everything it uses as in the original";
+      result.variants.push_back(vr);
+      continue;
+    }
     SpirvSummary spirv = inspect_spirv(k.compiled.spirv);
     vr.spirv_instructions = spirv.instructions;
     vr.contraction_losses = contraction_losses(spirv);
