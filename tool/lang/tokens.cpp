@@ -1,7 +1,5 @@
 #include "lang/tokens.h"
 
-#include <algorithm>
-
 namespace lwc {
 
 TokenText::TokenText(std::string_view t) : text(t), tokens(lex(t).tokens) {}
@@ -30,10 +28,6 @@ size_t TokenText::closing(size_t open) const {
     if (expected.empty()) return i;
   }
   return std::string_view::npos;
-}
-
-size_t TokenText::at_offset(size_t offset) const {
-  return std::lower_bound(tokens.begin(), tokens.end(), offset, [](const Token& t, size_t o) { return t.begin < o; }) - tokens.begin();
 }
 
 std::string rename_identifiers(std::string_view text, const std::function<std::string(std::string_view)>& rename) {

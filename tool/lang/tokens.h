@@ -27,8 +27,6 @@ struct TokenText {
   // The token closing the bracket `(` or `[` at `open` (nested brackets of either kind counted),
   // or npos when the text ends first or a bracket of the other kind closes it.
   size_t closing(size_t open) const;
-  // Index of the first token at or after byte `offset`.
-  size_t at_offset(size_t offset) const;
   // An edit replacing tokens [first, last] with `text`.
   Edit replace(size_t first, size_t last, std::string text) const { return {{tokens[first].begin, tokens[last].end}, std::move(text)}; }
 };
