@@ -171,8 +171,8 @@ void print_functions_text(std::ostream& out, const std::string& device, const Dr
     std::vector<std::string> verdicts;
     for (const VariantResult& v : r.variants) {
       std::string kind = v.status.substr(0, v.status.find(':'));
-      verdicts.push_back(v.measured && std::isfinite(v.max_error) && v.max_error > 0 ? fmt::format("{} {} ({})", v.label, kind, cm(v.max_error))
-                                                                                    : fmt::format("{} {}", v.label, kind));
+      std::string size = !v.measured ? "" : v.world_outputs ? cm(v.max_error) : v.max_ulps > 0 ? fmt::format("{:.3g} ULPs", v.max_ulps) : "";
+      verdicts.push_back(size.empty() ? fmt::format("{} {}", v.label, kind) : fmt::format("{} {} ({})", v.label, kind, size));
     }
     out << fmt::format("{}: {}: {}\n", r.file, r.function, fmt::join(verdicts, "; "));
   }
@@ -200,8 +200,10 @@ void print_functions_text(std::ostream& out, const std::string& device, const Dr
         continue;
       }
       if (v.mismatches) result += fmt::format(" ({} decision(s) differ)", v.mismatches);
-      out << fmt::format("  {:<{}} {:>11} {:>11} {:>11} {:>10.3g} {:>9.3g} {:>7}  {:<6} {}\n", v.label, w, cm(v.max_error), cm(v.median_error),
-                         cm(v.own_max_error), v.max_ulps, v.ns_per_invocation, v.spirv_instructions, v.pareto ? "*" : "", result);
+      // Without an output in world units the cm columns say so ("-"), never "0 cm" beside a failure.
+      auto world = [&](double x) { return v.world_outputs ? cm(x) : std::string("-"); };
+      out << fmt::format("  {:<{}} {:>11} {:>11} {:>11} {:>10.3g} {:>9.3g} {:>7}  {:<6} {}\n", v.label, w, world(v.max_error), world(v.median_error),
+                         world(v.own_max_error), v.max_ulps, v.ns_per_invocation, v.spirv_instructions, v.pareto ? "*" : "", result);
       if (v.status != "pass" && !v.worst.empty()) details.push_back(fmt::format("{}: worst {}", v.label, v.worst));
       for (const std::string& loss : v.contraction_losses) details.push_back(fmt::format("{}: {}", v.label, loss));
     }
@@ -228,9 +230,9 @@ void print_functions_json(std::ostream& out, const std::string& device, const Dr
   for (const FunctionResult& r : results) {
     json vs = json::array();
     for (const VariantResult& v : r.variants)
-      vs.push_back({{"variant", v.label}, {"status", v.status}, {"measured", v.measured}, {"maxError", number(v.max_error)},
-                    {"medianError", number(v.median_error)}, {"maxUlps", number(v.max_ulps)},
-                    {"ownMaxError", number(v.own_max_error)}, {"ownMaxUlps", number(v.own_max_ulps)},
+      vs.push_back({{"variant", v.label}, {"status", v.status}, {"measured", v.measured}, {"maxError", v.world_outputs ? number(v.max_error) : nullptr},
+                    {"medianError", v.world_outputs ? number(v.median_error) : nullptr}, {"maxUlps", number(v.max_ulps)},
+                    {"ownMaxError", v.world_outputs ? number(v.own_max_error) : nullptr}, {"ownMaxUlps", number(v.own_max_ulps)},
                     {"decisionMismatches", v.mismatches}, {"worstOverTarget", number(v.worst_over_target)},
                     {"nsPerInvocation", v.ns_per_invocation}, {"pipelineSeconds", v.pipeline_seconds},
                     {"spirvInstructions", v.spirv_instructions}, {"paretoFront", v.pareto},

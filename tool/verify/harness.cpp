@@ -928,6 +928,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
 
     bool is_original = &v == &variants.front();
     Comparison total = compare(k, r, ref_run, is_original), own = compare(k, r, oracle->run, is_original);
+    vr.world_outputs = !total.errors.empty();
     if (!total.errors.empty()) {
       vr.max_error = *std::max_element(total.errors.begin(), total.errors.end());
       std::nth_element(total.errors.begin(), total.errors.begin() + total.errors.size() / 2, total.errors.end());

@@ -47,6 +47,7 @@ struct VariantResult {
   // or why it could not be measured.
   std::string status;
   double max_error = 0;     // world units (cm): positions, offsets, distances; clip as a world offset
+  bool world_outputs = false;  // some output is in world units (else only ULPs and decisions apply)
   double median_error = 0;
   double max_ulps = 0;      // of the reference value, float32 ULPs (values below 1 count as 1)
   double own_max_error = 0; // against the reference run on the inputs as this variant receives them
