@@ -1058,7 +1058,7 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
     for (size_t i = 0, n = variants.size(); i < n; ++i)
       if (std::string fast = fast_double_float_form(variants[i].text); fast != variants[i].text)
         variants.push_back({variants[i].label.substr(0, variants[i].label.find(" (")) + ", DFFast*", fast, variants[i].ue_version,
-                            variants[i].hand_fixes});
+                            variants[i].hand_fixes, false});
     total += names.size();
     work.push_back({&file, harness_setup(file, f, *lang, includes), std::move(names), std::move(variants)});
   }

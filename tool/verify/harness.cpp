@@ -894,6 +894,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
   for (const FileVariant& v : variants) {
     VariantResult vr;
     vr.label = v.label;
+    vr.writable = v.writable;
     Kernel k = build(v, false);
     if (!k.problem.empty()) {
       vr.status = k.problem;
@@ -968,25 +969,27 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     }
   }
 
-  // The error/time Pareto front, and the scene's pick: the fastest variant that meets the target.
+  // The error/time Pareto front and the scene's pick (the fastest that meets the target), both
+  // over the variants that pass and that fix can write: a failing or unwritable variant is no choice.
+  auto choice = [](const VariantResult& v) { return v.passed() && v.writable; };
   for (VariantResult& a : result.variants) {
-    if (!a.measured) continue;
+    if (!choice(a)) continue;
     a.pareto = true;
     for (const VariantResult& b : result.variants)
-      if (&a != &b && b.measured && b.max_error <= a.max_error && b.ns_per_invocation <= a.ns_per_invocation &&
+      if (&a != &b && choice(b) && b.max_error <= a.max_error && b.ns_per_invocation <= a.ns_per_invocation &&
           (b.max_error < a.max_error || b.ns_per_invocation < a.ns_per_invocation))
         a.pareto = false;
   }
   const VariantResult* pick = nullptr;
   for (const VariantResult& v : result.variants)
-    if (v.passed() && (!pick || v.ns_per_invocation < pick->ns_per_invocation)) pick = &v;
+    if (choice(v) && (!pick || v.ns_per_invocation < pick->ns_per_invocation)) pick = &v;
   int passing = 0;
-  for (const VariantResult& v : result.variants) passing += v.passed();
+  for (const VariantResult& v : result.variants) passing += choice(v);
   if (pick)
     result.pick = fmt::format("{}: the fastest of the {} variant(s) within {} ({:.3g} ns per invocation)", pick->label, passing,
                               format_distance(setup.scene.precision), pick->ns_per_invocation);
   else
-    result.pick = fmt::format("none: no variant keeps the error within {}", format_distance(setup.scene.precision));
+    result.pick = fmt::format("none: no variant fix can write keeps the error within {}", format_distance(setup.scene.precision));
   return result;
 }
 

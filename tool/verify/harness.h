@@ -26,6 +26,7 @@ struct FileVariant {
   // holds a finding with no automatic fix, and its rules: a compile error there means the rewrite
   // is incomplete, not wrong.
   std::map<int, std::string> hand_fixes;
+  bool writable = true;  // a text fix writes (a DFFast* form is measured, never written)
 };
 
 struct HarnessSetup {
@@ -61,7 +62,8 @@ struct VariantResult {
   std::string worst;        // the case, its inputs, what was expected and what came out
   std::string inherited_rounding;  // input-limited: which inherited inputs round, and by how much
   bool measured = false;
-  bool pareto = false;
+  bool pareto = false;      // on the error/time front of the passing variants fix can write
+  bool writable = true;     // as FileVariant::writable
 
   bool passed() const { return status == "pass"; }
   bool input_limited() const { return status == "input-limited"; }
