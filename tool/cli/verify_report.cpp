@@ -35,6 +35,9 @@ const char* family_name(InputFamily f) {
   return "";
 }
 
+// The kind of a variant's result: its status up to the reason ("fail", "incomplete", "unchanged").
+std::string status_kind(const std::string& status) { return status.substr(0, status.find(':')); }
+
 std::string short_status(const std::string& status) {
   if (status.rfind("reported", 0) == 0) return "reported";
   if (status.rfind("error", 0) == 0) return "error";
@@ -170,7 +173,7 @@ void print_functions_text(std::ostream& out, const std::string& device, const Dr
   for (const FunctionResult& r : results) {
     std::vector<std::string> verdicts;
     for (const VariantResult& v : r.variants) {
-      std::string kind = v.status.substr(0, v.status.find(':'));
+      std::string kind = status_kind(v.status);
       std::string size = !v.measured ? "" : v.world_outputs ? cm(v.max_error) : v.max_ulps > 0 ? fmt::format("{:.3g} ULPs", v.max_ulps) : "";
       verdicts.push_back(size.empty() ? fmt::format("{} {}", v.label, kind) : fmt::format("{} {} ({})", v.label, kind, size));
     }
@@ -189,7 +192,7 @@ void print_functions_text(std::ostream& out, const std::string& device, const Dr
     std::vector<std::string> details;
     for (const VariantResult& v : r.variants) {
       ++variants;
-      std::string kind = v.status.substr(0, v.status.find(':'));
+      std::string kind = status_kind(v.status);
       auto counted = std::find_if(statuses.begin(), statuses.end(), [&](const auto& s) { return s.first == kind; });
       if (counted == statuses.end()) statuses.emplace_back(kind, 1);
       else ++counted->second;

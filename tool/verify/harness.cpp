@@ -47,8 +47,10 @@ std::string float32_in_reference(const std::vector<uint32_t>& spirv, std::string
 std::string_view glsl_es_version(std::string_view text) {
   TokenText t(text);
   for (size_t i = 0; i < t.size(); ++i) {
-    if (t.tokens[i].kind != Tok::directive || read_directive(t[i]).keyword != "version") continue;
-    TokenText rest(read_directive(t[i]).rest);
+    if (t.tokens[i].kind != Tok::directive) continue;
+    Directive d = read_directive(t[i]);
+    if (d.keyword != "version") continue;
+    TokenText rest(d.rest);
     return rest.spells(1, {"es"}) ? rest[0] : std::string_view();
   }
   return {};
