@@ -162,15 +162,17 @@ std::string pair_part_type(Lang lang, int n, bool float64) {
 }
 std::string matrix_type(Lang lang, bool float64) { return lang == Lang::hlsl ? (float64 ? "double4x4" : "float4x4") : (float64 ? "dmat4" : "mat4"); }
 
-std::string ins(int from, int count) {
+// The record's values `from`..`from + count - 1`, or zeros for a leaf the function never reads.
+std::string ins(int from, int count, bool zero) {
   std::string s;
-  for (int i = 0; i < count; ++i) s += (i ? ", " : "") + fmt::format("IN({})", from + i);
+  for (int i = 0; i < count; ++i) s += (i ? ", " : "") + (zero ? std::string("0") : fmt::format("IN({})", from + i));
   return s;
 }
 
-void assign(const Leaf& l, Lang lang, bool float64, std::string& body) {
+// Sets an input leaf from the record, or to zero (`zero`: a member the function never reads).
+void assign(const Leaf& l, Lang lang, bool float64, bool zero, std::string& body) {
   auto set = [&](const std::string& path, const std::string& type, int from, int count) {
-    body += fmt::format("\t{} = {}({});\n", path, type, ins(from, count));
+    body += fmt::format("\t{} = {}({});\n", path, type, ins(from, count, zero));
   };
   int n = l.components;
   switch (l.encoding) {
@@ -476,6 +478,24 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
         if (global_names.count(name)) used.insert(name);
       });
   }
+  // The member names the needed code reads (`View.WorldCameraOrigin`, `p.Position`): an input
+  // leaf reached through another member is never read, so it is set to zero in the kernel rather
+  // than drawn for every invocation (Unreal's View struct has hundreds of members; a function
+  // reads a few).
+  std::set<std::string, std::less<>> members_read;
+  for (const std::string& f : needed)
+    for (int def : functions[f])
+      for_subtree(t, def, [&](int i) {
+        if (t.is(i, "field_identifier")) members_read.emplace(t.text(i));
+      });
+  auto reads = [&](const Leaf& leaf) {
+    std::string_view path = leaf.path;
+    for (size_t dot = path.find('.'); dot != std::string_view::npos; dot = path.find('.', dot + 1)) {
+      size_t end = path.find_first_of(".[", dot + 1);
+      if (!members_read.count(path.substr(dot + 1, end == std::string_view::npos ? end : end - dot - 1))) return false;
+    }
+    return true;
+  };
   bool glsl_main = lang == Lang::glsl && function == "main";
 
   // The declarations: kept functions and types as written, environment globals made private.
@@ -665,9 +685,21 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
   std::vector<std::string> args;
   std::string body;
   int in_offset = 0, out_offset = 0;
+  std::string fill;
   auto add_inputs = [&](const std::string& type, const std::string& path, const std::string& name) {
-    if (!collect_leaves(structs, type, path, name, "", k.inputs, in_offset))
+    std::vector<Leaf> leaves;
+    int width = 0;
+    if (!collect_leaves(structs, type, path, name, "", leaves, width))
       k.problem = fmt::format("`{}` has type `{}`, which the harness cannot fill", name, type);
+    for (Leaf& leaf : leaves) {
+      if (!reads(leaf)) {
+        assign(leaf, lang, float64, true, fill);
+        continue;
+      }
+      leaf.offset = in_offset;
+      in_offset += leaf.width;
+      k.inputs.push_back(std::move(leaf));
+    }
   };
   auto add_outputs = [&](const std::string& type, const std::string& path, const std::string& name) {
     if (!collect_leaves(structs, type, path, name, "", k.outputs, out_offset))
@@ -703,8 +735,7 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
     call_statement = fmt::format("\t{} lwc_result = {};\n", return_type, call);
     add_outputs(return_type, "lwc_result", "return");
   }
-  std::string fill;
-  for (const Leaf& l : k.inputs) assign(l, lang, float64, fill);
+  for (const Leaf& l : k.inputs) assign(l, lang, float64, false, fill);
   std::string read;
   for (const Leaf& l : k.outputs) write(l, float64, read);
   k.body = body + fill + call_statement + read;
