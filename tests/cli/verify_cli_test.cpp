@@ -196,5 +196,28 @@ TEST(VerifyCli, TheWholeCorpusIsVerified) {
   EXPECT_GT(j["time"]["dispatchSeconds"].get<double>(), 0.0);
 }
 
+// Two runs of the corpus pick the same variant for every function: costs come from interleaved
+// rounds, costs within their spread (and 15%) count as equal and the same SPIR-V costs the same.
+// The Pareto flags may differ where two variants differ by about the margin itself (one
+// variant of 124 in some runs on this machine), never more than a couple.
+TEST(VerifyCli, TwoRunsGiveTheSamePicks) {
+  std::string command = test::binary() + " verify " + test::source_dir() + "/corpus --format json --fail-on none";
+  nlohmann::json a = nlohmann::json::parse(test::run(command).out), b = nlohmann::json::parse(test::run(command).out);
+  ASSERT_EQ(a["functions"].size(), b["functions"].size());
+  int picks = 0, flips = 0;
+  for (size_t i = 0; i < a["functions"].size(); ++i) {
+    const auto &fa = a["functions"][i], &fb = b["functions"][i];
+    std::string pa = fa["pick"], pb = fb["pick"];
+    EXPECT_EQ(pa.substr(0, pa.find(':')), pb.substr(0, pb.find(':'))) << fa["file"] << " " << fa["function"];
+    picks += !pa.starts_with("none");
+    for (size_t v = 0; v < fa["variants"].size(); ++v) {
+      flips += fa["variants"][v]["paretoFront"] != fb["variants"][v]["paretoFront"];
+      if (fa["variants"][v]["measured"].get<bool>()) EXPECT_GT(fa["timingRounds"].get<int>(), 0);
+    }
+  }
+  EXPECT_GE(picks, 15);
+  EXPECT_LE(flips, 2);
+}
+
 }  // namespace
 }  // namespace lwc

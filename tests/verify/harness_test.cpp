@@ -18,7 +18,7 @@
 namespace lwc {
 namespace {
 
-// A small harness set-up (8,192 invocations, 2 timed dispatches): lwcport's library from memory,
+// A small harness set-up (8,192 invocations, 4 timed rounds): lwcport's library from memory,
 // Unreal's engine headers from the stub.
 HarnessSetup small_setup(Lang lang, const std::string& display) {
   HarnessSetup setup;
@@ -26,7 +26,7 @@ HarnessSetup small_setup(Lang lang, const std::string& display) {
   setup.display = display;
   setup.stage = Stage::fragment;
   setup.invocations = 8192;
-  setup.repeats = 2;
+  setup.timing.min_rounds = setup.timing.max_rounds = 4;
   setup.include = [lang](const std::string& name, const std::string&) -> std::optional<std::string> {
     if (name == library_file_name(lang)) return full_library_text(lang);
     if (name.rfind("/Engine/", 0) == 0) return std::string();
@@ -271,6 +271,56 @@ TEST(HarnessOnLavapipe, AVariantThatLeavesTheFunctionAsItWasIsUnchangedNotRefute
   EXPECT_FALSE(r.variants[1].refuted());
   FunctionResult changed = verify_function(*d.device, d.probes, glsl_setup(), "other", {{"original (float32)", original}, {"fixed", rewrite}});
   EXPECT_FALSE(changed.variants[1].status.starts_with("unchanged")) << changed.variants[1].status;
+}
+
+// The pick is the fastest passing variant fix can write; costs within the measurement's spread
+// (and 15%) are equal, identical SPIR-V always is, and then the fewest SPIR-V instructions decide,
+// so a second run that measures 7% differently picks the same. Failing and unwritable variants are never picked.
+TEST(Pick, CostsTheMeasurementCannotTellApartAreEqualAndFewerInstructionsDecide) {
+  auto variant = [](std::string label, double ns, double spread, int instructions, std::string status = "pass", bool writable = true) {
+    VariantResult v;
+    v.label = std::move(label);
+    v.ns_per_invocation = ns;
+    v.cost_spread = spread;
+    v.spirv_instructions = instructions;
+    v.status = std::move(status);
+    v.writable = writable;
+    v.measured = true;
+    return v;
+  };
+  FunctionResult r;
+  r.variants = {variant("original (float32)", 10, 0.02, 100, "fail"), variant("translated world", 10.4, 0.03, 120),
+                variant("DoubleFloat", 10.0, 0.03, 140), variant("DoubleFloat, DFFast*", 5, 0.02, 90, "pass", false)};
+  pick_variant(r, 1.0 / 16);
+  EXPECT_EQ(r.pick.rfind("translated world:", 0), 0u) << r.pick;
+  EXPECT_NE(r.pick.find("2 run equally fast"), std::string::npos) << r.pick;
+  EXPECT_FALSE(r.variants[0].pareto);
+  EXPECT_TRUE(r.variants[1].pareto);
+  EXPECT_TRUE(r.variants[2].pareto);
+  EXPECT_FALSE(r.variants[3].pareto);
+  // The other run: DoubleFloat measured 7% slower, translated world 3% faster: the same pick.
+  r.variants[1].ns_per_invocation = 10.1, r.variants[2].ns_per_invocation = 10.8;
+  pick_variant(r, 1.0 / 16);
+  EXPECT_EQ(r.pick.rfind("translated world:", 0), 0u) << r.pick;
+  // Clearly faster (by more than the spread and 15%) wins whatever its instruction count...
+  r.variants[2].ns_per_invocation = 7;
+  pick_variant(r, 1.0 / 16);
+  EXPECT_EQ(r.pick.rfind("DoubleFloat:", 0), 0u) << r.pick;
+  EXPECT_FALSE(r.variants[1].pareto);  // slower at the same error
+  // ... unless it is the same SPIR-V, measured apart by noise.
+  r.variants[1].spirv_hash = r.variants[2].spirv_hash = 42;
+  pick_variant(r, 1.0 / 16);
+  EXPECT_EQ(r.pick.rfind("translated world:", 0), 0u) << r.pick;
+  EXPECT_TRUE(r.variants[1].pareto);
+  r.variants[1].spirv_hash = 41;
+  // A wide spread widens what counts as equal.
+  r.variants[2].cost_spread = 0.5;
+  pick_variant(r, 1.0 / 16);
+  EXPECT_EQ(r.pick.rfind("translated world:", 0), 0u) << r.pick;
+  // Nothing passing: no pick.
+  for (auto& v : r.variants) v.status = "fail";
+  pick_variant(r, 1.0 / 16);
+  EXPECT_EQ(r.pick.rfind("none:", 0), 0u) << r.pick;
 }
 
 }  // namespace

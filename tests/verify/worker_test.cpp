@@ -91,5 +91,72 @@ TEST(DriverProcess, AShaderThatCrashesTheDriverIsReportedAndTheNextKernelStillRu
   expect_doubled(*device);
 }
 
+// Kernels kept after their run are timed against each other in rounds: a kernel doing about 20
+// times the work costs clearly more, the same kernel kept twice costs the same within the stated
+// spread, and the run's results came back untouched by the keeping.
+TEST(DriverProcess, KeptKernelsAreTimedInInterleavedRounds) {
+  std::string error;
+  auto device = WorkerDevice::start(error);
+  ASSERT_NE(device, nullptr) << error;
+  std::string heavy = "float x = IN(0);\nfor (int k = 0; k < 200; ++k) x = sqrt(x + 1.0);\nOUT(0, x);";
+  std::vector<uint64_t> kept;
+  for (const std::string& body : {std::string(kDouble), std::string(kDouble), heavy}) {
+    std::vector<float> in(kCount, 3.0f);
+    std::vector<std::vector<uint8_t>> buffers = {to_bytes(in), std::vector<uint8_t>(kCount * sizeof(float))};
+    uint64_t id = 0;
+    ASSERT_EQ(device->run(kernel(body), buffers, kCount / kKernelGroupSize, 1, nullptr, &id), "");
+    if (body == kDouble) EXPECT_EQ(from_bytes<float>(buffers[1])[7], 6.0f);
+    kept.push_back(id);
+  }
+  TimingPlan plan;
+  InterleavedTiming t;
+  ASSERT_EQ(device->time_interleaved(kept, plan, t), "");
+  ASSERT_EQ(t.seconds.size(), 3u);
+  EXPECT_GE(t.rounds, plan.min_rounds);
+  EXPECT_LE(t.rounds, plan.max_rounds);
+  for (const auto& samples : t.seconds) EXPECT_EQ(samples.size(), static_cast<size_t>(t.rounds));
+  double light = median_of(t.seconds[0]), again = median_of(t.seconds[1]), heavier = median_of(t.seconds[2]);
+  EXPECT_GT(heavier, 4 * std::max(light, again));
+  // Kept kernels are timed once: asking again is an error, not a stale figure.
+  EXPECT_NE(device->time_interleaved(kept, plan, t), "");
+}
+
+// A kernel kept by a driver process that was restarted since (a crash, a timeout) is not timed as
+// whatever the new process holds under the same number.
+TEST(DriverProcess, KernelsKeptBeforeARestartAreNotTimed) {
+  std::string error;
+  auto device = WorkerDevice::start(error, 2.0);
+  ASSERT_NE(device, nullptr) << error;
+  std::vector<float> in(kCount, 1.0f);
+  std::vector<std::vector<uint8_t>> buffers = {to_bytes(in), std::vector<uint8_t>(kCount * sizeof(float))};
+  uint64_t before = 0;
+  ASSERT_EQ(device->run(kernel(kDouble), buffers, kCount / kKernelGroupSize, 1, nullptr, &before), "");
+  std::string step = "x = sqrt(x + float(k));", body = "float x = IN(0);\nfor (uint k = 0u; k < 65535u + uint(IN(0)); ++k) {";
+  for (int i = 0; i < 2000; ++i) body += step;
+  std::vector<float> out;
+  ASSERT_NE(run(*device, body + "}\nOUT(0, x);", out), "");  // times out: the process is replaced
+  uint64_t after = 0;
+  ASSERT_EQ(device->run(kernel(kDouble), buffers, kCount / kKernelGroupSize, 1, nullptr, &after), "");
+  InterleavedTiming t;
+  EXPECT_NE(device->time_interleaved({before}, TimingPlan{}, t).find("restarted"), std::string::npos);
+  EXPECT_EQ(device->time_interleaved({after}, TimingPlan{}, t), "");
+}
+
+// The median's 95% interval: order statistics around the middle; tight for steady samples, wide
+// for scattered ones, and 1 (nothing known) for too few.
+TEST(Timing, MedianSpreadIsTheWidthOfTheMediansInterval) {
+  EXPECT_EQ(median_of({3, 1, 2}), 2);
+  EXPECT_EQ(median_of({4, 1, 3, 2}), 2.5);
+  EXPECT_EQ(median_spread({1, 1, 1}), 1);
+  EXPECT_EQ(median_spread(std::vector<double>(15, 2.0)), 0);
+  std::vector<double> steady, scattered;
+  for (int i = 0; i < 31; ++i) {
+    steady.push_back(100 + i % 3);
+    scattered.push_back(50 + 100 * ((i * 7) % 31) / 31.0);
+  }
+  EXPECT_LT(median_spread(steady), 0.03);
+  EXPECT_GT(median_spread(scattered), 0.3);
+}
+
 }  // namespace
 }  // namespace lwc

@@ -506,20 +506,25 @@ auto on_big_stack(Work work) -> decltype(work()) {
   return std::move(*job.result);
 }
 
-// The device and what its driver does to float arithmetic, for `verify` and `fix --verify`.
+// The device and what its driver does to float arithmetic, for `verify` and `fix --verify`:
+// `device` and, for functions verified side by side, more driver processes in `more`.
 struct Verifier {
   std::unique_ptr<WorkerDevice> device;
+  std::vector<std::unique_ptr<WorkerDevice>> more;
   DriverProbes probes;
 };
 
-// Starts the device and probes it; false, with the error printed, when there is none.
-bool start_verifier(const Options& o, Verifier& v, std::ostream& err) {
+// Starts `count` driver processes (at least one) and probes the first; false, with the error
+// printed, when there is no device.
+bool start_verifier(const Options& o, Verifier& v, std::ostream& err, unsigned count = 1) {
   std::string error;
   v.device = WorkerDevice::start(error, o.timeout_seconds);
   if (!v.device) {
     err << "lwcport: error: " << error << '\n';
     return false;
   }
+  for (unsigned i = 1; i < count; ++i)
+    if (auto more = WorkerDevice::start(error, o.timeout_seconds)) v.more.push_back(std::move(more));
   if (std::string why = probe_driver(*v.device, v.probes); !why.empty()) {
     err << "lwcport: error: driver probe on " << v.device->name() << ": " << why << '\n';
     return false;
@@ -1062,17 +1067,37 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
     total += names.size();
     work.push_back({&file, harness_setup(file, f, *lang, includes), std::move(names), std::move(variants)});
   }
-  // Progress on a terminal (standard error), one line rewritten in place; nothing when redirected.
+  // Functions run side by side, one per driver process; results keep their order. Progress on a
+  // terminal (standard error), one line rewritten in place; nothing when redirected.
+  std::vector<std::pair<const FileWork*, const std::string*>> jobs;
+  for (const FileWork& w : work)
+    for (const std::string& name : w.names) jobs.emplace_back(&w, &name);
+  results.resize(jobs.size());
+  std::vector<WorkerDevice*> devices = {verifier.device.get()};
+  for (const auto& d : verifier.more) devices.push_back(d.get());
   bool progress = ::isatty(STDERR_FILENO);
+  std::atomic<size_t> next = 0;
   size_t done = 0;
-  for (const FileWork& w : work) {
-    bool any_ran = false;
-    for (const std::string& name : w.names) {
-      if (progress) err << fmt::format("\r\x1b[K[{}/{}] {}: {}", ++done, total, w.file->display, name) << std::flush;
-      results.push_back(on_big_stack([&] { return verify_function(*verifier.device, verifier.probes, w.setup, name, w.variants); }));
-      for (const auto& v : results.back().variants) any_ran |= v.measured;
+  std::mutex progress_lock;
+  auto drive = [&](WorkerDevice& device) {
+    for (size_t i; (i = next++) < jobs.size();) {
+      const auto& [w, name] = jobs[i];
+      if (progress) {
+        std::lock_guard lock(progress_lock);
+        err << fmt::format("\r\x1b[K[{}/{}] {}: {}", ++done, total, w->file->display, *name) << std::flush;
+      }
+      results[i] = on_big_stack([&] { return verify_function(device, verifier.probes, w->setup, *name, w->variants); });
     }
-    if (!any_ran) unverified.push_back(w.file->display);
+  };
+  std::vector<std::thread> threads;
+  for (size_t d = 1; d < devices.size() && d < jobs.size(); ++d) threads.emplace_back(drive, std::ref(*devices[d]));
+  drive(*devices[0]);
+  for (std::thread& t : threads) t.join();
+  for (size_t i = 0, j = 0; i < work.size(); ++i) {
+    bool any_ran = false;
+    for (size_t k = 0; k < work[i].names.size(); ++k, ++j)
+      for (const auto& v : results[j].variants) any_ran |= v.measured;
+    if (!any_ran) unverified.push_back(work[i].file->display);
   }
   if (progress && done) err << "\r\x1b[K" << std::flush;
   double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -1092,8 +1117,9 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
 int verify(const Options& o, std::ostream& out, std::ostream& err) {
   if (o.report.format != Format::text && o.report.format != Format::json)
     throw UsageError("verify: --format must be text or json");
+  // One driver process per core for functions verified side by side (the library check uses one).
   Verifier verifier;
-  if (!start_verifier(o, verifier, err)) return 2;
+  if (!start_verifier(o, verifier, err, o.shaderlib ? 1 : job_count(o))) return 2;
   ReportTarget target;
   ReportOptions ro;
   if (!open_target(o, out, err, target, ro)) return 2;

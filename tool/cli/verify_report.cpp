@@ -187,7 +187,7 @@ void print_functions_text(std::ostream& out, const std::string& device, const Dr
     out << fmt::format("\n{}: {} (reference: {})\n", r.file, r.function, r.reference);
     size_t w = 20;  // the label column fits the longest label
     for (const VariantResult& v : r.variants) w = std::max(w, v.label.size());
-    out << fmt::format("  {:<{}} {:>11} {:>11} {:>11} {:>10} {:>9} {:>7}  {:<6} {}\n", "variant", w, "max error", "median", "own max",
+    out << fmt::format("  {:<{}} {:>11} {:>11} {:>11} {:>10} {:>13} {:>7}  {:<6} {}\n", "variant", w, "max error", "median", "own max",
                        "max ULPs", "ns/inv", "SPIR-V", "Pareto", "result");
     std::vector<std::string> details;
     for (const VariantResult& v : r.variants) {
@@ -198,19 +198,23 @@ void print_functions_text(std::ostream& out, const std::string& device, const Dr
       else ++counted->second;
       std::string result = v.status.size() > 40 ? kind : v.status;
       if (!v.measured) {
-        out << fmt::format("  {:<{}} {:>11} {:>11} {:>11} {:>10} {:>9} {:>7}  {:<6} {}\n", v.label, w, "-", "-", "-", "-", "-", "-", "", result);
+        out << fmt::format("  {:<{}} {:>11} {:>11} {:>11} {:>10} {:>13} {:>7}  {:<6} {}\n", v.label, w, "-", "-", "-", "-", "-", "-", "", result);
         details.push_back(fmt::format("{}: {}", v.label, v.status));
         continue;
       }
       if (v.mismatches) result += fmt::format(" ({} decision(s) differ)", v.mismatches);
       // Without an output in world units the cm columns say so ("-"), never "0 cm" beside a failure.
       auto world = [&](double x) { return v.world_outputs ? cm(x) : std::string("-"); };
-      out << fmt::format("  {:<{}} {:>11} {:>11} {:>11} {:>10.3g} {:>9.3g} {:>7}  {:<6} {}\n", v.label, w, world(v.max_error), world(v.median_error),
-                         world(v.own_max_error), v.max_ulps, v.ns_per_invocation, v.spirv_instructions, v.pareto ? "*" : "", result);
+      // The median run time over the interleaved rounds, and their spread.
+      std::string cost = r.timing.empty() ? fmt::format("{:.3g} ±{:.0f}%", v.ns_per_invocation, 50 * v.cost_spread) : "-";
+      out << fmt::format("  {:<{}} {:>11} {:>11} {:>11} {:>10.3g} {:>13} {:>7}  {:<6} {}\n", v.label, w, world(v.max_error), world(v.median_error),
+                         world(v.own_max_error), v.max_ulps, cost, v.spirv_instructions, v.pareto ? "*" : "", result);
       if (v.status != "pass" && !v.worst.empty()) details.push_back(fmt::format("{}: worst {}", v.label, v.worst));
       for (const std::string& loss : v.contraction_losses) details.push_back(fmt::format("{}: {}", v.label, loss));
     }
     out << fmt::format("  scene pick: {}\n", r.pick);
+    if (!r.timing.empty()) out << fmt::format("  {}\n", r.timing);
+    else out << fmt::format("  run time: median of {} interleaved rounds, ± half its 95% confidence interval\n", r.timing_rounds);
     for (const std::string& d : details) out << "    " << d << '\n';
   }
   // Every kind of result is counted: pass (within the scene's precision), input-limited (right on
@@ -237,10 +241,12 @@ void print_functions_json(std::ostream& out, const std::string& device, const Dr
                     {"medianError", v.world_outputs ? number(v.median_error) : nullptr}, {"maxUlps", number(v.max_ulps)},
                     {"ownMaxError", v.world_outputs ? number(v.own_max_error) : nullptr}, {"ownMaxUlps", number(v.own_max_ulps)},
                     {"decisionMismatches", v.mismatches}, {"worstOverTarget", number(v.worst_over_target)},
-                    {"nsPerInvocation", v.ns_per_invocation}, {"pipelineSeconds", v.pipeline_seconds},
+                    {"nsPerInvocation", r.timing.empty() ? json(v.ns_per_invocation) : json(nullptr)}, {"costSpread", v.cost_spread},
+                    {"pipelineSeconds", v.pipeline_seconds},
                     {"spirvInstructions", v.spirv_instructions}, {"paretoFront", v.pareto},
                     {"contractionLosses", v.contraction_losses}, {"worst", v.worst}});
-    fns.push_back({{"file", r.file}, {"function", r.function}, {"reference", r.reference}, {"pick", r.pick}, {"variants", vs}});
+    fns.push_back({{"file", r.file}, {"function", r.function}, {"reference", r.reference}, {"pick", r.pick},
+                   {"timingRounds", r.timing_rounds}, {"timingProblem", r.timing}, {"variants", vs}});
   }
   TimeSplit t = time_split(results);
   json time = {{"wallSeconds", wall_seconds}, {"functionsPerSecond", results.size() / wall_seconds}, {"compileSeconds", t.compile},

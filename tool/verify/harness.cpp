@@ -9,8 +9,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <functional>
+#include <cstring>
 #include <limits>
 #include <map>
+#include <mutex>
+#include <optional>
 #include <random>
 
 #include "lang/tokens.h"
@@ -434,6 +438,13 @@ std::vector<double> role_value(Role role, int components, const State& s, uint64
   return out;
 }
 
+// FNV-1a over a SPIR-V module: identical kernels cost the same whatever the clock says.
+uint64_t hash_words(const std::vector<uint32_t>& words) {
+  uint64_t h = 1469598103934665603ull;
+  for (uint32_t w : words) h = (h ^ w) * 1099511628211ull;
+  return h;
+}
+
 uint64_t hash_name(const std::string& s) {
   uint64_t h = 1469598103934665603ull;
   for (char c : s) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
@@ -561,31 +572,92 @@ double distance(const State& s) {
   return std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
 }
 
-// lavapipe compiles a shader in its first dispatch: that dispatch, less a typical one (the median
-// of the rest), is pipeline time; the rest are the timed dispatches. One dispatch: all pipeline.
-struct TimingSplit {
-  double pipeline = 0, median_dispatch = 0, dispatches = 0;
-};
-TimingSplit split_timing(const DispatchTiming& t) {
-  TimingSplit out;
-  std::vector<double> timed(t.dispatch_seconds.begin() + (t.dispatch_seconds.empty() ? 0 : 1), t.dispatch_seconds.end());
-  if (!timed.empty()) {
-    std::nth_element(timed.begin(), timed.begin() + timed.size() / 2, timed.end());
-    out.median_dispatch = timed[timed.size() / 2];
-  }
-  for (double s : timed) out.dispatches += s;
-  out.dispatches += out.median_dispatch;  // the first dispatch's share that is execution
-  out.pipeline = t.pipeline_seconds + (t.dispatch_seconds.empty() ? 0 : t.dispatch_seconds.front()) - out.median_dispatch;
-  return out;
-}
-
 struct Kernel {
   HarnessKernel code;
   CompileResult compiled;
   std::string problem;
 };
 
+// A variant's text, preprocessed (promoted to double for the reference), and whether the whole
+// file compiles; once per file and variant, not per function.
+struct PreparedVariant {
+  PreprocessResult pre;
+  std::string text;                           // preprocessed, promoted when float64
+  std::optional<CompileResult> whole_failed;  // float32 only: the file's own compile error
+};
+
+// Costs closer than this (relative) are not told apart, whatever the spreads say: on a shared
+// 2-core machine the same SPIR-V measured up to 12% apart between two runs.
+constexpr double kSameCost = 0.15;
+
+// Whether `a` runs faster than `b` by more than the measurement can tell apart: by more than the
+// larger of their spreads, and at least 15%. The same SPIR-V costs the same.
+bool clearly_faster(const VariantResult& a, const VariantResult& b) {
+  if (a.spirv_hash == b.spirv_hash && a.spirv_hash != 0) return false;
+  double margin = std::max({kSameCost, a.cost_spread, b.cost_spread});
+  return a.ns_per_invocation < b.ns_per_invocation * (1 - margin);
+}
+
 }  // namespace
+
+class VariantCache {
+ public:
+  std::shared_ptr<const PreparedVariant> get(const std::string& key, const std::function<PreparedVariant()>& make) {
+    {
+      std::lock_guard lock(mutex_);
+      if (auto it = prepared_.find(key); it != prepared_.end()) return it->second;
+    }
+    auto made = std::make_shared<const PreparedVariant>(make());  // outside the lock: another file's work may run meanwhile
+    std::lock_guard lock(mutex_);
+    return prepared_.emplace(key, std::move(made)).first->second;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::map<std::string, std::shared_ptr<const PreparedVariant>> prepared_;
+};
+
+std::shared_ptr<VariantCache> make_variant_cache() { return std::make_shared<VariantCache>(); }
+
+void pick_variant(FunctionResult& result, double precision) {
+  // The error/time Pareto front and the scene's pick (the fastest that meets the target), both
+  // over the variants that pass and that fix can write: a failing or unwritable variant is no choice.
+  // Costs the measurement cannot tell apart count as equal, so two runs give the same front and pick.
+  auto choice = [](const VariantResult& v) { return v.passed() && v.writable; };
+  // The error axis: world units where the function has a result in them, else float32 ULPs.
+  auto error = [](const VariantResult& v) { return v.world_outputs ? v.max_error : v.max_ulps; };
+  for (VariantResult& a : result.variants) {
+    a.pareto = false;
+    if (!choice(a)) continue;
+    a.pareto = true;
+    for (const VariantResult& b : result.variants)
+      if (&a != &b && choice(b) && error(b) <= error(a) && !clearly_faster(a, b) && (error(b) < error(a) || clearly_faster(b, a)))
+        a.pareto = false;
+  }
+  // The fastest; among those it cannot tell apart from the fastest, the one with the fewest SPIR-V
+  // instructions, then the first.
+  const VariantResult* fastest = nullptr;
+  for (const VariantResult& v : result.variants)
+    if (choice(v) && (!fastest || v.ns_per_invocation < fastest->ns_per_invocation)) fastest = &v;
+  const VariantResult* pick = nullptr;
+  int passing = 0, tied = 0;
+  for (const VariantResult& v : result.variants) {
+    passing += choice(v);
+    if (!choice(v) || clearly_faster(*fastest, v)) continue;
+    ++tied;
+    if (!pick || v.spirv_instructions < pick->spirv_instructions) pick = &v;
+  }
+  if (!pick) {
+    result.pick = fmt::format("none: no variant fix can write keeps the error within {}", format_distance(precision));
+    return;
+  }
+  result.pick = fmt::format("{}: the fastest of the {} variant(s) within {} ({:.3g} ns per invocation", pick->label, passing,
+                            format_distance(precision), pick->ns_per_invocation);
+  if (tied > 1)
+    result.pick += fmt::format("; {} run equally fast within the measurement's spread, and it has the fewest SPIR-V instructions ({})",
+                               tied, pick->spirv_instructions);
+  result.pick += ")";
+}
 
 std::vector<std::string> harness_case_names() {
   std::vector<std::string> out;
@@ -611,25 +683,33 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     in.include = setup.include;
     in.preamble = "#define LWC_DF_FUSED_FMA " + fused + "\n";
     if (setup.unreal) in.preamble += fmt::format("#define LWCPORT_UE_VERSION {}\n", v.ue_version) + unreal_environment_text();
-    PreprocessResult pre = preprocess_shader(in);
-    if (pre.text.empty()) {
+    std::string key = fmt::format("{}{}\n{}", float64 ? 'd' : 'f', v.ue_version, v.text);
+    std::shared_ptr<const PreparedVariant> prepared = setup.cache->get(key, [&] {
+      PreparedVariant p;
+      p.pre = preprocess_shader(in);
+      if (p.pre.text.empty()) return p;
+      p.text = float64 ? promote_to_double(setup.lang, p.pre.text) : p.pre.text;
+      // The variant must compile as a shader of its own before it is cut down (errors on its own
+      // lines). A file that does not compile as a whole may still hold this function compiling on
+      // its own (the error is in another function): the harness kernel, cut down to what the
+      // function needs, decides; if it fails too, the file's own error is the reason.
+      if (!float64) {
+        CompileInput check = in;
+        if (setup.lang == Lang::hlsl) {
+          check.entry = "lwcport_compile_check";
+          check.text += "\nvoid lwcport_compile_check() {}\n";
+        }
+        if (CompileResult whole = compile_shader(check); !whole.ok) p.whole_failed = std::move(whole);
+      }
+      return p;
+    });
+    if (prepared->pre.text.empty()) {
       CompileResult r;
-      r.messages = pre.messages;
+      r.messages = prepared->pre.messages;
       k.problem = "does not preprocess: " + format_messages(r);
       return k;
     }
-    // The variant must compile as a shader of its own before it is cut down (errors on its own lines).
-    CompileInput check = in;
-    if (setup.lang == Lang::hlsl) {
-      check.entry = "lwcport_compile_check";
-      check.text += "\nvoid lwcport_compile_check() {}\n";
-    }
-    // A file that does not compile as a whole may still hold this function compiling on its own
-    // (the error is in another function): the harness kernel, cut down to what the function
-    // needs, decides; if it fails too, the file's own error (its own line numbers) is the reason.
-    std::optional<CompileResult> whole_failed;
-    if (!float64)
-      if (CompileResult whole = compile_shader(check); !whole.ok) whole_failed = std::move(whole);
+    const std::optional<CompileResult>& whole_failed = prepared->whole_failed;
     auto file_problem = [&]() {
       for (const CompileMessage& m : whole_failed->messages)
         if (auto hand = v.hand_fixes.find(m.line); m.source == setup.display && hand != v.hand_fixes.end())
@@ -637,7 +717,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
                              "the file does not compile until it is fixed by hand: {}", m.line, hand->second, format_messages(*whole_failed));
       return "does not compile: " + format_messages(*whole_failed);
     };
-    std::string text = float64 ? promote_to_double(setup.lang, pre.text) : pre.text;
+    const std::string& text = prepared->text;
     k.code = build_harness_kernel(setup.lang, text, function, float64);
     if (!k.code.problem.empty()) {
       k.problem = whole_failed ? file_problem() : "not verifiable: " + k.code.problem;
@@ -678,8 +758,9 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
   auto inputs_for = [&](const HarnessKernel& k, bool float64, const std::vector<bool>& as_float32 = {},
                         std::vector<double>* rounding = nullptr) {
     std::vector<double> record(k.in_stride), scratch(k.in_stride);
-    std::vector<double> all64;
-    std::vector<float> all32;
+    // The records, written in place: a float64 kernel reads doubles, a float32 one floats.
+    size_t width = float64 ? sizeof(double) : sizeof(float);
+    std::vector<uint8_t> bytes(n * static_cast<size_t>(k.in_stride) * width);
     struct LeafRole {
       Role role;
       uint64_t hash;
@@ -710,25 +791,30 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
         }
         encode(leaf, value, float64, states[i].oversized_offset, record.data());
       }
-      if (float64) all64.insert(all64.end(), record.begin(), record.end());
-      else for (double x : record) all32.push_back(static_cast<float>(x));
+      uint8_t* at = bytes.data() + i * record.size() * width;
+      if (float64) std::memcpy(at, record.data(), record.size() * width);
+      else
+        for (size_t c = 0; c < record.size(); ++c) {
+          float x = static_cast<float>(record[c]);
+          std::memcpy(at + c * width, &x, width);
+        }
     }
-    return float64 ? to_bytes(all64) : to_bytes(all32);
+    return bytes;
   };
   struct Run {
     std::vector<double> out;  // n * out_stride
-    DispatchTiming timing;
-    TimingSplit split;
+    double seconds = 0;       // pipeline creation and the one dispatch (lavapipe compiles the shader in it)
     std::string problem;
   };
-  auto run = [&](const Kernel& k, bool float64, int repeats, std::vector<uint8_t> inputs) {
+  uint32_t groups = static_cast<uint32_t>(n / kKernelGroupSize);
+  auto run = [&](const Kernel& k, bool float64, std::vector<uint8_t> inputs, uint64_t* kept = nullptr) {
     Run r;
     std::vector<std::vector<uint8_t>> buffers = {std::move(inputs), std::vector<uint8_t>(n * k.code.out_stride * (float64 ? 8 : 4))};
-    r.problem = device.run(k.compiled.spirv, buffers, static_cast<uint32_t>(n / kKernelGroupSize), repeats, &r.timing);
+    DispatchTiming timing;
+    r.problem = device.run(k.compiled.spirv, buffers, groups, 1, &timing, kept, {false, true});
     if (!r.problem.empty()) return r;
-    r.split = split_timing(r.timing);
-    result.pipeline_seconds += r.split.pipeline;
-    result.dispatch_seconds += r.split.dispatches;
+    r.seconds = timing.pipeline_seconds + (timing.dispatch_seconds.empty() ? 0 : timing.dispatch_seconds.front());
+    result.pipeline_seconds += r.seconds;
     if (float64) r.out = from_bytes<double>(buffers[1]);
     else for (float x : from_bytes<float>(buffers[1])) r.out.push_back(x);
     return r;
@@ -737,7 +823,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
   // The reference: the original, every float promoted to double.
   Kernel reference = build(variants.front(), true);
   Run ref_run;
-  if (reference.problem.empty()) ref_run = run(reference, true, 1, inputs_for(reference.code, true));
+  if (reference.problem.empty()) ref_run = run(reference, true, inputs_for(reference.code, true));
   if (!reference.problem.empty() && !build(variants.front(), false).problem.empty()) {
     result.reference = "no float64 reference: the original does not compile (its error, with the file's lines, is below)";
   } else if (!reference.problem.empty() || !ref_run.problem.empty()) {
@@ -765,7 +851,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     auto it = oracles.find(inherited);
     if (it == oracles.end()) {
       Oracle o;
-      o.run = run(reference, true, 1, inputs_for(reference.code, true, inherited, &o.rounding));
+      o.run = run(reference, true, inputs_for(reference.code, true, inherited, &o.rounding));
       it = oracles.emplace(inherited, std::move(o)).first;
     }
     return it->second.run.problem.empty() ? &it->second : nullptr;
@@ -893,6 +979,9 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     return cmp;
   };
 
+  // The variants that ran, timed together once their results are known (result index, the
+  // kernel kept in the driver process).
+  std::vector<std::pair<size_t, uint64_t>> timed;
   for (const FileVariant& v : variants) {
     VariantResult vr;
     vr.label = v.label;
@@ -912,16 +1001,18 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     }
     SpirvSummary spirv = inspect_spirv(k.compiled.spirv);
     vr.spirv_instructions = spirv.instructions;
+    vr.spirv_hash = hash_words(k.compiled.spirv);
     vr.contraction_losses = contraction_losses(spirv);
-    Run r = run(k, false, setup.repeats + 1, inputs_for(k.code, false));
+    uint64_t kept = 0;
+    Run r = run(k, false, inputs_for(k.code, false), &kept);
     if (!r.problem.empty()) {
       vr.status = "did not run: " + r.problem;
       result.variants.push_back(vr);
       continue;
     }
-    vr.ns_per_invocation = r.split.median_dispatch / static_cast<double>(n) * 1e9;
-    vr.pipeline_seconds = r.split.pipeline;
+    vr.pipeline_seconds = r.seconds;
     vr.measured = true;
+    timed.emplace_back(result.variants.size(), kept);
     const Oracle* oracle = ref_run.problem.empty() && reference.problem.empty() ? oracle_for(k.code) : nullptr;
     if (!oracle) {
       vr.status = "timed only: " + result.reference;
@@ -971,27 +1062,25 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     }
   }
 
-  // The error/time Pareto front and the scene's pick (the fastest that meets the target), both
-  // over the variants that pass and that fix can write: a failing or unwritable variant is no choice.
-  auto choice = [](const VariantResult& v) { return v.passed() && v.writable; };
-  for (VariantResult& a : result.variants) {
-    if (!choice(a)) continue;
-    a.pareto = true;
-    for (const VariantResult& b : result.variants)
-      if (&a != &b && choice(b) && b.max_error <= a.max_error && b.ns_per_invocation <= a.ns_per_invocation &&
-          (b.max_error < a.max_error || b.ns_per_invocation < a.ns_per_invocation))
-        a.pareto = false;
+  // Run time: every variant that ran, timed in interleaved rounds on the same inputs, so a change
+  // in the machine's load falls on all of them alike (docs/verify.md, "Costs").
+  if (!timed.empty()) {
+    std::vector<uint64_t> kernels;
+    for (auto [index, kept] : timed) kernels.push_back(kept);
+    InterleavedTiming t;
+    if (std::string problem = device.time_interleaved(kernels, setup.timing, t); !problem.empty()) {
+      result.timing = "not timed: " + problem;
+    } else {
+      result.timing_rounds = t.rounds;
+      for (size_t i = 0; i < timed.size(); ++i) {
+        VariantResult& vr = result.variants[timed[i].first];
+        vr.ns_per_invocation = median_of(t.seconds[i]) / static_cast<double>(n) * 1e9;
+        vr.cost_spread = median_spread(t.seconds[i]);
+        for (double s : t.seconds[i]) result.dispatch_seconds += s * t.dispatches_per_sample[i];
+      }
+    }
   }
-  const VariantResult* pick = nullptr;
-  for (const VariantResult& v : result.variants)
-    if (choice(v) && (!pick || v.ns_per_invocation < pick->ns_per_invocation)) pick = &v;
-  int passing = 0;
-  for (const VariantResult& v : result.variants) passing += choice(v);
-  if (pick)
-    result.pick = fmt::format("{}: the fastest of the {} variant(s) within {} ({:.3g} ns per invocation)", pick->label, passing,
-                              format_distance(setup.scene.precision), pick->ns_per_invocation);
-  else
-    result.pick = fmt::format("none: no variant fix can write keeps the error within {}", format_distance(setup.scene.precision));
+  pick_variant(result, setup.scene.precision);
   return result;
 }
 

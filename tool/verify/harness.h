@@ -4,6 +4,7 @@
 // and extreme cases of LWC-BRIEF §6, with errors measured in one frame and run time per invocation.
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "fix/scene.h"
 #include "lang/syntax.h"
 #include "verify/compile.h"
+#include "verify/vulkan.h"
 
 namespace lwc {
 
@@ -29,6 +31,11 @@ struct FileVariant {
   bool writable = true;  // a text fix writes (a DFFast* form is measured, never written)
 };
 
+// What a variant's text gives before any function is cut from it, shared by the functions of
+// one file (they may be verified side by side): preprocessing, the whole-file compile check.
+class VariantCache;
+std::shared_ptr<VariantCache> make_variant_cache();
+
 struct HarnessSetup {
   Lang lang = Lang::hlsl;
   std::string display;   // the file, for messages
@@ -37,7 +44,8 @@ struct HarnessSetup {
   std::function<std::optional<std::string>(const std::string& name, const std::string& from)> include;
   SceneNumbers scene;
   int invocations = 65536;  // per dispatch
-  int repeats = 5;          // dispatches timed per variant
+  TimingPlan timing;        // how the variants are timed against each other
+  std::shared_ptr<VariantCache> cache = make_variant_cache();
 };
 
 struct VariantResult {
@@ -55,13 +63,15 @@ struct VariantResult {
   double own_max_ulps = 0;
   int mismatches = 0;       // integer and bool results (decisions) that differ from the reference
   double worst_over_target = 0;  // the worst result's error over the target (ULPs over 16 where not world units)
-  double ns_per_invocation = 0;  // median over the timed dispatches
-  double pipeline_seconds = 0;   // shader module + pipeline creation (+ the first dispatch's JIT)
+  double ns_per_invocation = 0;  // median over the interleaved rounds
+  double cost_spread = 0;        // the width of that median's 95% confidence interval over it
+  double pipeline_seconds = 0;   // shader module + pipeline creation and the first dispatch (lavapipe's JIT)
   int spirv_instructions = 0;
+  uint64_t spirv_hash = 0;     // of the kernel's SPIR-V: the same code costs the same
   std::vector<std::string> contraction_losses;
   std::string worst;        // the case, its inputs, what was expected and what came out
   std::string inherited_rounding;  // input-limited: which inherited inputs round, and by how much
-  bool measured = false;
+  bool measured = false;    // it ran and was compared
   bool pareto = false;      // on the error/time front of the passing variants fix can write
   bool writable = true;     // as FileVariant::writable
 
@@ -79,11 +89,18 @@ struct FunctionResult {
   std::vector<VariantResult> variants;  // variants[0] is the original
   std::string reference;   // how the reference was computed, or why it could not be
   std::string pick;        // which variant the scene picks, and why
+  int timing_rounds = 0;   // interleaved rounds the costs come from
+  std::string timing;      // "" or why the variants could not be timed
   // Where the time went, over every kernel of the function (the reference included).
   double compile_seconds = 0;   // glslang: preprocessing, the compile check, the kernel to SPIR-V
-  double pipeline_seconds = 0;  // Vulkan pipeline creation and lavapipe's JIT (the first dispatch)
-  double dispatch_seconds = 0;  // the timed dispatches
+  double pipeline_seconds = 0;  // Vulkan pipeline creation and the one dispatch of each correctness run (lavapipe's JIT)
+  double dispatch_seconds = 0;  // the timed rounds
 };
+
+// Marks the error/time Pareto front and writes the scene's pick, over the variants that pass and
+// that fix can write; costs within the measurement's spread (and 15%) count as
+// equal, the fewest SPIR-V instructions then decide.
+void pick_variant(FunctionResult& result, double precision);
 
 // The named cases every function runs on (LWC-BRIEF §6), in order.
 std::vector<std::string> harness_case_names();

@@ -21,7 +21,7 @@ using Clock = std::chrono::steady_clock;
 // Messages are length-prefixed byte strings; inside them, numbers and length-prefixed blobs.
 class Message {
  public:
-  Message() = default;
+  Message() { bytes_.reserve(256); }
   explicit Message(std::vector<uint8_t> bytes) : bytes_(std::move(bytes)) {}
   template <typename T>
   void put(T value) { append(&value, sizeof value); }
@@ -52,10 +52,8 @@ class Message {
 
  private:
   void append(const void* data, size_t size) {
-    if (size == 0) return;
-    size_t at = bytes_.size();
-    bytes_.resize(at + size);
-    std::memcpy(bytes_.data() + at, data, size);
+    const auto* bytes = static_cast<const uint8_t*>(data);
+    bytes_.insert(bytes_.end(), bytes, bytes + size);
   }
   std::vector<uint8_t> bytes_;
   size_t at_ = 0;
@@ -108,8 +106,19 @@ Received receive_message(int fd, Message& m, const Clock::time_point* deadline) 
   return Received::ok;
 }
 
+constexpr uint32_t kRunRequest = 0, kTimeRequest = 1;
+
+std::vector<uint32_t> as_words(const std::vector<uint8_t>& bytes) {
+  std::vector<uint32_t> words(bytes.size() / 4);
+  if (!words.empty()) std::memcpy(words.data(), bytes.data(), words.size() * 4);
+  return words;
+}
+
 // The child: opens the device, says so, then runs each kernel it is sent until the socket closes.
 [[noreturn]] void serve(int fd) {
+  // lavapipe on one thread: run times are the kernel's own work, not how two threads share the
+  // machine with whatever else runs; functions verified side by side each have a process.
+  setenv("LP_NUM_THREADS", "1", 0);
   std::string error;
   std::unique_ptr<ComputeDevice> device = ComputeDevice::open(error);
   Message hello;
@@ -119,31 +128,53 @@ Received receive_message(int fd, Message& m, const Clock::time_point* deadline) 
   // A request: its header, then each buffer's bytes. A reply: its header, then the bytes of the
   // buffers the kernel changed (inputs are not sent back: they are most of the traffic).
   for (Message request; receive_message(fd, request, nullptr) == Received::ok;) {
+    auto kind = request.get<uint32_t>();
+    if (kind == kTimeRequest) {
+      TimingPlan plan;
+      plan.min_rounds = request.get<int32_t>();
+      plan.max_rounds = request.get<int32_t>();
+      plan.max_spread = request.get<double>();
+      plan.max_seconds = request.get<double>();
+      plan.sample_seconds = request.get<double>();
+      std::vector<uint64_t> kept(request.get<uint64_t>());
+      for (uint64_t& id : kept) id = request.get<uint64_t>();
+      InterleavedTiming timing;
+      std::string problem = device->time_interleaved(kept, plan, timing);
+      Message reply;
+      reply.put_string(problem);
+      reply.put<int32_t>(timing.rounds);
+      reply.put<uint64_t>(timing.seconds.size());
+      for (size_t k = 0; k < timing.seconds.size(); ++k) {
+        reply.put<int32_t>(timing.dispatches_per_sample[k]);
+        reply.put_blob(timing.seconds[k].data(), timing.seconds[k].size() * sizeof(double));
+      }
+      if (!send_message(fd, reply)) break;
+      continue;
+    }
     auto groups = request.get<uint32_t>();
     auto repeats = request.get<int32_t>();
-    std::vector<uint8_t> code = request.get_blob();
-    std::vector<uint32_t> spirv(code.size() / 4);
-    if (!spirv.empty()) std::memcpy(spirv.data(), code.data(), spirv.size() * 4);
-    std::vector<std::vector<uint8_t>> buffers(request.get<uint64_t>()), sent(buffers.size());
+    bool keep = request.get<uint8_t>();
+    std::vector<uint32_t> spirv = as_words(request.get_blob());
+    std::vector<std::vector<uint8_t>> buffers(request.get<uint64_t>());
+    std::vector<uint8_t> wanted(buffers.size());
     for (size_t i = 0; i < buffers.size(); ++i) {
       buffers[i].resize(request.get<uint64_t>());
+      wanted[i] = request.get<uint8_t>();
       if (receive_all(fd, buffers[i].data(), buffers[i].size(), nullptr) != Received::ok) _exit(0);
-      sent[i] = buffers[i];
     }
     DispatchTiming timing;
-    std::string problem = device->run(spirv, buffers, groups, repeats, &timing);
+    uint64_t kept = 0;
+    std::string problem = device->run(spirv, buffers, groups, repeats, &timing, keep ? &kept : nullptr);
     Message reply;
     reply.put_string(problem);
     reply.put(timing.pipeline_seconds);
     reply.put_blob(timing.dispatch_seconds.data(), timing.dispatch_seconds.size() * sizeof(double));
-    std::vector<bool> changed(buffers.size());
-    for (size_t i = 0; i < buffers.size(); ++i) {
-      changed[i] = problem.empty() && buffers[i] != sent[i];
-      reply.put<uint64_t>(changed[i] ? buffers[i].size() : UINT64_MAX);
-    }
+    reply.put<uint64_t>(kept);
+    for (size_t i = 0; i < buffers.size(); ++i) wanted[i] &= problem.empty();
+    for (size_t i = 0; i < buffers.size(); ++i) reply.put<uint64_t>(wanted[i] ? buffers[i].size() : UINT64_MAX);
     if (!send_message(fd, reply)) break;
     for (size_t i = 0; i < buffers.size(); ++i)
-      if (changed[i] && !send_all(fd, buffers[i].data(), buffers[i].size())) _exit(0);
+      if (wanted[i] && !send_all(fd, buffers[i].data(), buffers[i].size())) _exit(0);
   }
   device.reset();
   _exit(0);
@@ -181,6 +212,7 @@ std::string WorkerDevice::spawn() {
   }
   ::close(fds[1]);
   child_ = pid;
+  ++generation_;
   socket_ = fds[0];
   Clock::time_point deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout_seconds_));
   Message hello;
@@ -219,15 +251,20 @@ std::string WorkerDevice::child_ended() {
 }
 
 std::string WorkerDevice::run(const std::vector<uint32_t>& spirv, std::vector<std::vector<uint8_t>>& buffers, uint32_t groups,
-                              int repeats, DispatchTiming* timing) {
+                              int repeats, DispatchTiming* timing, uint64_t* kept, const std::vector<bool>& read_back) {
   if (child_ < 0)
     if (std::string why = spawn(); !why.empty()) return "the driver process could not be restarted: " + why;
   Message request;
+  request.put<uint32_t>(kRunRequest);
   request.put<uint32_t>(groups);
   request.put<int32_t>(repeats);
+  request.put<uint8_t>(kept != nullptr);
   request.put_blob(spirv.data(), spirv.size() * 4);
   request.put<uint64_t>(buffers.size());
-  for (const auto& b : buffers) request.put<uint64_t>(b.size());
+  for (size_t i = 0; i < buffers.size(); ++i) {
+    request.put<uint64_t>(buffers[i].size());
+    request.put<uint8_t>(read_back.empty() || (i < read_back.size() && read_back[i]));
+  }
   bool sent = send_message(socket_, request);
   for (const auto& b : buffers) sent = sent && send_all(socket_, b.data(), b.size());
   Clock::time_point deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout_seconds_));
@@ -239,22 +276,61 @@ std::string WorkerDevice::run(const std::vector<uint32_t>& spirv, std::vector<st
   std::vector<uint8_t> seconds = reply.get_blob();
   t.dispatch_seconds.resize(seconds.size() / sizeof(double));
   if (!seconds.empty()) std::memcpy(t.dispatch_seconds.data(), seconds.data(), seconds.size());
+  uint64_t kept_id = reply.get<uint64_t>();
+  if (kept) *kept = generation_ << 32 | kept_id;  // ids of a restarted driver process never match
   for (size_t i = 0; i < buffers.size() && r == Received::ok; ++i)
     if (auto size = reply.get<uint64_t>(); size != UINT64_MAX) {
       buffers[i].resize(size);
       r = receive_all(socket_, buffers[i].data(), size, &deadline);
     }
-  if (r == Received::timed_out) {
+  if (std::string lost = lost_child(static_cast<int>(r)); !lost.empty()) return lost;
+  if (timing) *timing = t;
+  return problem;
+}
+
+std::string WorkerDevice::lost_child(int received) {
+  if (static_cast<Received>(received) == Received::timed_out) {
     stop();
     return fmt::format("did not finish within {:g} s (the shader hangs or is far too slow): its driver process was killed, "
                        "the next kernel gets a new one", timeout_seconds_);
   }
-  if (r == Received::closed) {
+  if (static_cast<Received>(received) == Received::closed) {
     std::string how = child_ended();
     stop();
     return fmt::format("the driver crashed running this kernel ({}): the next kernel gets a new driver process", how);
   }
-  if (timing) *timing = t;
+  return "";
+}
+
+std::string WorkerDevice::time_interleaved(const std::vector<uint64_t>& kept, const TimingPlan& plan, InterleavedTiming& out) {
+  out = {};
+  for (uint64_t id : kept)
+    if (child_ < 0 || id >> 32 != generation_) return "the driver process was restarted, and the kernels to time went with the old one";
+  Message request;
+  request.put<uint32_t>(kTimeRequest);
+  request.put<int32_t>(plan.min_rounds);
+  request.put<int32_t>(plan.max_rounds);
+  request.put<double>(plan.max_spread);
+  request.put<double>(plan.max_seconds);
+  request.put<double>(plan.sample_seconds);
+  request.put<uint64_t>(kept.size());
+  for (uint64_t id : kept) request.put<uint64_t>(id & 0xffffffffu);
+  // Every kernel may take up to the timeout once, and the rounds their budget.
+  Clock::time_point deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
+                                                  timeout_seconds_ * static_cast<double>(kept.size() + 1) + plan.max_seconds));
+  Message reply;
+  Received r = send_message(socket_, request) ? receive_message(socket_, reply, &deadline) : Received::closed;
+  if (std::string lost = lost_child(static_cast<int>(r)); !lost.empty()) return lost;
+  std::string problem = reply.get_string();
+  out.rounds = reply.get<int32_t>();
+  out.seconds.resize(reply.get<uint64_t>());
+  out.dispatches_per_sample.resize(out.seconds.size());
+  for (size_t k = 0; k < out.seconds.size(); ++k) {
+    out.dispatches_per_sample[k] = reply.get<int32_t>();
+    std::vector<uint8_t> bytes = reply.get_blob();
+    out.seconds[k].resize(bytes.size() / sizeof(double));
+    if (!bytes.empty()) std::memcpy(out.seconds[k].data(), bytes.data(), out.seconds[k].size() * sizeof(double));
+  }
   return problem;
 }
 

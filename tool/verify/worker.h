@@ -26,19 +26,26 @@ class WorkerDevice {
   const std::string& name() const { return name_; }
 
   // As ComputeDevice::run, in the child. A kernel that outlives the timeout or kills the driver
-  // returns why (the buffers may then hold part of an answer).
+  // returns why (the buffers may then hold part of an answer). Only the buffers marked in
+  // `read_back` come back (all when it is empty): inputs are most of the traffic.
   std::string run(const std::vector<uint32_t>& spirv, std::vector<std::vector<uint8_t>>& buffers, uint32_t groups,
-                  int repeats = 1, DispatchTiming* timing = nullptr);
+                  int repeats = 1, DispatchTiming* timing = nullptr, uint64_t* kept = nullptr,
+                  const std::vector<bool>& read_back = {});
+
+  // As ComputeDevice::time_interleaved, in the child.
+  std::string time_interleaved(const std::vector<uint64_t>& kept, const TimingPlan& plan, InterleavedTiming& out);
 
  private:
   explicit WorkerDevice(double timeout_seconds) : timeout_seconds_(timeout_seconds) {}
   std::string spawn();  // "" or why the child could not open the device
   void stop();          // kills the child, if any, and reaps it
   std::string child_ended();  // how the child died (signal or exit status), after it is reaped
+  std::string lost_child(int received);  // "" or why the child stopped answering (then it is stopped)
 
   double timeout_seconds_;
   std::string name_;
   pid_t child_ = -1;
+  uint64_t generation_ = 0;  // driver processes started: kept kernels belong to one
   int socket_ = -1;
 };
 
