@@ -92,6 +92,8 @@ verify options:
   --output FILE                     write the report to FILE instead of standard output
   --scene FILE                      the scene profile whose precision each variant must meet
   --fail-on none                    exit 0 even when a rewrite fails or does not compile
+  --jobs N                          functions verified side by side, one driver process each
+                                    (default: all cores)
   --timeout SECONDS                 stop a kernel that runs longer (default: 60); the driver
                                     process is restarted and the other functions still run
   --version, --help
