@@ -1083,7 +1083,8 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
   std::mutex progress_lock;
   auto drive = [&](WorkerDevice& device) {
     for (size_t i; (i = next++) < jobs.size();) {
-      const auto& [w, name] = jobs[i];
+      const FileWork* w = jobs[i].first;  // not a structured binding: clang 14 cannot capture one
+      const std::string* name = jobs[i].second;
       if (progress) {
         std::lock_guard lock(progress_lock);
         err << fmt::format("\r\x1b[K[{}/{}] {}: {}", ++done, total, w->file->display, *name) << std::flush;
