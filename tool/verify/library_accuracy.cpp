@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <random>
@@ -300,7 +301,7 @@ double allowed_error(const Bound& bound, Value exact, const Operands& in) {
     case Bound::relative: return bound.u2 * kU2 * magnitude;
     case Bound::rounded: {
       double scale = bound.scale == Bound::sum ? a + b : bound.scale == Bound::product ? a * b : a / b;
-      return kU * magnitude + bound.u2 * kU2 * scale;
+      return bound.roundings * kU * magnitude + bound.u2 * kU2 * scale;
     }
     case Bound::offset: return kU * 0x1p20;
     case Bound::none: return std::numeric_limits<double>::infinity();
@@ -319,10 +320,11 @@ std::string worst_case_text(const LibraryOp& op, const Operands& in, Value exact
                      op.pair_result ? describe_pair({hi, lo}) : fmt::format("{:.9g}", hi));
 }
 
-std::string kernel_body(const LibraryOp& op) {
-  std::string result = op.tile_result   ? "float Tile;\n\tfloat Offset;\n\t" + op.call + ";\n\tOUT(0, Tile);\n\tOUT(1, Offset);"
-                       : op.pair_result ? "FDFScalar R = " + op.call + ";\n\tOUT(0, R.High);\n\tOUT(1, R.Low);"
-                                        : "float R = " + op.call + ";\n\tOUT(0, R);\n\tOUT(1, 0.0);";
+std::string kernel_body(const LibraryOp& op, Lang lang) {
+  const std::string& call = lang == Lang::glsl && !op.glsl_call.empty() ? op.glsl_call : op.call;
+  std::string result = op.tile_result   ? "float Tile;\n\tfloat Offset;\n\t" + call + ";\n\tOUT(0, Tile);\n\tOUT(1, Offset);"
+                       : op.pair_result ? "FDFScalar R = " + call + ";\n\tOUT(0, R.High);\n\tOUT(1, R.Low);"
+                                        : "float R = " + call + ";\n\tOUT(0, R);\n\tOUT(1, 0.0);";
   return "\tFDFScalar A = MakeDFScalar(IN(0), IN(1));\n\tFDFScalar B = MakeDFScalar(IN(2), IN(3));\n"
          "\tfloat a = IN(0);\n\tfloat b = IN(2);\n\t" + result;
 }
@@ -377,6 +379,21 @@ Value div_ref(Value a, Value b) { return dd::div(a, b); }
 Value sqrt_ref(Value a, Value) { return dd::sqrt(a); }
 Value value_ref(Value a, Value) { return a; }
 Value tile_ref(Value tile, Value offset) { return dd::add(dd::mul(tile, dd::from(kTile)), offset); }
+Value twice_difference_ref(Value a, Value b) { return dd::mul(dd::sub(a, b), dd::from(2)); }
+
+// The matrix operations run with one fixed matrix whose products are exact in float32, so the
+// reference is plain: in the engine's row-vector convention it maps local (x, y, z) to
+// (-y, 2x, z/2). Its literal lists the same elements in both languages (HLSL's constructor takes
+// rows, GLSL's columns, and GLSL multiplies matrix * vector): element [1][0] is -1, [0][1] is 2.
+const char* kMatrixHlsl = "float4x4(0, 2, 0, 0, -1, 0, 0, 0, 0, 0, 0.5, 0, 0, 0, 0, 1)";
+const char* kMatrixGlsl = "mat4(0, 2, 0, 0, -1, 0, 0, 0, 0, 0, 0.5, 0, 0, 0, 0, 1)";
+
+// `text` in HLSL and its GLSL spelling: float3 -> vec3, the matrix literal.
+std::string glsl_spelling(std::string text) {
+  for (size_t at; (at = text.find("float3(")) != std::string::npos;) text.replace(at, 6, "vec3");
+  for (size_t at; (at = text.find(kMatrixHlsl)) != std::string::npos;) text.replace(at, std::strlen(kMatrixHlsl), kMatrixGlsl);
+  return text;
+}
 
 LibraryOp op(std::string call, bool pa, bool pb, bool pair_result, InputFamily inputs, Bound bound,
              Value (*reference)(Value, Value), int operands = 2) {
@@ -432,6 +449,31 @@ const std::vector<LibraryOp>& library_ops() {
     v.push_back(op("DFDivideDemote(A, b)", true, false, false, F::quotient, rounded(4, Bound::quotient, "~u"), div_ref));
     v.push_back(op("DFFastLocalSubtractDemote(A, B)", true, true, false, F::close,
                    rounded(2, Bound::sum, "~u of the difference (same sign, close)"), sub_ref));
+    // Translated world and the matrices, each read through one component (see kMatrixHlsl).
+    auto spelled = [](LibraryOp o) {
+      o.glsl_call = glsl_spelling(o.call);
+      return o;
+    };
+    std::string matrix = kMatrixHlsl;
+    // Two roundings (the highs' sum, exact only within a factor of 2, then the result), plus the lows'.
+    Bound fast_translated = rounded(2, Bound::sum, "~2u (exact highs near the camera)");
+    fast_translated.roundings = 2;
+    v.push_back(spelled(op("DFFastToTranslatedWorld(MakeDFVector3(float3(A.High, 0, 0), float3(A.Low, 0, 0)), "
+                           "MakeDFVector3(float3(B.High, 0, 0), float3(B.Low, 0, 0))).x",
+                           true, true, false, F::opposite, fast_translated, add_ref)));
+    // FDFMatrix adds its PostTranslation after M: x = PostTranslation.x - local.y, exact.
+    std::string to_world = "DFMultiply(float3(0.75, b, -1.5), MakeDFMatrix(float3(a, 3.0, 5.0), " + matrix + "))";
+    v.push_back(spelled(op("MakeDFScalar(" + to_world + ".High.x, " + to_world + ".Low.x)", false, false, true, F::sum,
+                           {Bound::exact, 0, Bound::sum, "exact (PostTranslation after M)"}, sub_ref)));
+    // FDFInverseMatrix subtracts its PreTranslation before M: y = 2 (P.x - PreTranslation.x).
+    v.push_back(spelled(op("DFMultiplyDemote(MakeDFVector3(float3(A.High, 1.0, 2.0), float3(A.Low, 0, 0)), "
+                           "MakeDFInverseMatrix(float3(b, 0, 0), " + matrix + ")).y",
+                           true, false, false, F::sum, rounded(4, Bound::sum, "~u (PreTranslation before M)"), twice_difference_ref)));
+    // Local -> translated world: the translations meet in double-float; local (0.75, 0, -1.5) maps
+    // to x = 0, so x is PreViewTranslation.x + PostTranslation.x rounded once.
+    v.push_back(spelled(op("DFTransformLocalToTranslatedWorld(float3(0.75, 0, -1.5), MakeDFMatrix(float3(b, 0, 0), " + matrix +
+                           "), MakeDFVector3(float3(A.High, 0, 0), float3(A.Low, 0, 0))).x",
+                           true, false, false, F::opposite, rounded(2, Bound::sum, "~u of the camera-relative offset"), add_ref)));
     return v;
   }();
   return ops;
@@ -469,7 +511,7 @@ LibraryAccuracy check_library(WorkerDevice& device, const DriverProbes& probes, 
       spec.lang = lang;
       spec.name = fmt::format("{}-{}", op.call.substr(0, op.call.find('(')), lang == Lang::glsl ? "glsl" : "hlsl");
       spec.declarations = library;
-      spec.body = kernel_body(op);
+      spec.body = kernel_body(op, lang);
       spec.in_stride = 4;
       spec.out_stride = 2;
       CompileResult compiled = compile_kernel(spec, defines);

@@ -36,13 +36,15 @@ struct Bound {
   enum Kind { exact, relative, rounded, offset, none } kind = none;
   double u2 = 0;             // relative: |error| <= u2 * u^2 * |exact|; rounded: the u^2 term below
   enum Scale { sum, product, quotient } scale = sum;
-  // rounded: |error| <= u * |exact| + u2 * u^2 * scale, where scale is |A| + |B|, |A * B| or |A / B|:
-  // one rounding of a float result plus the roundings of the low parts.
+  // rounded: |error| <= roundings * u * |exact| + u2 * u^2 * scale, where scale is |A| + |B|,
+  // |A * B| or |A / B|: the roundings of a float result plus those of the low parts.
   std::string text;          // as published: "3u^2 + 13u^3 (AccurateDWPlusDW)"
+  double roundings = 1;      // rounded: float roundings of the result
 };
 
 struct LibraryOp {
   std::string call;          // in the shader: A, B are pairs, a, b floats (A.High, B.High)
+  std::string glsl_call;     // the same in GLSL, where its types are spelled differently ("" = call)
   bool pair_operands[2] = {false, false};
   int operands = 2;
   bool pair_result = true;
