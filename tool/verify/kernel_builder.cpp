@@ -353,6 +353,7 @@ std::string without_version(std::string_view text) {
 }  // namespace
 
 std::vector<std::string> enclosing_functions(Lang lang, const std::string& text, const std::vector<uint32_t>& offsets) {
+  if (offsets.empty()) return {};  // no parse: most files of a tree have no finding
   Source source("file", text);
   SyntaxTree t = parse(source, lang);
   std::vector<std::string> out;
