@@ -80,7 +80,7 @@ void print_library_text(std::ostream& out, const std::string& device, const Driv
   std::vector<std::string> details, outside;
   std::string outside_example;
   for (const OpReport& r : accuracy.ops) {
-    std::string row = fmt::format("{:<33} {:<17}", r.op->call, family_name(r.op->inputs));
+    std::string row = fmt::format("{:<33} {:<17}", r.op->name(), family_name(r.op->inputs));
     std::string result;
     for (Lang lang : langs) {
       const OpMeasurement& m = r.by_lang.at(lang);
@@ -89,14 +89,14 @@ void print_library_text(std::ostream& out, const std::string& device, const Driv
       if (result.empty()) result = s;
       else if (result != s) result += "/" + s;
       if (m.outside_domain_misses) {
-        std::string entry = fmt::format("{} ({} of {})", r.op->call, m.outside_domain_misses, m.outside_domain_inputs);
+        std::string entry = fmt::format("{} ({} of {})", r.op->name(), m.outside_domain_misses, m.outside_domain_inputs);
         if (std::find(outside.begin(), outside.end(), entry) == outside.end()) outside.push_back(entry);
         if (outside_example.empty()) outside_example = m.outside_domain_example;
       }
       if (m.status != "pass") {
         std::string why = m.status;
         if (m.non_canonical) why += fmt::format(" ({} results not canonical)", m.non_canonical);
-        details.push_back(fmt::format("{} [{}]: {}\n    worst: {}", r.op->call, lang_label(lang), why, m.worst));
+        details.push_back(fmt::format("{} [{}]: {}\n    worst: {}", r.op->name(), lang_label(lang), why, m.worst));
       }
     }
     out << row << fmt::format("  {:<40} {}\n", r.op->bound.text, result);
@@ -144,7 +144,7 @@ void print_library_json(std::ostream& out, const std::string& device, const Driv
                                                      {"example", m.outside_domain_example}}},
                                   {"inputs", m.inputs},
                                   {"worst", m.worst}};
-    ops.push_back({{"operation", r.op->call}, {"inputs", family_name(r.op->inputs)}, {"bound", r.op->bound.text},
+    ops.push_back({{"operation", r.op->name()}, {"inputs", family_name(r.op->inputs)}, {"bound", r.op->bound.text},
                    {"needsFusedFma", r.op->needs_fused_fma}, {"results", results}});
   }
   j["operations"] = ops;

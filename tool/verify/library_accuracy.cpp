@@ -450,8 +450,9 @@ const std::vector<LibraryOp>& library_ops() {
     v.push_back(op("DFFastLocalSubtractDemote(A, B)", true, true, false, F::close,
                    rounded(2, Bound::sum, "~u of the difference (same sign, close)"), sub_ref));
     // Translated world and the matrices, each read through one component (see kMatrixHlsl).
-    auto spelled = [](LibraryOp o) {
+    auto spelled = [](LibraryOp o, std::string label) {
       o.glsl_call = glsl_spelling(o.call);
+      o.label = std::move(label);
       return o;
     };
     std::string matrix = kMatrixHlsl;
@@ -460,20 +461,24 @@ const std::vector<LibraryOp>& library_ops() {
     fast_translated.roundings = 2;
     v.push_back(spelled(op("DFFastToTranslatedWorld(MakeDFVector3(float3(A.High, 0, 0), float3(A.Low, 0, 0)), "
                            "MakeDFVector3(float3(B.High, 0, 0), float3(B.Low, 0, 0))).x",
-                           true, true, false, F::opposite, fast_translated, add_ref)));
+                           true, true, false, F::opposite, fast_translated, add_ref),
+                        "DFFastToTranslatedWorld(A, B).x"));
     // FDFMatrix adds its PostTranslation after M: x = PostTranslation.x - local.y, exact.
     std::string to_world = "DFMultiply(float3(0.75, b, -1.5), MakeDFMatrix(float3(a, 3.0, 5.0), " + matrix + "))";
     v.push_back(spelled(op("MakeDFScalar(" + to_world + ".High.x, " + to_world + ".Low.x)", false, false, true, F::sum,
-                           {Bound::exact, 0, Bound::sum, "exact (PostTranslation after M)"}, sub_ref)));
+                           {Bound::exact, 0, Bound::sum, "exact (PostTranslation after M)"}, sub_ref),
+                        "DFMultiply((.75, b, -1.5), FDFMatrix(a)).x"));
     // FDFInverseMatrix subtracts its PreTranslation before M: y = 2 (P.x - PreTranslation.x).
     v.push_back(spelled(op("DFMultiplyDemote(MakeDFVector3(float3(A.High, 1.0, 2.0), float3(A.Low, 0, 0)), "
                            "MakeDFInverseMatrix(float3(b, 0, 0), " + matrix + ")).y",
-                           true, false, false, F::sum, rounded(4, Bound::sum, "~u (PreTranslation before M)"), twice_difference_ref)));
+                           true, false, false, F::sum, rounded(4, Bound::sum, "~u (PreTranslation before M)"), twice_difference_ref),
+                        "DFMultiplyDemote(A, FDFInverseMatrix(b)).y"));
     // Local -> translated world: the translations meet in double-float; local (0.75, 0, -1.5) maps
     // to x = 0, so x is PreViewTranslation.x + PostTranslation.x rounded once.
     v.push_back(spelled(op("DFTransformLocalToTranslatedWorld(float3(0.75, 0, -1.5), MakeDFMatrix(float3(b, 0, 0), " + matrix +
                            "), MakeDFVector3(float3(A.High, 0, 0), float3(A.Low, 0, 0))).x",
-                           true, false, false, F::opposite, rounded(2, Bound::sum, "~u of the camera-relative offset"), add_ref)));
+                           true, false, false, F::opposite, rounded(2, Bound::sum, "~u of the camera-relative offset"), add_ref),
+                        "DFTransformLocalToTranslatedWorld(0, FDFMatrix(b), A).x"));
     return v;
   }();
   return ops;

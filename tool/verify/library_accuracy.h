@@ -45,6 +45,8 @@ struct Bound {
 struct LibraryOp {
   std::string call;          // in the shader: A, B are pairs, a, b floats (A.High, B.High)
   std::string glsl_call;     // the same in GLSL, where its types are spelled differently ("" = call)
+  std::string label;         // how reports name it, where the call is long ("" = call)
+  const std::string& name() const { return label.empty() ? call : label; }
   bool pair_operands[2] = {false, false};
   int operands = 2;
   bool pair_result = true;
