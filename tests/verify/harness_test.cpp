@@ -167,6 +167,34 @@ TEST(HarnessOnLavapipe, DoubleFloatMatrixRewriteOfATileOffsetFactoryIsSubCentime
   EXPECT_GT(original.max_error, rewrite.max_error);
 }
 
+// A rewrite that keeps, inside the function, code lwcport could not port (here the kept
+// `LWCHackToFloat` of an object position) carries the original's error: it is incomplete there,
+// never counted as a refuted rewrite. The same variant's other functions are judged as usual.
+TEST(HarnessOnLavapipe, ARewriteThatKeepsAMarkerInTheFunctionIsIncompleteNotRefuted) {
+  Driver d = start_driver();
+  ASSERT_NE(d.device, nullptr);
+  std::string path = "corpus/ue5.0/LWCVertexFactory.ush";
+  Source source(path, test::read(test::source_dir() + "/" + path));
+  AnalyzeOptions options;
+  std::string fixed = fix_source(source, options, true).text;
+  Source fixed_source(path, fixed);
+  FileVariant rewrite{"fixed", fixed, 504, {}};
+  for (int line = 1; line <= fixed_source.line_count(); ++line)
+    if (fixed_source.line_text(line).find("LWCHackToFloat(") != std::string_view::npos) rewrite.hand_fixes[line] = "lwc-hack-marker";
+  ASSERT_FALSE(rewrite.hand_fixes.empty());
+  HarnessSetup setup = small_setup(Lang::hlsl, path);
+  setup.unreal = true;
+  std::vector<FileVariant> variants = {{"original (float32)", source.text(), 500}, rewrite};
+  FunctionResult wind = verify_function(*d.device, d.probes, setup, "GetObjectWorldPositionForWind", variants);
+  ASSERT_EQ(wind.variants.size(), 2u);
+  EXPECT_EQ(wind.variants[0].status, "fail");
+  EXPECT_EQ(wind.variants[1].status.rfind("incomplete: line ", 0), 0u) << wind.variants[1].status;
+  EXPECT_NE(wind.variants[1].status.find("lwc-hack-marker"), std::string::npos);
+  EXPECT_FALSE(wind.variants[1].refuted());
+  FunctionResult transform = verify_function(*d.device, d.probes, setup, "TransformLocalToWorld", variants);
+  EXPECT_EQ(transform.variants[1].status.find("incomplete"), std::string::npos) << transform.variants[1].status;
+}
+
 // FDFInverseMatrix as UE 5.4's DoubleFloat.ush has it: PreTranslation is subtracted before M (and
 // FDFMatrix's PostTranslation added after it). The engine's own spelling, the library's
 // DFMultiplyDemote and a float32 original all go world -> local; a sign error in the library or

@@ -17,6 +17,7 @@
 #include <optional>
 #include <random>
 
+#include "core/source.h"
 #include "lang/tokens.h"
 #include "shaderlib/shaderlib.h"
 #include "verify/kernel.h"
@@ -1053,6 +1054,22 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
       vr.status = "pass";
     }
     if (!vr.contraction_losses.empty()) vr.status = "fail: lost NoContraction";
+    // A rewrite that keeps, inside this very function, code lwcport could not port (a finding with
+    // no automatic fix: a kept `LWCHackToFloat`, say) is incomplete there, not refuted.
+    if (vr.status == "fail" && &v != &variants.front() && !v.hand_fixes.empty()) {
+      Source text(setup.display, v.text);
+      std::vector<uint32_t> starts;
+      std::vector<int> lines;
+      for (const auto& [line, rules] : v.hand_fixes)
+        if (line >= 1 && line <= text.line_count()) starts.push_back(text.offset({line, 1})), lines.push_back(line);
+      std::vector<std::string> in = enclosing_functions(setup.lang, v.text, starts);
+      for (size_t i = 0; i < in.size(); ++i)
+        if (in[i] == function) {
+          vr.status = fmt::format("incomplete: line {} is in code lwcport could not port (no automatic fix for {} there); "
+                                  "the error is what that code keeps", lines[i], v.hand_fixes.at(lines[i]));
+          break;
+        }
+    }
     if (!total.unmatched.empty())
       vr.worst += (vr.worst.empty() ? "" : "; ") + std::string("not compared (no counterpart in the original): ") + total.unmatched;
     result.variants.push_back(vr);
