@@ -92,5 +92,36 @@ TEST(ComputeDeviceOpen, WithoutADriverTheErrorNamesThePackagesToInstall) {
   EXPECT_NE(error.find("mesa-vulkan-drivers"), std::string::npos) << error;
 }
 
+// glslang cannot set up a stage's built-ins below the version that has the stage, and for a text
+// without `#version` (its default is 110) it then printed all of them to standard output, into a
+// JSON report. A stage without `#version` now gets a version that has it; explicit versions that
+// lack the stage are glslang's own errors.
+TEST(Compile, AVersionWithoutTheStageIsRefusedAndNothingReachesStandardOutput) {
+  auto compile = [](Stage stage, const std::string& text) {
+    CompileInput in;
+    in.lang = Lang::glsl;
+    in.stage = stage;
+    in.name = "old.glsl";
+    in.text = text;
+    return compile_shader(in);
+  };
+  testing::internal::CaptureStdout();
+  CompileResult geometry = compile(Stage::geometry, "#version 110\nvoid main() {}\n");
+  CompileResult es_compute = compile(Stage::compute, "#version 300 es\nlayout(local_size_x = 1) in;\nvoid main() {}\n");
+  CompileResult tess = compile(Stage::tess_control, "#version 320 es\nlayout(vertices = 3) out;\nvoid main() {}\n");
+  CompileResult unversioned = compile(Stage::compute, "layout(local_size_x = 1) in;\nvoid main() {}\n");
+  CompileResult mesh = compile(Stage::mesh, "void main() {}\n");
+  CompileResult geometry_unversioned = compile(Stage::geometry, "layout(points) in;\nlayout(points, max_vertices = 1) out;\nvoid main() {}\n");
+  EXPECT_EQ(testing::internal::GetCapturedStdout(), "");
+  ASSERT_FALSE(geometry.ok);
+  EXPECT_NE(geometry.messages.at(0).text.find("geometry shaders require"), std::string::npos);
+  ASSERT_FALSE(es_compute.ok);
+  EXPECT_NE(es_compute.messages.at(0).text.find("compute shaders require"), std::string::npos);
+  EXPECT_TRUE(tess.ok) << format_messages(tess);
+  EXPECT_TRUE(unversioned.ok) << format_messages(unversioned);
+  EXPECT_FALSE(mesh.ok);  // needs its extension; an error, not a dump
+  EXPECT_TRUE(geometry_unversioned.ok) << format_messages(geometry_unversioned);
+}
+
 }  // namespace
 }  // namespace lwc

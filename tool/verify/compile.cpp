@@ -4,6 +4,7 @@
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
 
+#include <algorithm>
 #include <charconv>
 #include <deque>
 #include <mutex>
@@ -106,6 +107,27 @@ void read_log(const char* log, std::vector<CompileMessage>& out) {
   }
 }
 
+// The lowest desktop GLSL version that has the stage. glslang refuses an explicit `#version` below
+// it with an error, but for a text without one it sets up the stage's built-ins at its default
+// (110), fails, and prints the whole built-in text to standard output, into lwcport's report.
+int minimum_version(Stage stage) {
+  switch (stage) {
+    case Stage::vertex:
+    case Stage::fragment: return 110;
+    case Stage::geometry: return 150;
+    case Stage::tess_control:
+    case Stage::tess_evaluation: return 400;
+    case Stage::compute: return 430;
+    default: return 450;  // mesh, task and ray tracing: 450 with their extensions
+  }
+}
+
+// The version glslang assumes for a text without `#version`: GLSL's own 110 where the stage has it.
+int default_version(const CompileInput& input) {
+  if (input.lang == Lang::hlsl) return 500;
+  return std::max(110, minimum_version(input.stage));
+}
+
 }  // namespace
 
 CompileResult compile_shader(const CompileInput& input) {
@@ -122,7 +144,7 @@ CompileResult compile_shader(const CompileInput& input) {
                                            (vulkan ? EShMsgSpvRules | EShMsgVulkanRules : EShMsgDefault) |
                                            (input.debug_lines ? EShMsgDebugInfo : EShMsgDefault));
   Includer includer(input);
-  if (!shader.parse(GetDefaultResources(), hlsl ? 500 : 110, false, messages, includer)) {
+  if (!shader.parse(GetDefaultResources(), default_version(input), false, messages, includer)) {
     read_log(shader.getInfoLog(), result.messages);
     return result;
   }
@@ -153,7 +175,7 @@ PreprocessResult preprocess_shader(const CompileInput& input) {
   set_source(shader, input, strings, stage, hlsl);
   auto messages = static_cast<EShMessages>(EShMsgDefault | (hlsl ? EShMsgReadHlsl : EShMsgDefault));
   Includer includer(input);
-  result.ok = shader.preprocess(GetDefaultResources(), hlsl ? 500 : 110, ENoProfile, false, false, messages, &result.text, includer);
+  result.ok = shader.preprocess(GetDefaultResources(), default_version(input), ENoProfile, false, false, messages, &result.text, includer);
   if (!result.ok) read_log(shader.getInfoLog(), result.messages);
   return result;
 }
