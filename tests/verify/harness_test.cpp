@@ -143,20 +143,27 @@ TEST(HarnessOnLavapipe, BoolResultsAreComparedAsDecisions) {
   EXPECT_NE(v.worst.find("a different decision"), std::string::npos) << v.worst;
 }
 
+// A corpus file of Unreal code, its safe fixes applied, and a harness set-up for it.
+struct CorpusFile {
+  std::string original, fixed;
+  HarnessSetup setup;
+};
+CorpusFile corpus_file(const std::string& path) {
+  Source source(path, test::read(test::source_dir() + "/" + path));
+  CorpusFile file{source.text(), fix_source(source, AnalyzeOptions{}, true).text, small_setup(Lang::hlsl, path)};
+  file.setup.unreal = true;
+  return file;
+}
+
 // The UE 5.0 tile/offset vertex factory moved to DoubleFloat matrices: the low part of each
 // matrix's translation reaches the shader (a GCC 12 vectoriser bug once dropped it on the host).
 TEST(HarnessOnLavapipe, DoubleFloatMatrixRewriteOfATileOffsetFactoryIsSubCentimetre) {
   Driver d = start_driver();
   ASSERT_NE(d.device, nullptr);
-  std::string path = "corpus/ue5.0/LWCVertexFactory.ush";
-  Source source(path, test::read(test::source_dir() + "/" + path));
-  AnalyzeOptions options;
-  std::string fixed = fix_source(source, options, true).text;
-  ASSERT_NE(fixed, source.text());
-  HarnessSetup setup = small_setup(Lang::hlsl, path);
-  setup.unreal = true;
-  FunctionResult r = verify_function(*d.device, d.probes, setup, "TransformLocalToWorld",
-                                     {{"original (float32)", source.text(), 500}, {"fixed", fixed, 504}});
+  CorpusFile file = corpus_file("corpus/ue5.0/LWCVertexFactory.ush");
+  ASSERT_NE(file.fixed, file.original);
+  FunctionResult r = verify_function(*d.device, d.probes, file.setup, "TransformLocalToWorld",
+                                     {{"original (float32)", file.original, 500}, {"fixed", file.fixed, 504}});
   ASSERT_EQ(r.variants.size(), 2u);
   const VariantResult &original = r.variants[0], &rewrite = r.variants[1];
   ASSERT_TRUE(original.measured) << original.status;
@@ -173,18 +180,14 @@ TEST(HarnessOnLavapipe, DoubleFloatMatrixRewriteOfATileOffsetFactoryIsSubCentime
 TEST(HarnessOnLavapipe, ARewriteThatKeepsAMarkerInTheFunctionIsIncompleteNotRefuted) {
   Driver d = start_driver();
   ASSERT_NE(d.device, nullptr);
-  std::string path = "corpus/ue5.0/LWCVertexFactory.ush";
-  Source source(path, test::read(test::source_dir() + "/" + path));
-  AnalyzeOptions options;
-  std::string fixed = fix_source(source, options, true).text;
-  Source fixed_source(path, fixed);
-  FileVariant rewrite{"fixed", fixed, 504, {}};
+  CorpusFile file = corpus_file("corpus/ue5.0/LWCVertexFactory.ush");
+  Source fixed_source("fixed", file.fixed);
+  FileVariant rewrite{"fixed", file.fixed, 504, {}};
   for (int line = 1; line <= fixed_source.line_count(); ++line)
     if (fixed_source.line_text(line).find("LWCHackToFloat(") != std::string_view::npos) rewrite.hand_fixes[line] = "lwc-hack-marker";
   ASSERT_FALSE(rewrite.hand_fixes.empty());
-  HarnessSetup setup = small_setup(Lang::hlsl, path);
-  setup.unreal = true;
-  std::vector<FileVariant> variants = {{"original (float32)", source.text(), 500}, rewrite};
+  HarnessSetup& setup = file.setup;
+  std::vector<FileVariant> variants = {{"original (float32)", file.original, 500}, rewrite};
   FunctionResult wind = verify_function(*d.device, d.probes, setup, "GetObjectWorldPositionForWind", variants);
   ASSERT_EQ(wind.variants.size(), 2u);
   EXPECT_EQ(wind.variants[0].status, "fail");
