@@ -16,6 +16,7 @@
 #include <mutex>
 #include <optional>
 #include <random>
+#include <type_traits>
 
 #include "core/source.h"
 #include "lang/tokens.h"
@@ -439,16 +440,12 @@ std::vector<double> role_value(Role role, int components, const State& s, uint64
   return out;
 }
 
-// FNV-1a over a SPIR-V module: identical kernels cost the same whatever the clock says.
-uint64_t hash_words(const std::vector<uint32_t>& words) {
+// FNV-1a over a name's bytes or a SPIR-V module's words (identical kernels cost the same
+// whatever the clock says).
+template <typename Values>
+uint64_t fnv1a(const Values& values) {
   uint64_t h = 1469598103934665603ull;
-  for (uint32_t w : words) h = (h ^ w) * 1099511628211ull;
-  return h;
-}
-
-uint64_t hash_name(const std::string& s) {
-  uint64_t h = 1469598103934665603ull;
-  for (char c : s) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+  for (auto v : values) h = (h ^ static_cast<std::make_unsigned_t<decltype(v)>>(v)) * 1099511628211ull;
   return h;
 }
 
@@ -772,7 +769,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
       auto [base, half] = split_half(leaf.name, leaf.encoding);
       Role role = role_of(base, leaf.components);
       if (half != Half::none && base.empty()) role = Role::world_position;  // a bare `high`/`low` pair
-      roles.push_back({role, hash_name(leaf.name), half});
+      roles.push_back({role, fnv1a(leaf.name), half});
     }
     if (rounding) rounding->assign(k.inputs.size(), 0.0);
     for (size_t i = 0; i < n; ++i) {
@@ -1002,7 +999,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     }
     SpirvSummary spirv = inspect_spirv(k.compiled.spirv);
     vr.spirv_instructions = spirv.instructions;
-    vr.spirv_hash = hash_words(k.compiled.spirv);
+    vr.spirv_hash = fnv1a(k.compiled.spirv);
     vr.contraction_losses = contraction_losses(spirv);
     uint64_t kept = 0;
     Run r = run(k, false, inputs_for(k.code, false), &kept);
