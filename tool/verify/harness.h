@@ -98,7 +98,7 @@ struct FunctionResult {
 };
 
 // Marks the error/time Pareto front and writes the scene's pick, over the variants that pass and
-// that fix can write; costs within the measurement's spread (and 15%) count as
+// that fix can write; costs within the measurement's spread (and 25%) count as
 // equal, the fewest SPIR-V instructions then decide.
 void pick_variant(FunctionResult& result, double precision);
 
