@@ -124,13 +124,17 @@ TEST(Cli, AConfigValueOfTheWrongTypeOrMeaningStopsTheRunWithItsReason) {
       {R"({"world-sources": [{"match": "A", "kind": "far-away"}]})", "unknown world-space kind \"far-away\""},
       {R"({"max-file-bytes": 0})", "\"max-file-bytes\" must be a positive integer"},
       {R"({"max-parse-seconds": 0})", "\"max-parse-seconds\" must be a number of seconds above 0"},
-      {R"({"virtual-roots": {"/Engine/": "../Engine/Shaders"}})", "\"..\" in its folder"},
       {R"({"virtual-roots": {"Engine": "Shaders"}})", "a prefix starts and ends with '/'"},
       {R"({"world-sources": [{"match": "View..Origin", "kind": "absolute-position"}]})", "\"View..Origin\" can match nothing: an empty name"},
       {R"({"world-sources": [{"match": "View.Camera Origin", "kind": "absolute-position"}]})", "holds ' ', which no name has"},
       {R"({"world-sources": [{"match": "GetPos(Id).X", "kind": "absolute-position"}]})", "a call is written `Name(..)`"},
       {R"({"exclude": ["../Generated/**"]})", "exclude pattern \"../Generated/**\" can match nothing"},
       {R"({"exclude": [""]})", "\"exclude\" holds an empty pattern"},
+      {R"({"defines": ["X"]})", "\"defines\" must map macro names to values"},
+      {R"({"defines": {"X": [1]}})", "the value of \"X\" must be a string, a number or a boolean"},
+      {R"({"overrides": [{"defines": {"X": 1}}]})", "overrides[0] needs \"files\" and \"defines\""},
+      {R"({"overrides": [{"files": [], "defines": {}}]})", "overrides[0]: \"files\" must be a non-empty array of patterns"},
+      {R"({"overrides": [{"files": ["a.usf"], "defines": {}, "severity": {}}]})", "overrides[0]: unknown key \"severity\""},
   };
   for (const auto& [config, why] : cases) {
     test::write(dir + "/.lwcport.json", config);
@@ -158,6 +162,13 @@ TEST(Cli, AnIncludeDirThatIsNotThereIsAWarning) {
   EXPECT_NE(r.out.find("virtual root \"/Engine/\" is an absolute path outside the project"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("include dir \"" + dir + "\""), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("include dir \"../"), std::string::npos) << r.out;
+  // A plugin's virtual root may name the engine's folder beside it; one that is not there is warned.
+  test::write(dir + "/.lwcport.json", R"({"virtual-roots": {"/Engine/": "../)" + std::filesystem::path(outside).filename().string() +
+              R"(/", "/Plugin/Gone/": "../no-such-plugin/Shaders/"}})");
+  r = test::run("cd " + dir + " && " + test::binary() + " lint a.usf 2>&1");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_EQ(r.out.find("virtual root \"/Engine/\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("virtual root \"/Plugin/Gone/\" is not a folder here"), std::string::npos) << r.out;
 }
 
 TEST(Cli, IncludesTeachDeclarationsAndMissingOnesAreFine) {

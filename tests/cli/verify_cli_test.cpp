@@ -95,6 +95,47 @@ TEST(VerifyCli, AFunctionThatCompilesOnItsOwnIsVerifiedBesideOneThatDoesNot) {
   EXPECT_NE(only.out.find("only_bad.vert: nothing in it could be verified"), std::string::npos) << only.out;
 }
 
+// A plugin as Unreal lays it out: its shaders under `/Plugin/<Name>/`, headers that include each
+// other by relative paths (once each: `#pragma once`), macros the plugin's C++ defines for the
+// build (`defines`, and per file `overrides`), and the engine's everyday macros where the file
+// includes the engine. Its function runs, and an error inside an include is told with that
+// include's own path and line.
+TEST(VerifyCli, APluginWithItsDefinesAndPluginRootIsVerifiedWithRealLines) {
+  std::string dir = test::scratch("verify-plugin");
+  test::write(dir + "/.lwcport.json", R"({"unreal": "5.4", "virtual-roots": {"/Plugin/Orbit/": "Shaders/"},
+    "defines": {"ORBIT_STEPS": 2, "ORBIT_SCALE": "0.5f"},
+    "overrides": [{"files": ["Shaders/Private/Ring.usf"], "defines": {"RING_ONLY": true}}]})");
+  test::write(dir + "/Shaders/Private/Common/Helpers.ush", "#pragma once\nfloat Halve(float X) { return X * ORBIT_SCALE; }\n");
+  test::write(dir + "/Shaders/Private/Common/Orbit.ush",
+              "#pragma once\n#include \"Helpers.ush\"\n"
+              "float3 OrbitOffset(float3 P)\n{\n\tfloat3 O = P;\n\tUNROLL\n\tfor (int i = 0; i < ORBIT_STEPS; ++i) O.x = Halve(O.x);\n\treturn O * RING_ONLY;\n}\n");
+  test::write(dir + "/Shaders/Private/Common/Broken.ush", "#pragma once\n\nfloat Broken(float X) { return X + undefined_thing; }\n");
+  const std::string body =
+      "float3 WorldOffsetFromCamera(FDFVector3 WorldPos)\n{\n"
+      "\tfloat3 CameraWorldPos = DFHackToFloat(PrimaryView.WorldCameraOrigin);\n"
+      "\treturn DFHackToFloat(WorldPos) - CameraWorldPos + OrbitOffset(CameraWorldPos) * 0;\n}\n";
+  test::write(dir + "/Shaders/Private/Ring.usf",
+              "#include \"/Engine/Private/Common.ush\"\n#include \"/Plugin/Orbit/Private/Common/Orbit.ush\"\n"
+              "#include \"/Plugin/Orbit/Private/Common/Orbit.ush\"\n" + body);
+  test::write(dir + "/Shaders/Private/Other.usf",
+              "#include \"/Engine/Private/Common.ush\"\n#include \"/Plugin/Orbit/Private/Common/Orbit.ush\"\n"
+              "#include \"/Plugin/Orbit/Private/Common/Broken.ush\"\n" + body +
+              "float3 BrokenOffset(FDFVector3 WorldPos)\n{\n\treturn DFHackToFloat(WorldPos) * Broken(1.0);\n}\n");
+  test::Run ring = test::run("cd " + dir + " && " + test::binary() + " verify Shaders/Private/Ring.usf --fail-on none 2>&1");
+  EXPECT_NE(ring.out.find("Verified 1 function(s), 1 variant(s): 1 fail."), std::string::npos) << "it ran:\n" << ring.out;
+  EXPECT_EQ(ring.out.find("does not compile"), std::string::npos) << ring.out;
+  // Without the override, RING_ONLY is not defined for Other.usf: that error, and Broken.ush's in
+  // the function that calls it, name the header and its own line.
+  test::Run other = test::run("cd " + dir + " && " + test::binary() + " verify Shaders/Private/Other.usf --fail-on none 2>&1");
+  EXPECT_NE(other.out.find("original (float32): does not compile: Shaders/Private/Common/Orbit.ush:8: 'RING_ONLY' : unknown variable"), std::string::npos) << other.out;
+  EXPECT_NE(other.out.find("original (float32): does not compile: Shaders/Private/Common/Broken.ush:3: 'undefined_thing'"), std::string::npos) << other.out;
+  // A defines entry that is not a macro name stops the run with its reason.
+  test::write(dir + "/.lwcport.json", R"({"defines": {"2FAST": 1}})");
+  test::Run bad = test::run("cd " + dir + " && " + test::binary() + " verify Shaders/Private/Ring.usf 2>&1");
+  EXPECT_EQ(bad.exit_code, 2) << bad.out;
+  EXPECT_NE(bad.out.find("\"defines\": \"2FAST\" is not a macro name"), std::string::npos) << bad.out;
+}
+
 // A struct of 2,000 members once overflowed the stack (the verifier read text with std::regex,
 // which recursed per matched character) and killed the run; now it is verified like any other file.
 // (The function does not read the struct: filling 2,000 values per invocation takes minutes on the

@@ -36,15 +36,15 @@ CompileResult compile_corpus_file(const std::string& path, const std::string& te
   build.name = path;
   if (unreal_era(path)) build.unreal_version = version;
   std::string dir = fs::path(test::source_dir() + "/" + path).parent_path().string();
-  build.include = [dir, lang = build.lang](const std::string& name, const std::string&) -> std::optional<std::string> {
+  build.include = [dir, lang = build.lang](const std::string& name, const std::string&) -> std::optional<IncludedFile> {
     // The library `lwcport fix` writes beside fixed files (the whole of it: fix writes a subset).
-    if (name == library_file_name(lang)) return full_library_text(lang);
+    if (name == library_file_name(lang)) return IncludedFile{name, full_library_text(lang)};
     if (name.rfind("/Engine/", 0) == 0) {
       std::string mapped = test::source_dir() + "/corpus/engine/" + name.substr(8);
       // Engine headers the corpus does not carry are what the stub declares.
-      return fs::exists(mapped) ? test::read(mapped) : std::string();
+      return IncludedFile{name, fs::exists(mapped) ? test::read(mapped) : std::string()};
     }
-    if (fs::exists(dir + "/" + name)) return test::read(dir + "/" + name);
+    if (fs::exists(dir + "/" + name)) return IncludedFile{name, test::read(dir + "/" + name)};
     return std::nullopt;
   };
   return compile_file(build, text);

@@ -26,8 +26,8 @@ CompileResult compile_with_library(const std::string& path, const std::string& t
   in.text = text;
   in.entry = entry;
   // What `lwcport fix` writes: the names the fixed text uses, and their dependencies.
-  in.include = [lang = in.lang, text](const std::string& name, const std::string&) -> std::optional<std::string> {
-    if (name == library_file_name(lang)) return library_text(lang, library_names_used(lang, text));
+  in.include = [lang = in.lang, text](const std::string& name, const std::string&) -> std::optional<IncludedFile> {
+    if (name == library_file_name(lang)) return IncludedFile{name, library_text(lang, library_names_used(lang, text))};
     return std::nullopt;
   };
   return compile_shader(in);

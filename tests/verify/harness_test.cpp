@@ -27,9 +27,9 @@ HarnessSetup small_setup(Lang lang, const std::string& display) {
   setup.stage = Stage::fragment;
   setup.invocations = 8192;
   setup.timing.min_rounds = setup.timing.max_rounds = 4;
-  setup.include = [lang](const std::string& name, const std::string&) -> std::optional<std::string> {
-    if (name == library_file_name(lang)) return full_library_text(lang);
-    if (name.rfind("/Engine/", 0) == 0) return std::string();
+  setup.include = [lang](const std::string& name, const std::string&) -> std::optional<IncludedFile> {
+    if (name == library_file_name(lang)) return IncludedFile{name, full_library_text(lang)};
+    if (name.rfind("/Engine/", 0) == 0) return IncludedFile{name, ""};
     return std::nullopt;
   };
   return setup;

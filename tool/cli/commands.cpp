@@ -597,6 +597,21 @@ FileVariant fixed_variant(const std::string& label, const FixOutcome& fixed, Lan
   return v;
 }
 
+// The engine headers lwcport's Unreal stub stands for when the engine's own folder is a virtual
+// root: the platform layer (written for DXC and each platform's compiler) and the LWC libraries
+// (the stub carries lwcport's, with the same names). The engine's other headers are read as
+// they are, and a kernel takes from them only what its function needs.
+bool stands_for_engine_header(const std::string& name, const fs::path& resolved, const ProjectConfig& config) {
+  bool engine = name.rfind("/Engine/", 0) == 0;
+  for (const auto& [prefix, folder] : config.virtual_roots)
+    if (prefix == "/Engine/") {
+      std::string rel = resolved.lexically_normal().lexically_relative(folder.lexically_normal()).generic_string();
+      engine |= !rel.empty() && !rel.starts_with("..");
+    }
+  static const std::set<std::string> stubbed = {"Platform.ush", "LargeWorldCoordinates.ush", "DoubleFloat.ush", "LWCOperations.ush"};
+  return engine && (stubbed.count(resolved.filename().string()) || name.rfind("/Engine/Generated/", 0) == 0);
+}
+
 HarnessSetup harness_setup(const InputFile& file, const LoadedFile& f, Lang lang, IncludeSummaries& includes) {
   HarnessSetup setup;
   setup.lang = lang;
@@ -604,15 +619,24 @@ HarnessSetup harness_setup(const InputFile& file, const LoadedFile& f, Lang lang
   setup.unreal = file.display.ends_with(".usf") || file.display.ends_with(".ush");
   setup.stage = lang == Lang::glsl ? stage_from_extension(file.display).value_or(Stage::fragment) : Stage::fragment;
   setup.scene = f.options.scene;
-  fs::path from = file.path;
   std::shared_ptr<const ProjectConfig> config = file.config;
-  setup.include = [&includes, from, config, lang](const std::string& name, const std::string&) -> std::optional<std::string> {
-    if (name == library_file_name(lang)) return full_library_text(lang);
-    if (auto p = includes.resolve(name, from, *config)) {
+  setup.defines = config->defines_for(file.path);
+  // An include is named by its real path (relative to the working folder when under it), so an
+  // include inside it resolves from its own folder and errors show where it really is.
+  setup.include = [&includes, target = file.path, display = file.display, config, lang](
+                      const std::string& name, const std::string& from) -> std::optional<IncludedFile> {
+    if (name == library_file_name(lang)) return IncludedFile{name, full_library_text(lang)};
+    fs::path includer = from.empty() || from == display ? target : fs::path(from);
+    std::optional<fs::path> p = includes.resolve(name, includer, *config);
+    if (p && stands_for_engine_header(name, *p, *config)) return IncludedFile{name, unreal_engine_header_text(true)};
+    if (p) {
       ReadResult r = read_file(*p, config->max_file_bytes);
-      if (r.error.empty()) return r.text;
+      std::error_code ec;
+      fs::path shown = p->lexically_normal();
+      if (fs::path near = fs::proximate(shown, ec); !ec && !near.empty() && *near.begin() != "..") shown = near;
+      if (r.error.empty()) return IncludedFile{shown.string(), std::move(r.text)};
     }
-    if (name.rfind("/Engine/", 0) == 0) return std::string();  // what the Unreal stub declares
+    if (name.rfind("/Engine/", 0) == 0) return IncludedFile{name, unreal_engine_header_text(false)};  // with the stub, the engine
     return std::nullopt;
   };
   return setup;
@@ -671,7 +695,7 @@ struct BuildCheck {
 BuildCheck check_build(const InputFile& file, const LoadedFile& f, Lang lang, const std::string& original,
                        const FixOutcome& fixed, IncludeSummaries& includes) {
   HarnessSetup setup = harness_setup(file, f, lang, includes);
-  FileBuild target{lang, file.display, std::nullopt, false, setup.include};
+  FileBuild target{lang, file.display, std::nullopt, false, setup.include, setup.defines};
   std::string where = "glslang";
   std::optional<UnrealEra> written;
   if (setup.unreal) {

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -87,7 +89,7 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
     if (!find_rule(id)) fail(fmt::format("unknown rule id \"{}\"", id));
   };
   for (const auto& item : j.items()) {
-    static const char* known[] = {"severity", "select", "ignore", "include-dirs", "virtual-roots", "exclude", "world-sources", "max-file-bytes", "max-parse-seconds", "macros", "unreal", "library-definitions", "extensions"};
+    static const char* known[] = {"severity", "select", "ignore", "include-dirs", "virtual-roots", "exclude", "world-sources", "max-file-bytes", "max-parse-seconds", "macros", "unreal", "library-definitions", "extensions", "defines", "overrides"};
     const std::string& key = item.key();
     if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) == std::end(known))
       fail(fmt::format("unknown key \"{}\"", key));
@@ -123,11 +125,13 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
       if (!folder.is_string() || folder.get<std::string>().empty()) fail(fmt::format("virtual root \"{}\" must name a folder", prefix));
       if (prefix.empty() || prefix.front() != '/' || prefix.back() != '/')
         fail(fmt::format("virtual root \"{}\": a prefix starts and ends with '/' (\"/Engine/\")", prefix));
-      for (const auto& part : fs::path(folder.get<std::string>()))
-        if (part == "..")
-          fail(fmt::format("virtual root \"{}\": \"..\" in its folder; name the folder from the project, or use \"include-dirs\"", prefix));
+      // A plugin's engine lives outside the plugin: "../../../Shaders/" is a normal folder here.
       c.virtual_roots.emplace_back(prefix, c.dir / folder.get<std::string>());
-      if (std::string why = machine_specific(folder.get<std::string>()); !why.empty())
+      std::error_code ec;
+      if (!fs::is_directory(c.virtual_roots.back().second, ec))
+        c.warnings.push_back(fmt::format("virtual root \"{}\" is not a folder here ({}); includes under it are not found", prefix,
+                                         c.virtual_roots.back().second.lexically_normal().string()));
+      else if (std::string why = machine_specific(folder.get<std::string>()); !why.empty())
         c.warnings.push_back(fmt::format("virtual root \"{}\" {}", prefix, why));
     }
   }
@@ -189,6 +193,47 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
       c.formats.set(ext, format.get<std::string>(), file.string());
     }
   }
+  // `{"NAME": "value"}`: a value is a string, a number or a boolean (1 or 0), as -D takes it.
+  auto defines = [&](const nlohmann::json& d, const std::string& where) {
+    Defines out;
+    if (!d.is_object()) fail(fmt::format("{} must map macro names to values (\"THREADGROUP_SIZE\": 8)", where));
+    for (auto& [name, value] : d.items()) {
+      bool identifier = !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0]));
+      for (char ch : name) identifier &= std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
+      if (!identifier) fail(fmt::format("{}: \"{}\" is not a macro name", where, name));
+      std::string text = value.is_string() ? value.get<std::string>()
+                         : value.is_boolean() ? (value.get<bool>() ? "1" : "0")
+                         : value.is_number() ? value.dump()
+                                             : "";
+      if (!value.is_string() && !value.is_boolean() && !value.is_number())
+        fail(fmt::format("{}: the value of \"{}\" must be a string, a number or a boolean", where, name));
+      if (text.find('\n') != std::string::npos) fail(fmt::format("{}: the value of \"{}\" holds a line break", where, name));
+      out.emplace_back(name, text);
+    }
+    return out;
+  };
+  if (j.contains("defines")) c.defines = defines(j.at("defines"), "\"defines\"");
+  if (j.contains("overrides")) {
+    const auto& list = j.at("overrides");
+    if (!list.is_array()) fail("\"overrides\" must be an array of {\"files\": [patterns], \"defines\": {...}}");
+    for (size_t i = 0; i < list.size(); ++i) {
+      std::string where = fmt::format("overrides[{}]", i);
+      const auto& o = list[i];
+      if (!o.is_object() || !o.contains("files") || !o.contains("defines")) fail(where + " needs \"files\" and \"defines\"");
+      for (auto& [key, value] : o.items()) {
+        (void)value;
+        if (key != "files" && key != "defines") fail(fmt::format("{}: unknown key \"{}\" (known: files, defines)", where, key));
+      }
+      PathDefines entry;
+      if (!o.at("files").is_array() || o.at("files").empty()) fail(where + ": \"files\" must be a non-empty array of patterns");
+      for (const auto& f : o.at("files")) {
+        if (!f.is_string() || f.get<std::string>().empty()) fail(where + ": \"files\" must be a non-empty array of patterns");
+        entry.files.push_back(f.get<std::string>());
+      }
+      entry.defines = defines(o.at("defines"), where + ".defines");
+      c.overrides.push_back(std::move(entry));
+    }
+  }
   if (j.contains("library-definitions")) {
     const auto& l = j.at("library-definitions");
     if (!l.is_string() || (l != "skip" && l != "lint")) fail("\"library-definitions\" must be \"skip\" (the default) or \"lint\"");
@@ -212,6 +257,20 @@ bool ProjectConfig::excluded(const fs::path& path, bool is_dir) const {
   for (const auto& p : exclude)
     if (gitignore_match(p, rel, is_dir)) return true;
   return false;
+}
+
+ProjectConfig::Defines ProjectConfig::defines_for(const fs::path& file) const {
+  Defines out = defines;
+  if (overrides.empty()) return out;
+  std::string rel = fs::relative(file, dir.empty() ? fs::path(".") : dir).generic_string();
+  for (const PathDefines& o : overrides)
+    if (std::any_of(o.files.begin(), o.files.end(), [&](const std::string& p) { return gitignore_match(p, rel, false); }))
+      for (const auto& [name, value] : o.defines) {
+        auto same = std::find_if(out.begin(), out.end(), [&](const auto& d) { return d.first == name; });
+        if (same != out.end()) same->second = value;  // one definition each: glslang refuses a redefinition
+        else out.emplace_back(name, value);
+      }
+  return out;
 }
 
 std::shared_ptr<const ProjectConfig> ConfigFinder::for_dir(const fs::path& start) {

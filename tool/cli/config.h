@@ -31,10 +31,22 @@ struct ProjectConfig {
   std::optional<UnrealEra> unreal;  // the engine the project builds against (else inferred per file)
   FormatTable formats = FormatTable::defaults();  // which extensions are shaders, and how
   bool lint_library = false;        // report inside the LWC libraries' own definitions
+  // Macros the build defines (Unreal's ModifyCompilationEnvironment, -D flags), for where lwcport
+  // compiles code: verify, fix --verify and --check-build. Name -> value, in order.
+  using Defines = std::vector<std::pair<std::string, std::string>>;
+  Defines defines;
+  // Defines for some files only: .gitignore-style patterns relative to dir; later entries win.
+  struct PathDefines {
+    std::vector<std::string> files;
+    Defines defines;
+  };
+  std::vector<PathDefines> overrides;
 
   // Parses a config's text; throws std::runtime_error naming the file and the problem.
   static ProjectConfig parse(const std::filesystem::path& file, const std::string& text);
   bool excluded(const std::filesystem::path& path, bool is_dir) const;
+  // The defines for one file: `defines`, then each override whose pattern matches it.
+  Defines defines_for(const std::filesystem::path& file) const;
 };
 
 // Finds the nearest .lwcport.json upward from a folder, loading each at most once.

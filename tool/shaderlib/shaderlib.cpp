@@ -205,6 +205,10 @@ std::set<std::string> library_names_used(Lang lang, std::string_view code) {
   return used;
 }
 
+std::string unreal_engine_header_text(bool engine_headers_read) {
+  return (engine_headers_read ? "#define LWCPORT_READS_ENGINE_HEADERS 1\n" : "") + std::string(embedded("unreal_engine_header.ush"));
+}
+
 std::string unreal_environment_text() {
   return full_library_text(Lang::hlsl) + "\n" + std::string(embedded("unreal_stub.ush"));
 }

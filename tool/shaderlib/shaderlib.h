@@ -25,5 +25,9 @@ bool is_written_library(std::string_view text);
 // declarations of the View / PrimaryView / ResolvedView / Primitive members, the LWC tile/offset
 // (FLWC*) types and functions, and the hack markers the rules touch (tool/shaderlib/src/unreal_stub.ush).
 std::string unreal_environment_text();
+// What an `/Engine/...` include that lwcport does not read gives: the engine's everyday macros
+// (loop attributes, stereo declarations), and its small helpers (PI, Square, ConvertFromDeviceZ)
+// unless the engine's own headers are read (unreal_engine_header.ush).
+std::string unreal_engine_header_text(bool engine_headers_read);
 
 }  // namespace lwc

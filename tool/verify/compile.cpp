@@ -4,10 +4,14 @@
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <charconv>
 #include <deque>
+#include <map>
 #include <mutex>
+#include <set>
 #include <sstream>
 
 #include "lang/tokens.h"
@@ -55,14 +59,62 @@ class Includer : public glslang::TShader::Includer {
  private:
   IncludeResult* find(const char* name, const char* from) {
     if (!input_.include) return nullptr;
-    std::optional<std::string> text = input_.include(name, from ? from : "");
-    if (!text) return nullptr;
-    texts_.push_back(std::move(*text));
-    results_.emplace_back(name, texts_.back().data(), texts_.back().size(), nullptr);
+    std::optional<IncludedFile> found = input_.include(name, from ? from : "");
+    if (!found) return nullptr;
+    // glslang ignores `#pragma once` (Unreal's headers rely on it): a second include of such a
+    // file is empty here, else the engine's include graph is read again on every path into it.
+    if (included_once_.count(found->name)) found->text.clear();
+    else if (has_pragma_once(found->text)) included_once_.insert(found->name);
+    // A bound on what one compile reads, so no include graph exhausts memory.
+    if ((bytes_ += found->text.size()) > kMaxIncludedBytes) return nullptr;
+    // glslang's HLSL preprocessor marks no include's start or end in its output: `#line`s around
+    // the text keep every later message (and the harness's cut of the output) on the real file
+    // and line. (Its GLSL preprocessor writes them itself.)
+    std::string includer = from ? from : "";
+    if (input_.lang == Lang::hlsl) {
+      std::string back;
+      if (int line = include_line(includer, name); line > 0) back = fmt::format("\n#line {} \"{}\"\n", line + 1, includer);
+      found->text = fmt::format("#line 1 \"{}\"\n{}{}", found->name, found->text, back);
+    }
+    files_.push_back(std::move(*found));
+    texts_[files_.back().name] = &files_.back().text;
+    results_.emplace_back(files_.back().name, files_.back().text.data(), files_.back().text.size(), nullptr);
     return &results_.back();
   }
+  // The line of the next `#include` of `name` in the file `includer` (glslang asks in order), or 0.
+  int include_line(const std::string& includer, const std::string& name) {
+    const std::string* text = includer == input_.name ? &input_.text : texts_.count(includer) ? texts_[includer] : nullptr;
+    if (!text) return 0;
+    size_t& from = next_include_[includer];
+    for (size_t at = text->find(name, from); at != std::string::npos; at = text->find(name, at + 1)) {
+      size_t begin = text->rfind('\n', at);
+      begin = begin == std::string::npos ? 0 : begin + 1;
+      TokenText head(std::string_view(*text).substr(begin, at - begin));
+      if (head.size() < 3 || head[0] != "#" || head[1] != "include") continue;
+      from = at + name.size();
+      int line = 1 + static_cast<int>(std::count(text->begin(), text->begin() + static_cast<std::ptrdiff_t>(begin), '\n'));
+      return text == &input_.text ? line : line - 1;  // an include's text starts with our `#line 1`
+    }
+    return 0;
+  }
+  static bool has_pragma_once(std::string_view text) {
+    for (size_t at = text.find("once"); at != std::string_view::npos; at = text.find("once", at + 4)) {
+      size_t line = text.rfind('\n', at);
+      line = line == std::string_view::npos ? 0 : line + 1;
+      std::string head;
+      for (char c : text.substr(line, at + 4 - line))
+        if (c != ' ' && c != '\t') head += c;
+      if (head == "#pragmaonce") return true;
+    }
+    return false;
+  }
+  static constexpr size_t kMaxIncludedBytes = 256u << 20;
   const CompileInput& input_;
-  std::deque<std::string> texts_;
+  std::set<std::string> included_once_;
+  std::map<std::string, const std::string*> texts_;  // what each included name read, for include_line
+  std::map<std::string, size_t> next_include_;       // per includer, where the next search starts
+  size_t bytes_ = 0;
+  std::deque<IncludedFile> files_;
   std::deque<IncludeResult> results_;
 };
 
@@ -199,6 +251,12 @@ std::optional<Stage> stage_from_extension(const std::string& path) {
   return std::nullopt;
 }
 
+std::string define_lines(const std::vector<std::pair<std::string, std::string>>& defines) {
+  std::string out;
+  for (const auto& [name, value] : defines) out += "#define " + name + (value.empty() ? "" : " " + value) + "\n";
+  return out;
+}
+
 CompileResult compile_file(const FileBuild& build, const std::string& text) {
   CompileInput in;
   in.lang = build.lang;
@@ -206,12 +264,13 @@ CompileResult compile_file(const FileBuild& build, const std::string& text) {
   in.text = text;
   in.include = build.include;
   in.vulkan = build.vulkan;
+  in.preamble = define_lines(build.defines);
   if (build.lang == Lang::hlsl) {
     in.stage = Stage::fragment;
     in.entry = "lwcport_compile_check";
     in.text += "\nvoid lwcport_compile_check() {}\n";
     if (build.unreal_version)
-      in.preamble = "#define LWCPORT_UE_VERSION " + std::to_string(*build.unreal_version) + "\n" + unreal_environment_text();
+      in.preamble += "#define LWCPORT_UE_VERSION " + std::to_string(*build.unreal_version) + "\n" + unreal_environment_text();
   } else {
     std::optional<Stage> stage = stage_from_extension(build.name);
     in.stage = stage.value_or(Stage::fragment);

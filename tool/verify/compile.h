@@ -19,6 +19,15 @@ struct CompileMessage {
   std::string text;
 };
 
+// An include found: the name messages and nested includes know it by (the real path where there
+// is one, so relative includes inside it resolve from its folder), and its text.
+struct IncludedFile {
+  std::string name;
+  std::string text;
+};
+// Resolves `#include "name"` written in the source named `from`; nullopt when not found.
+using IncludeResolver = std::function<std::optional<IncludedFile>(const std::string& name, const std::string& from)>;
+
 struct CompileInput {
   Lang lang = Lang::hlsl;
   Stage stage = Stage::fragment;
@@ -26,8 +35,7 @@ struct CompileInput {
   std::string text;
   std::string preamble;  // declarations seen before `text` without shifting its line numbers
   std::string entry;   // entry point; HLSL needs one, GLSL uses main
-  // Resolves `#include "name"` from the including source's name; nullopt when not found.
-  std::function<std::optional<std::string>(const std::string& name, const std::string& from)> include;
+  IncludeResolver include;
   bool spirv = false;  // also generate Vulkan SPIR-V (GLSL then needs a Vulkan-legal shader)
   bool debug_lines = false;  // with OpLine source lines in the SPIR-V
   bool vulkan = false; // GLSL for Vulkan (descriptor sets, push constants) rather than OpenGL
@@ -67,8 +75,11 @@ struct FileBuild {
   std::string name;
   std::optional<int> unreal_version;  // Unreal code: the era's stub comes first
   bool vulkan = false;                // GLSL: compile for Vulkan
-  std::function<std::optional<std::string>(const std::string& name, const std::string& from)> include;
+  IncludeResolver include;
+  std::vector<std::pair<std::string, std::string>> defines;  // the build's macros (.lwcport.json)
 };
+// `#define NAME VALUE` lines, for a preamble.
+std::string define_lines(const std::vector<std::pair<std::string, std::string>>& defines);
 CompileResult compile_file(const FileBuild& build, const std::string& text);
 
 }  // namespace lwc

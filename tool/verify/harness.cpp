@@ -31,6 +31,15 @@ namespace lwc {
 
 namespace {
 
+// A float32 HLSL kernel carries the file's own lines (verify/kernel_builder.h): its messages say
+// where the function's code fails when the first names a real source (the file, an include).
+bool kernel_says_where(const HarnessKernel& code, const CompileResult& kernel) {
+  // The first message is the cause; later ones may be glslang recovering.
+  if (!code.real_lines || kernel.messages.empty()) return false;
+  const std::string& first = kernel.messages.front().source;
+  return !first.empty() && first != "lwcport kernel" && first != "lwcport environment";
+}
+
 // Where a float64 reference still computes in float32 (a conversion to float outside the float32
 // transcendental wrappers and the seeds of our double intrinsics: an intrinsic glslang narrows
 // that verify/double_intrinsics does not cover), the first such line of the kernel, quoted; ""
@@ -680,8 +689,13 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     in.name = setup.display;
     in.text = v.text;
     in.include = setup.include;
-    in.preamble = "#define LWC_DF_FUSED_FMA " + fused + "\n";
+    in.preamble = "#define LWC_DF_FUSED_FMA " + fused + "\n" + define_lines(setup.defines);
     if (setup.unreal) in.preamble += fmt::format("#define LWCPORT_UE_VERSION {}\n", v.ue_version) + unreal_environment_text();
+    if (setup.lang == Lang::hlsl) {
+      // Every part of the preprocessed text marked with where it came from (verify/kernel_builder.h).
+      in.preamble = "#line 1 \"lwcport environment\"\n" + in.preamble;
+      in.text = fmt::format("#line 1 \"{}\"\n{}", setup.display, v.text);
+    }
     std::string key = fmt::format("{}{}\n{}", float64 ? 'd' : 'f', v.ue_version, v.text);
     std::shared_ptr<const PreparedVariant> prepared = setup.cache->get(key, [&] {
       PreparedVariant p;
@@ -709,12 +723,15 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
       return k;
     }
     const std::optional<CompileResult>& whole_failed = prepared->whole_failed;
-    auto file_problem = [&]() {
-      for (const CompileMessage& m : whole_failed->messages)
+    // Why a function of a file that does not compile as a whole cannot be built: the errors in what
+    // the function needs (a float32 kernel's lines are the file's), else the file's own.
+    auto file_problem = [&](const CompileResult* kernel = nullptr) {
+      const CompileResult& errors = kernel && kernel_says_where(k.code, *kernel) ? *kernel : *whole_failed;
+      for (const CompileMessage& m : errors.messages)
         if (auto hand = v.hand_fixes.find(m.line); m.source == setup.display && hand != v.hand_fixes.end())
           return fmt::format("incomplete: line {} is in code lwcport could not port (no automatic fix for {} there), and "
-                             "the file does not compile until it is fixed by hand: {}", m.line, hand->second, format_messages(*whole_failed));
-      return "does not compile: " + format_messages(*whole_failed);
+                             "the file does not compile until it is fixed by hand: {}", m.line, hand->second, format_messages(errors));
+      return "does not compile: " + format_messages(errors);
     };
     const std::string& text = prepared->text;
     k.code = build_harness_kernel(setup.lang, text, function, float64);
@@ -733,7 +750,8 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     // Code for GLSL ES stays ES (no `precise` before 3.20, as on the target); compute needs 3.10.
     if (std::string_view es = glsl_es_version(v.text); es == "300" || es == "310" || es == "320") spec.glsl_version = es == "320" ? "320 es" : "310 es";
     k.compiled = compile_kernel(spec);
-    if (!k.compiled.ok) k.problem = whole_failed ? file_problem() : "the harness kernel does not compile: " + format_messages(k.compiled);
+    if (!k.compiled.ok)
+      k.problem = whole_failed ? file_problem(float64 ? nullptr : &k.compiled) : "the harness kernel does not compile: " + format_messages(k.compiled);
     else if (float64) k.problem = float32_in_reference(k.compiled.spirv, kernel_source(spec));
     return k;
   };

@@ -41,7 +41,8 @@ struct HarnessSetup {
   std::string display;   // the file, for messages
   Stage stage = Stage::fragment;
   bool unreal = false;
-  std::function<std::optional<std::string>(const std::string& name, const std::string& from)> include;
+  IncludeResolver include;
+  std::vector<std::pair<std::string, std::string>> defines;  // the build's macros (.lwcport.json)
   SceneNumbers scene;
   int invocations = 65536;  // per dispatch
   TimingPlan timing;        // how the variants are timed against each other

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
+
 #include <functional>
 #include <map>
 #include <set>
@@ -22,6 +24,71 @@ using Structs = std::map<std::string, std::vector<Field>>;
 // Text between top-level items that belongs to no item of its own: white space, and the `;`
 // that ends a struct definition (the grammar leaves it outside the struct's node).
 bool blank(std::string_view s) { return s.find_first_not_of(" \t\r\n;") == std::string_view::npos; }
+
+bool is_line_directive(std::string_view item) {
+  size_t at = item.find_first_not_of(" \t");
+  if (at == std::string_view::npos || item[at] != '#') return false;
+  at = item.find_first_not_of(" \t", at + 1);
+  return at != std::string_view::npos && item.substr(at, 4) == "line";
+}
+
+// The text with each `#line` directive blanked (its line kept, so offsets within lines shift only).
+std::string without_line_directives(std::string text) {
+  for (size_t begin = 0; begin < text.size();) {
+    size_t end = std::min(text.find('\n', begin), text.size());
+    if (is_line_directive(std::string_view(text).substr(begin, end - begin))) text.erase(begin, end - begin), end = begin;
+    begin = end + 1;
+  }
+  return text;
+}
+
+// Where each offset of a preprocessed HLSL text came from, by the `#line` directives the includer
+// writes around every include: the cut-down kernel carries one before each item it keeps, so its
+// messages name the real file and line.
+class LineMap {
+ public:
+  explicit LineMap(std::string_view text) : text_(text) {
+    for (size_t begin = 0; begin < text.size();) {
+      size_t end = std::min(text.find('\n', begin), text.size());
+      std::string_view line = text.substr(begin, end - begin);
+      if (is_line_directive(line)) {
+        // `#line N` or `#line N "file"`
+        std::string_view rest = line.substr(line.find("line") + 4);
+        rest.remove_prefix(std::min(rest.size(), rest.find_first_not_of(" \t")));
+        int number = 0;
+        auto [digits_end, error] = std::from_chars(rest.data(), rest.data() + rest.size(), number);
+        if (error == std::errc()) {
+          rest = rest.substr(static_cast<size_t>(digits_end - rest.data()));
+          size_t open = rest.find('"'), close = rest.rfind('"');
+          std::string file = open != close ? std::string(rest.substr(open + 1, close - open - 1))
+                             : marks_.empty() ? std::string() : marks_.back().file;
+          marks_.push_back({std::min(end + 1, text.size()), number, file});
+        }
+      }
+      begin = end + 1;
+    }
+  }
+  // `#line N "file"` naming where the line holding `offset` came from; "" when nothing says.
+  std::string directive(size_t offset) const {
+    auto after = std::upper_bound(marks_.begin(), marks_.end(), offset, [](size_t o, const Mark& m) { return o < m.after; });
+    if (after == marks_.begin()) return "";
+    const Mark& m = *std::prev(after);
+    size_t line_begin = text_.rfind('\n', offset == 0 ? 0 : offset - 1);
+    line_begin = offset == 0 || line_begin == std::string_view::npos ? 0 : line_begin + 1;
+    long lines = line_begin > m.after ? std::count(text_.begin() + static_cast<long>(m.after), text_.begin() + static_cast<long>(line_begin), '\n') : 0;
+    return fmt::format("#line {} \"{}\"\n", m.line + lines, m.file);
+  }
+  bool empty() const { return marks_.empty(); }
+
+ private:
+  struct Mark {
+    size_t after;  // the offset of the line after the directive
+    int line;
+    std::string file;
+  };
+  std::string_view text_;
+  std::vector<Mark> marks_;
+};
 
 // The fields one declaration in a struct body declares (`float3 a, b[2] : TEXCOORD0`), from the
 // tokens [from, to) of the body; declarators the harness cannot read are left out.
@@ -499,6 +566,29 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
   };
   bool glsl_main = lang == Lang::glsl && function == "main";
 
+  // The struct types the needed code names, and the types their members name in turn: others are
+  // left out, so a header's structs the function never sees (an engine's, a platform's) cannot
+  // keep its kernel from compiling.
+  std::map<std::string, int> struct_nodes;
+  for (int c : top)
+    if (t.is(c, "struct_specifier"))
+      if (int name = t.child_by_field(c, "name"); name >= 0) struct_nodes.emplace(std::string(t.text(name)), c);
+  std::set<std::string> types_named;
+  std::vector<int> to_scan;
+  for (const std::string& f : needed)
+    for (int def : functions[f]) to_scan.push_back(def);
+  for (const Global& g : globals)
+    if (used.count(g.name)) to_scan.push_back(g.node);
+  while (!to_scan.empty()) {
+    int node = to_scan.back();
+    to_scan.pop_back();
+    for_subtree(t, node, [&](int i) {
+      if (!t.is(i, "type_identifier") && !t.is(i, "identifier")) return;
+      auto s = struct_nodes.find(std::string(t.text(i)));
+      if (s != struct_nodes.end() && types_named.insert(s->first).second) to_scan.push_back(s->second);
+    });
+  }
+
   // The declarations: kept functions and types as written, environment globals made private.
   std::string decl;
   std::vector<std::string> textures;  // globals whose accesses become `lwc_texel_NAME`
@@ -592,10 +682,18 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
     (output ? env_outputs : env_inputs).push_back({g.name, g.type + array_suffix(original, g.name)});
     return splice(original, unqualified);
   };
+  // Real lines for a float32 HLSL kernel; a float64 one keeps its own (the SPIR-V's OpLines name
+  // the lines of the kernel's text, where it narrows to float32).
+  LineMap lines(lang == Lang::hlsl && !float64 ? std::string_view(text) : std::string_view());
+  bool dropped_struct = false;  // the item before: its `;` goes with it
   for (size_t i = 0; i < top.size(); ++i) {
     int c = top[i];
     uint32_t gap_begin = i ? t.at(top[i - 1]).end : 0;
+    if (dropped_struct)
+      if (size_t semicolon = text.find(';', gap_begin); semicolon < t.at(c).begin) gap_begin = static_cast<uint32_t>(semicolon + 1);
+    dropped_struct = false;
     std::string gap = text.substr(gap_begin, t.at(c).begin - gap_begin);
+    if (lang == Lang::hlsl) gap = without_line_directives(gap);
     std::string item;
     bool keep = true;
     if (t.is(c, "function_definition")) {
@@ -630,13 +728,35 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
         }
         keep = !item.empty();
       }
+    } else if (t.is(c, "struct_specifier") && t.child_by_field(c, "name") >= 0) {
+      item = slice(text, c);
+      keep = types_named.count(std::string(t.text(t.child_by_field(c, "name")))) > 0;
+      dropped_struct = !keep;
     } else {
       item = slice(text, c);
+      keep = !(lang == Lang::hlsl && is_line_directive(item));  // the kernel writes its own, below
     }
     // Other text before an item (an HLSL attribute such as [numthreads(..)]) goes with it.
+    if (keep && !lines.empty()) {
+      size_t start = t.at(c).begin;  // or the first text of the gap that is not a `#line`
+      std::string_view raw = std::string_view(text).substr(gap_begin, t.at(c).begin - gap_begin);
+      for (size_t line = 0; line < raw.size();) {
+        size_t end = std::min(raw.find('\n', line), raw.size());
+        std::string_view l = raw.substr(line, end - line);
+        if (size_t first = l.find_first_not_of(" \t\r"); first != std::string_view::npos && !is_line_directive(l)) {
+          start = gap_begin + line + first;
+          break;
+        }
+        line = end + 1;
+      }
+      decl += "\n" + lines.directive(start) + without_line_directives(text.substr(start, t.at(c).begin - start)) + item;
+      continue;
+    }
     if (keep || blank(gap)) decl += gap;
     if (keep) decl += item;
   }
+  if (!lines.empty()) decl += "\n#line 1 \"lwcport kernel\"\n";  // the harness's own code after it
+  k.real_lines = !lines.empty();
   if (!k.problem.empty()) return k;
   for (const std::string& name : textures) replace_texture_accesses(lang, decl, name);
 

@@ -36,6 +36,7 @@ struct HarnessKernel {
   std::vector<Leaf> inputs, outputs;
   int in_stride = 0, out_stride = 0;
   std::string problem;          // non-empty: the function cannot be called this way, and why
+  bool real_lines = false;      // `#line`s give the declarations the lines of the file and its includes
 };
 
 // `text` is preprocessed source; `function` the name to call (the first definition of that name;
