@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "verify/compile.h"
+#include "verify/kernel.h"
 #include "verify/kernel_builder.h"
 
 namespace lwc {
@@ -45,6 +47,41 @@ TEST(KernelBuilder, HlslTextureSamplesBecomeOneValuePerInvocation) {
   EXPECT_EQ(k.declarations.find("SampleLevel"), std::string::npos) << k.declarations;
   EXPECT_EQ(k.declarations.find("SamplerState"), std::string::npos) << k.declarations;
   EXPECT_NE(k.declarations.find("lwc_texel_Output = lwc_texel_Albedo * h;"), std::string::npos) << k.declarations;
+}
+
+// Real plugin code hands textures and samplers to helpers and keeps them in structs, splits a
+// buffer over `inout T x[2][4]` parameters, and uses groupshared scratch arrays: each becomes
+// something the kernel can hold, and the kernel compiles, float32 and float64.
+TEST(KernelBuilder, TexturesPassedOnArrayParametersAndGroupsharedScratchBuild) {
+  std::string text =
+      "struct FResources\n{\n\tTexture2D<float4> Irradiance;\n\tSamplerState Bilinear;\n};\n"
+      "Texture2D<float4> ProbeIrradiance;\nSamplerState LinearClampSampler;\n"
+      "groupshared float Scratch[2 * 8];\n"
+      "float4 Fetch(Texture2D<float4> Tex, SamplerState S, float2 UV) { return Tex.SampleLevel(S, UV, 0); }\n"
+      "float4 FetchFrom(FResources R, float2 UV) { return R.Irradiance.SampleLevel(R.Bilinear, UV, 0); }\n"
+      "void Unpack(inout float2 Values[2][4], uint I)\n{\n\tScratch[I] = Values[0][I].x;\n\tValues[1][I] = Values[0][I] * Scratch[I];\n}\n"
+      "float4 Shade(float2 UV, inout float2 Values[2][4])\n{\n\tFResources R;\n\tR.Irradiance = ProbeIrradiance;\n"
+      "\tR.Bilinear = LinearClampSampler;\n\tUnpack(Values, 1u);\n"
+      "\treturn Fetch(ProbeIrradiance, LinearClampSampler, UV) + FetchFrom(R, UV);\n}\n";
+  for (bool float64 : {false, true}) {
+    HarnessKernel k = build_harness_kernel(Lang::hlsl, float64 ? promote_to_double(Lang::hlsl, text) : text, "Shade", float64);
+    ASSERT_EQ(k.problem, "");
+    EXPECT_NE(find_leaf(k.inputs, "lwc_texel_ProbeIrradiance"), nullptr);
+    EXPECT_NE(find_leaf(k.inputs, "lwc_p1[1][3]"), nullptr);   // every element of the array parameter
+    EXPECT_NE(find_leaf(k.outputs, "lwc_p1[1][3]"), nullptr);  // and it is a result (inout)
+    for (const Leaf& l : k.inputs) EXPECT_EQ(l.path.find("Scratch"), std::string::npos) << "groupshared is not an input: " << l.path;
+    EXPECT_EQ(k.declarations.find("SampleLevel"), std::string::npos) << k.declarations;
+    KernelSpec spec;
+    spec.lang = Lang::hlsl;
+    spec.name = "plugin.usf";
+    spec.declarations = k.declarations;
+    spec.body = k.body;
+    spec.in_stride = k.in_stride;
+    spec.out_stride = k.out_stride;
+    spec.float64 = float64;
+    CompileResult compiled = compile_kernel(spec);
+    EXPECT_TRUE(compiled.ok) << format_messages(compiled) << kernel_source(spec);
+  }
 }
 
 TEST(KernelBuilder, GlslSamplersAndImagesBecomeOneValuePerInvocation) {

@@ -598,8 +598,8 @@ FileVariant fixed_variant(const std::string& label, const FixOutcome& fixed, Lan
 }
 
 // The engine headers lwcport's Unreal stub stands for when the engine's own folder is a virtual
-// root: the platform layer (written for DXC and each platform's compiler) and the LWC libraries
-// (the stub carries lwcport's, with the same names). The engine's other headers are read as
+// root: the platform layer (written for DXC and each platform's compiler), the LWC libraries
+// (the stub carries lwcport's, with the same names) and the view the shader compiler generates. The engine's other headers are read as
 // they are, and a kernel takes from them only what its function needs.
 bool stands_for_engine_header(const std::string& name, const fs::path& resolved, const ProjectConfig& config) {
   bool engine = name.rfind("/Engine/", 0) == 0;
@@ -608,7 +608,8 @@ bool stands_for_engine_header(const std::string& name, const fs::path& resolved,
       std::string rel = resolved.lexically_normal().lexically_relative(folder.lexically_normal()).generic_string();
       engine |= !rel.empty() && !rel.starts_with("..");
     }
-  static const std::set<std::string> stubbed = {"Platform.ush", "LargeWorldCoordinates.ush", "DoubleFloat.ush", "LWCOperations.ush"};
+  static const std::set<std::string> stubbed = {"Platform.ush", "LargeWorldCoordinates.ush", "DoubleFloat.ush", "LWCOperations.ush",
+                                                "InstancedStereo.ush", "SceneData.ush"};
   return engine && (stubbed.count(resolved.filename().string()) || name.rfind("/Engine/Generated/", 0) == 0);
 }
 

@@ -192,9 +192,10 @@ bool collect_leaves(const Structs& structs, const std::string& type, const std::
     // A fixed-size array, element by element; a runtime-sized one (`T x[]`) has one element here.
     std::string count = type.substr(bracket + 1, type.find(']') - bracket - 1);
     int n = count.empty() ? 1 : std::atoi(count.c_str());
-    if (n < 1 || n > 64 || type.find('[', bracket + 1) != std::string::npos) return false;
+    if (n < 1 || n > 64) return false;
+    std::string element = type.substr(0, bracket) + type.substr(type.find(']') + 1);  // `T[4]` of `T[2][4]`
     for (int i = 0; i < n; ++i)
-      if (!collect_leaves(structs, type.substr(0, bracket), fmt::format("{}[{}]", path, i), name, semantic, out, offset, depth + 1))
+      if (!collect_leaves(structs, element, fmt::format("{}[{}]", path, i), name, semantic, out, offset, depth + 1))
         return false;
     return true;
   }
@@ -330,7 +331,10 @@ std::string array_suffix(std::string_view declaration, std::string_view name) {
   for (size_t i = 0; i < t.size(); ++i) {
     if (!t.ident(i) || t[i] != name || t[i + 1] != "[") continue;
     if (t[i + 2] == "]") return "[]";
-    if (i + 3 < t.size() && t.tokens[i + 2].kind != Tok::punct && t[i + 3] == "]") return "[" + std::string(t[i + 2]) + "]";
+    std::string suffix;  // every dimension: `[2][4]`
+    for (size_t k = i + 1; k + 2 < t.size() && t[k] == "[" && t.tokens[k + 1].kind != Tok::punct && t[k + 2] == "]"; k += 3)
+      suffix += "[" + std::string(t[k + 1]) + "]";
+    if (!suffix.empty()) return suffix;
   }
   return "";
 }
@@ -371,8 +375,8 @@ std::vector<std::string> split_arguments(const std::string& inside) {
 // Textures and images become one value per invocation, `lwc_texel_NAME`: every sample, load or
 // index of NAME reads it, every store or indexed write sets it (then a result). The harness checks
 // arithmetic, not filtering: the value stands for whatever the texture holds at that pixel.
-void replace_texture_accesses(Lang lang, std::string& text, const std::string& name) {
-  std::string texel = "lwc_texel_" + name;
+// (HLSL: `texel` names the value; a texture passed to a function passes it.)
+void replace_texture_accesses(Lang lang, std::string& text, const std::string& name, const std::string& texel) {
   auto whole = [&](std::string_view) { return texel; };
   constexpr size_t none = std::string_view::npos;
   if (lang == Lang::hlsl) {
@@ -382,6 +386,12 @@ void replace_texture_accesses(Lang lang, std::string& text, const std::string& n
       return t.ident(i) && t[i] == name && t[i + 1] == "." && t.ident(i + 2) && sample && t[i + 3] == "(" ? i + 3 : none;
     }, whole);
     text = replace_bracketed(text, [&](const TokenText& t, size_t i) { return t.ident(i) && t[i] == name && t[i + 1] == "[" ? i + 1 : none; }, whole);
+    if (texel == name) return;
+    TokenText t(text);
+    std::vector<Edit> bare;
+    for (size_t i = 0; i < t.size(); ++i)
+      if (t.ident(i) && t[i] == name && (i == 0 || t[i - 1] != ".")) bare.push_back(t.replace(i, i, texel));
+    text = splice(text, bare);
     return;
   }
   auto image_call = [&](const TokenText& t, size_t i) { return t[i + 1] == "(" && t.ident(i + 2) && t[i + 2] == name && t[i + 3] == ","; };
@@ -392,6 +402,49 @@ void replace_texture_accesses(Lang lang, std::string& text, const std::string& n
     bool read = f.starts_with("texture") || f.starts_with("texelFetch") || f == "imageLoad";
     return t.ident(i) && read && image_call(t, i) ? i + 1 : none;
   }, whole);
+}
+
+// HLSL texture and sampler declarations between the tokens `open` and `close` (a parameter list,
+// a struct body): a texture becomes the value of its texel, a sampler an unused int; `textures`
+// gets the textures' names.
+std::string textures_as_values(const std::string& text, bool float64, size_t open, size_t close, std::vector<std::string>& textures) {
+  TokenText t(text);
+  std::vector<Edit> edits;
+  for (size_t i = open + 1; i < close; ++i) {
+    std::string_view kind = t[i].starts_with("RW") ? t[i].substr(2) : t[i];
+    if (!t.ident(i) || (t[i - 1] != "," && t[i - 1] != "(" && t[i - 1] != "in" && t[i - 1] != ";" && t[i - 1] != "{")) continue;
+    if (kind == "SamplerState" || kind == "SamplerComparisonState") {
+      edits.push_back(t.replace(i, i, "int"));
+    } else if (kind.starts_with("Texture")) {
+      std::string element = float64 ? "double4" : "float4";
+      size_t name_at = i + 1;
+      if (t[i + 1] == "<") {
+        element.clear();
+        for (name_at = i + 2; name_at < close && t[name_at] != ">"; ++name_at) element += t[name_at];
+        ++name_at;
+      }
+      if (name_at < close && t.ident(name_at) && (t[name_at + 1] == "," || t[name_at + 1] == ")" || t[name_at + 1] == ";")) {
+        edits.push_back(t.replace(i, name_at - 1, element));
+        textures.emplace_back(t[name_at]);
+      }
+    }
+  }
+  return splice(text, edits);
+}
+
+// A function's texture and sampler parameters as values: its samples of a texture read the value
+// (the caller passes the value of its own); a struct's members are done the same way, and
+// `Resources.Irradiance.SampleLevel(..)` reads the member.
+std::string texture_parameters_as_values(const std::string& function_text, bool float64) {
+  TokenText t(function_text);
+  size_t open = 0;
+  while (open < t.size() && t[open] != "(") ++open;
+  size_t close = open < t.size() ? t.closing(open) : std::string_view::npos;
+  if (close == std::string_view::npos) return function_text;
+  std::vector<std::string> textures;
+  std::string out = textures_as_values(function_text, float64, open, close, textures);
+  for (const std::string& name : textures) replace_texture_accesses(Lang::hlsl, out, name, name);
+  return out;
 }
 
 // The double twin of a float type (`float3` -> `double3`, `vec3` -> `dvec3`, `mat4x3` ->
@@ -616,7 +669,10 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
         if (writable) env_outputs.push_back({"lwc_texel_" + g.name, type});
         return fmt::format("static {} lwc_texel_{};", type, g.name);
       }
-      if (kind == "SamplerState" || kind == "SamplerComparisonState" || kind.starts_with("sampler")) return "";  // only ever an argument of the samples replaced
+      // A sampler is an argument of the samples replaced, or of a function whose sampler parameter
+      // becomes an unused int (texture_parameters_as_values).
+      if (kind == "SamplerState" || kind == "SamplerComparisonState") return "static const int " + g.name + " = 0;";
+      if (kind.starts_with("sampler")) return "";
       for (std::string_view other : {"Texture", "Sampler", "sampler", "texture", "image", "ByteAddressBuffer", "AppendStructuredBuffer", "ConsumeStructuredBuffer"})
         if (resource.starts_with(other)) {
           k.problem = fmt::format("`{}` is a texture or sampler: not filled by the harness", g.name);
@@ -625,6 +681,13 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
       std::string masked_decl = slice(masked, g.node);
       TokenText m(masked_decl);
       if (m[0] == "static" || m[0] == "const") return masked_decl;
+      // Workgroup scratch memory (the masked `groupshared` sits before the node): the group's,
+      // written before it is read, not an input.
+      size_t line = text.rfind('\n', t.at(g.node).begin);
+      line = line == std::string::npos ? 0 : line + 1;
+      TokenText before(std::string_view(text).substr(line, t.at(g.node).begin - line));
+      for (size_t w = 0; w < before.size(); ++w)
+        if (before[w] == "groupshared") return masked_decl;
       env_inputs.push_back({g.name, g.type + array_suffix(original, g.name)});
       return "static " + masked_decl;
     }
@@ -686,6 +749,7 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
   // the lines of the kernel's text, where it narrows to float32).
   LineMap lines(lang == Lang::hlsl && !float64 ? std::string_view(text) : std::string_view());
   bool dropped_struct = false;  // the item before: its `;` goes with it
+  std::vector<std::string> texture_members;  // of kept structs: each reads its value
   for (size_t i = 0; i < top.size(); ++i) {
     int c = top[i];
     uint32_t gap_begin = i ? t.at(top[i - 1]).end : 0;
@@ -703,6 +767,7 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
       item = slice(text, c);
       if (keep && glsl_main && name == "main")
         item.replace(t.at(id).begin - t.at(c).begin, 4, "lwc_entry");
+      if (keep && lang == Lang::hlsl) item = texture_parameters_as_values(item, float64);
       // Blocks come before the functions that use them: their runtime-sized arrays are known.
       for (const auto& array : runtime_arrays) {
         auto head = [&](const TokenText& t, size_t i) {
@@ -736,6 +801,13 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
       item = slice(text, c);
       keep = !(lang == Lang::hlsl && is_line_directive(item));  // the kernel writes its own, below
     }
+    if (keep && lang == Lang::hlsl && item.starts_with("struct")) {
+      TokenText body(item);
+      size_t open = 0, close = body.size();
+      while (open < body.size() && body[open] != "{") ++open;
+      while (close > open && body[close - 1] != "}") --close;
+      if (close > open + 1) item = textures_as_values(item, float64, open, close - 1, texture_members);
+    }
     // Other text before an item (an HLSL attribute such as [numthreads(..)]) goes with it.
     if (keep && !lines.empty()) {
       size_t start = t.at(c).begin;  // or the first text of the gap that is not a `#line`
@@ -758,7 +830,8 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
   if (!lines.empty()) decl += "\n#line 1 \"lwcport kernel\"\n";  // the harness's own code after it
   k.real_lines = !lines.empty();
   if (!k.problem.empty()) return k;
-  for (const std::string& name : textures) replace_texture_accesses(lang, decl, name);
+  for (const std::string& name : textures) replace_texture_accesses(lang, decl, name, "lwc_texel_" + name);
+  for (const std::string& name : texture_members) replace_texture_accesses(lang, decl, name, name);
 
 
   // GLSL stage built-ins become private globals.
@@ -842,7 +915,9 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
       bool out = direction == "out" || direction == "inout";
       bool in = direction != "out";
       std::string local = fmt::format("lwc_p{}", index++);
-      body += fmt::format("\t{} {};\n", ptype, local);
+      std::string dimensions = array_suffix(original, pname);  // `inout T x[2][4]`
+      body += fmt::format("\t{} {}{};\n", ptype, local, dimensions);
+      ptype += dimensions;
       if (in) add_inputs(ptype, local, pname);
       if (out) add_outputs(ptype, local, pname);
       args.push_back(local);
