@@ -84,6 +84,16 @@ TEST(KernelBuilder, TexturesPassedOnArrayParametersAndGroupsharedScratchBuild) {
   }
 }
 
+// A finding inside an entry point written through an engine macro belongs to the function the
+// macro defines, not to the macro (the report once named `RACING_ENTRY_RAYGEN`).
+TEST(KernelBuilder, AnEntryPointWrittenThroughAMacroIsNamedByItsArgument) {
+  std::string text = "RaytracingAccelerationStructure TLAS;\nRAY_TRACING_ENTRY_RAYGEN(ProbeUpdateRGS)\n{\n\tfloat3 P = 1;\n}\n"
+                     "float3 Plain(float3 X) { return X; }\n";
+  std::vector<std::string> names = enclosing_functions(Lang::hlsl, text, {static_cast<uint32_t>(text.find("float3 P")),
+                                                                         static_cast<uint32_t>(text.find("return X"))});
+  EXPECT_EQ(names, (std::vector<std::string>{"ProbeUpdateRGS", "Plain"}));
+}
+
 TEST(KernelBuilder, GlslSamplersAndImagesBecomeOneValuePerInvocation) {
   std::string text = "#version 450\nuniform sampler2D heightMap;\nlayout(rgba32f) uniform image2D outImage;\n"
                      "float store(vec2 uv) {\n  vec4 h = texture(heightMap, uv * vec2(2.0, 1.0));\n"

@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "lang/mask.h"
@@ -472,6 +473,23 @@ std::string without_version(std::string_view text) {
 
 }  // namespace
 
+// An entry point written through an engine macro, `RAY_TRACING_ENTRY_RAYGEN(Name) { .. }`: the
+// function is `Name` once the macro is expanded. (tree-sitter-hlsl may split the macro's name
+// into a type and a declarator, `RAY_` + `TRACING_ENTRY_RAYGEN`: both halves are read.)
+std::optional<std::string> entry_macro_function(const SyntaxTree& t, int definition, int id) {
+  uint32_t begin = t.at(id).begin;
+  if (int type = t.child_by_field(definition, "type"); type >= 0 && t.at(type).end == begin) begin = t.at(type).begin;
+  std::string_view macro = std::string_view(t.source->text()).substr(begin, t.at(id).end - begin);
+  bool upper = macro.size() > 2;
+  for (char ch : macro) upper &= (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '_';
+  int declarator = t.child_by_field(definition, "declarator");
+  int params = declarator >= 0 ? t.child_by_field(declarator, "parameters") : -1;
+  if (!upper || params < 0) return std::nullopt;
+  TokenText inside(t.text(params));
+  if (inside.size() == 3 && inside.ident(1)) return std::string(inside[1]);
+  return std::nullopt;
+}
+
 std::vector<std::string> enclosing_functions(Lang lang, const std::string& text, const std::vector<uint32_t>& offsets) {
   if (offsets.empty()) return {};  // no parse: most files of a tree have no finding
   Source source("file", text);
@@ -487,7 +505,7 @@ std::vector<std::string> enclosing_functions(Lang lang, const std::string& text,
       }
       if (t.is(c, "function_definition")) {
         int id = declared_identifier(t, t.child_by_field(c, "declarator"));
-        if (id >= 0) name = t.text(id);
+        if (id >= 0) name = entry_macro_function(t, c, id).value_or(std::string(t.text(id)));
       }
       c = t.at(c).first_child;
     }
