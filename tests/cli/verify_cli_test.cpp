@@ -136,6 +136,19 @@ TEST(VerifyCli, APluginWithItsDefinesAndPluginRootIsVerifiedWithRealLines) {
   EXPECT_NE(bad.out.find("\"defines\": \"2FAST\" is not a macro name"), std::string::npos) << bad.out;
 }
 
+// A function's result is judged by what the world-space model says it returns, not by its name:
+// `ToTranslatedWorld` returns a translated-world position, so it is judged in centimetres (it was
+// judged in float32 ULPs, and its correct rewrite refuted).
+TEST(VerifyCli, AResultIsJudgedByTheKindItHasNotByItsName) {
+  test::Run r = test::run(test::binary() + " verify " + test::source_dir() + "/corpus/ue5.0/ViewTileOffset.usf --fail-on none 2>&1");
+  size_t line = r.out.find("ViewTileOffset.usf: ToTranslatedWorld: ");
+  ASSERT_NE(line, std::string::npos) << r.out;
+  std::string verdict = r.out.substr(line, r.out.find('\n', line) - line);
+  EXPECT_NE(verdict.find("original (float32) fail ("), std::string::npos) << verdict;
+  EXPECT_NE(verdict.find("; fixed pass ("), std::string::npos) << verdict;
+  EXPECT_EQ(verdict.find("ULPs"), std::string::npos) << verdict;
+}
+
 // A struct of 2,000 members once overflowed the stack (the verifier read text with std::regex,
 // which recursed per matched character) and killed the run; now it is verified like any other file.
 // (The function does not read the struct: filling 2,000 values per invocation takes minutes on the

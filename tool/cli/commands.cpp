@@ -536,9 +536,15 @@ bool start_verifier(const Options& o, Verifier& v, std::ostream& err, unsigned c
 
 // The functions that hold the file's findings, each once, in order: what verification runs.
 // A finding outside any function (a uniform, a stage input) counts in every function that uses it.
-std::vector<std::string> functions_with_findings(const Source& source, const AnalyzeOptions& options, Lang lang) {
+// `return_kinds`, when given, gets what the world-space model says each function of the file returns.
+std::vector<std::string> functions_with_findings(const Source& source, const AnalyzeOptions& options, Lang lang,
+                                                 std::map<std::string, Kind>* return_kinds = nullptr) {
   const std::string& text = source.text();
-  std::vector<Finding> findings = analyze(source, options);
+  std::optional<FileSummary> summary;
+  AnalyzeOptions with_summary = options;
+  if (return_kinds) with_summary.summary_for_includers = &summary;
+  std::vector<Finding> findings = analyze(source, with_summary);
+  if (return_kinds && summary) *return_kinds = summary->function_returns;
   std::vector<uint32_t> offsets;
   for (const Finding& finding : findings) offsets.push_back(finding.span.begin);
   std::vector<std::string> found = enclosing_functions(lang, text, offsets);
@@ -648,11 +654,13 @@ HarnessSetup harness_setup(const InputFile& file, const LoadedFile& f, Lang lang
 std::string verify_fix(Verifier& verifier, const InputFile& file, const LoadedFile& f, Lang lang, const FixOutcome& fixed,
                        IncludeSummaries& includes, std::vector<std::string>& verified) {
   const Source& source = *f.source;
-  std::vector<std::string> names = functions_with_findings(source, f.options, lang);
+  std::map<std::string, Kind> return_kinds;
+  std::vector<std::string> names = functions_with_findings(source, f.options, lang, &return_kinds);
   for (const std::string& name : functions_a_fix_changes(lang, source.text(), fixed.text))
     if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
   if (names.empty()) return "no function of the file holds a finding or is changed by the fix, so there is nothing to run";
   HarnessSetup setup = harness_setup(file, f, lang, includes);
+  setup.return_kinds = std::move(return_kinds);
   std::vector<FileVariant> variants = {{"original (float32)", source.text(), unreal_era(source.text()), {}}, fixed_variant("fixed", fixed, lang)};
   for (const std::string& name : names) {
     FunctionResult r = on_big_stack([&] { return verify_function(*verifier.device, verifier.probes, setup, name, variants); });
@@ -1072,7 +1080,8 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
     if (!lang) continue;
     if (with_code.size() <= file.argument) with_code.resize(file.argument + 1);
     ++with_code[file.argument];
-    std::vector<std::string> names = functions_with_findings(source, f.options, *lang);
+    std::map<std::string, Kind> return_kinds;
+    std::vector<std::string> names = functions_with_findings(source, f.options, *lang, &return_kinds);
     std::vector<FileVariant> variants = {{"original (float32)", source.text(), unreal_era(source.text()), {}}};
     for (auto [strategy, label] : {std::pair{Strategy::translated, "translated world"}, std::pair{Strategy::df, "DoubleFloat"}}) {
       AnalyzeOptions a = f.options;
@@ -1093,6 +1102,7 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
                             variants[i].hand_fixes, false});
     total += names.size();
     work.push_back({&file, harness_setup(file, f, *lang, includes), std::move(names), std::move(variants)});
+    work.back().setup.return_kinds = std::move(return_kinds);
   }
   // Functions run side by side, one per driver process; results keep their order. Progress on a
   // terminal (standard error), one line rewritten in place; nothing when redirected.

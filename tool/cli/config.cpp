@@ -265,10 +265,10 @@ ProjectConfig::Defines ProjectConfig::defines_for(const fs::path& file) const {
   std::string rel = fs::relative(file, dir.empty() ? fs::path(".") : dir).generic_string();
   for (const PathDefines& o : overrides)
     if (std::any_of(o.files.begin(), o.files.end(), [&](const std::string& p) { return gitignore_match(p, rel, false); }))
-      for (const auto& [name, value] : o.defines) {
-        auto same = std::find_if(out.begin(), out.end(), [&](const auto& d) { return d.first == name; });
-        if (same != out.end()) same->second = value;  // one definition each: glslang refuses a redefinition
-        else out.emplace_back(name, value);
+      for (const auto& define : o.defines) {
+        auto same = std::find_if(out.begin(), out.end(), [&](const auto& d) { return d.first == define.first; });
+        if (same != out.end()) same->second = define.second;  // one definition each: glslang refuses a redefinition
+        else out.push_back(define);
       }
   return out;
 }

@@ -392,6 +392,32 @@ std::pair<std::string, Half> split_half(const std::string& name, Encoding encodi
   return {name, Half::none};
 }
 
+// The same tokens, whatever the layout: a fix that only removes a comment line moves the
+// `#line`s and blank lines of the code after it, not the code.
+bool same_code(std::string_view a, std::string_view b) {
+  TokenText ta(a), tb(b);
+  auto next = [](const TokenText& t, size_t i) {
+    while (i < t.size() && t[i].starts_with("#line")) ++i;
+    return i;
+  };
+  size_t i = next(ta, 0), j = next(tb, 0);
+  for (; i < ta.size() && j < tb.size(); i = next(ta, i + 1), j = next(tb, j + 1))
+    if (ta[i] != tb[j]) return false;
+  return i == ta.size() && j == tb.size();
+}
+
+// The role a world-space kind gives a result, where it says more than a name: a position (a
+// function called `ShadowRayStart` returns a translated position). A `direction` may be a
+// difference of positions, still in world units: there the name decides.
+std::optional<Role> role_of_kind(Kind kind) {
+  switch (kind) {
+    case Kind::absolute: return Role::world_position;
+    case Kind::translated: return Role::translated_position;
+    case Kind::camera_offset: return Role::pre_view_translation;
+    default: return std::nullopt;
+  }
+}
+
 bool world_units(Role r) {
   return r == Role::camera || r == Role::translated_camera || r == Role::pre_view_translation || r == Role::world_position ||
          r == Role::translated_position || r == Role::object_origin || r == Role::local_position;
@@ -949,6 +975,8 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
       bool ref_translated;
       frame_free(ref_leaf.path, ref_translated);
       Role role = role_of(ref_leaf.name == "return" ? function : ref_leaf.name, ref_leaf.components);
+      if (auto kind = setup.return_kinds.find(function); ref_leaf.name == "return" && kind != setup.return_kinds.end())
+        role = role_of_kind(kind->second).value_or(role);
       bool clip = is_clip(ref_leaf);
       bool world = !clip && (world_units(role) || translated != ref_translated);
       bool integer = ref_leaf.integer || leaf.integer;
@@ -1011,7 +1039,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     }
     // A rewrite that leaves this function and everything it uses as they were is not a rewrite
     // of it: neither passed nor refuted, whatever the original does.
-    if (original_kernel && k.code.declarations == original_kernel->code.declarations && k.code.body == original_kernel->code.body) {
+    if (original_kernel && same_code(k.code.declarations, original_kernel->code.declarations) && k.code.body == original_kernel->code.body) {
       vr.status = "unchanged: the fix leaves this function and everything it uses as in the original";
       result.variants.push_back(vr);
       continue;

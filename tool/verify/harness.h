@@ -13,6 +13,7 @@
 #include "lang/syntax.h"
 #include "verify/compile.h"
 #include "verify/vulkan.h"
+#include "world/model.h"
 
 namespace lwc {
 
@@ -43,6 +44,9 @@ struct HarnessSetup {
   bool unreal = false;
   IncludeResolver include;
   std::vector<std::pair<std::string, std::string>> defines;  // the build's macros (.lwcport.json)
+  // What each function returns, by the world-space model (lint's): a position is judged in world
+  // units whatever the function is called; otherwise its name decides.
+  std::map<std::string, Kind> return_kinds;
   SceneNumbers scene;
   int invocations = 65536;  // per dispatch
   TimingPlan timing;        // how the variants are timed against each other
