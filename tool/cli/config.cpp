@@ -201,12 +201,9 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
       bool identifier = !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0]));
       for (char ch : name) identifier &= std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
       if (!identifier) fail(fmt::format("{}: \"{}\" is not a macro name", where, name));
-      std::string text = value.is_string() ? value.get<std::string>()
-                         : value.is_boolean() ? (value.get<bool>() ? "1" : "0")
-                         : value.is_number() ? value.dump()
-                                             : "";
       if (!value.is_string() && !value.is_boolean() && !value.is_number())
         fail(fmt::format("{}: the value of \"{}\" must be a string, a number or a boolean", where, name));
+      std::string text = value.is_string() ? value.get<std::string>() : value.is_boolean() ? (value.get<bool>() ? "1" : "0") : value.dump();
       if (text.find('\n') != std::string::npos) fail(fmt::format("{}: the value of \"{}\" holds a line break", where, name));
       out.emplace_back(name, text);
     }

@@ -24,7 +24,7 @@ std::string kernel_source(const KernelSpec& spec) {
 
 CompileResult compile_kernel(const KernelSpec& spec, const std::vector<std::pair<std::string, std::string>>& defines) {
   CompileInput in;
-  for (const auto& [name, value] : defines) in.preamble += "#define " + name + " " + value + "\n";
+  in.preamble = define_lines(defines);
   in.lang = spec.lang;
   in.stage = Stage::compute;
   in.name = spec.name;

@@ -471,8 +471,6 @@ std::string without_version(std::string_view text) {
   return splice(text, edits);
 }
 
-}  // namespace
-
 // An entry point written through an engine macro, `RAY_TRACING_ENTRY_RAYGEN(Name) { .. }`: the
 // function is `Name` once the macro is expanded. (tree-sitter-hlsl may split the macro's name
 // into a type and a declarator, `RAY_` + `TRACING_ENTRY_RAYGEN`: both halves are read.)
@@ -489,6 +487,8 @@ std::optional<std::string> entry_macro_function(const SyntaxTree& t, int definit
   if (inside.size() == 3 && inside.ident(1)) return std::string(inside[1]);
   return std::nullopt;
 }
+
+}  // namespace
 
 std::vector<std::string> enclosing_functions(Lang lang, const std::string& text, const std::vector<uint32_t>& offsets) {
   if (offsets.empty()) return {};  // no parse: most files of a tree have no finding
