@@ -33,8 +33,11 @@ while proc.poll() is None:
         try:
             with open(f"/proc/{pid}/stat") as f:
                 fields = f.read().rsplit(")", 1)[1].split()
-            with open(f"/proc/{pid}/status") as f:
-                rss = next(int(l.split()[1]) for l in f if l.startswith("VmRSS")) // 1024
+            # PSS: pages the driver processes share with the host (forked from it) and with each
+            # other (the driver's libraries) are counted once, split between them; RSS would
+            # count them in every process.
+            with open(f"/proc/{pid}/smaps_rollup") as f:
+                rss = next(int(l.split()[1]) for l in f if l.startswith("Pss:")) // 1024
         except (OSError, StopIteration):
             continue
         cpu[pid] = ((int(fields[11]) + int(fields[12])) / tick, pid == proc.pid)
@@ -66,7 +69,7 @@ for key, label in (("compileSeconds", "glslang (preprocess, compile check, kerne
                    ("pipelineSeconds", "pipelines, JIT and the correctness dispatches"),
                    ("dispatchSeconds", "timed rounds (driver CPU time)")):
     print(f"| {label} | {t[key]:.1f} s |")
-print(f"| peak memory | {peak_total} MB all processes, {peak_one} MB the largest |")
+print(f"| peak memory (PSS) | {peak_total} MB all processes, {peak_one} MB the largest |")
 if ratios:
     geo = math.exp(sum(math.log(x) for x in ratios) / len(ratios))
     print(f"| rewrite / original run time, {len(ratios)} measured rewrites | geometric mean {geo:.2f}, "

@@ -48,7 +48,7 @@ struct HarnessSetup {
   // units whatever the function is called; otherwise its name decides.
   std::map<std::string, Kind> return_kinds;
   SceneNumbers scene;
-  int invocations = 65536;  // per dispatch
+  int invocations = 16384;  // per dispatch
   TimingPlan timing;        // how the variants are timed against each other
   std::shared_ptr<VariantCache> cache = make_variant_cache();
 };

@@ -183,12 +183,15 @@ std::vector<uint32_t> as_words(const std::vector<uint8_t>& bytes) {
 }  // namespace
 
 std::unique_ptr<WorkerDevice> WorkerDevice::start(std::string& error, double timeout_seconds) {
-  // Every kernel moves buffers of tens of MB (65,536 records) through both processes. By default
-  // glibc maps each such block afresh and unmaps it on free, so every kernel faulted in new zeroed
-  // pages: most of verify's time was the kernel's page-fault path. Keep freed blocks for reuse
-  // (set before the fork, so the driver process inherits it).
+  // Every kernel moves buffers of MBs (16,384 records) through both processes. By default glibc
+  // maps each such block afresh and unmaps it on free, so every kernel faulted in new zeroed
+  // pages: most of verify's time was the kernel's page-fault path. Keep freed blocks for reuse,
+  // in one arena: with one per thread, each verifying thread kept its own high-water mark (the
+  // host's peak 130 MB -> 92 MB on the corpus, no slower). Set before the fork, so the driver
+  // process inherits it.
   mallopt(M_MMAP_THRESHOLD, 1 << 30);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
+  mallopt(M_ARENA_MAX, 1);
   std::unique_ptr<WorkerDevice> device(new WorkerDevice(timeout_seconds));
   error = device->spawn();
   if (!error.empty()) return nullptr;
