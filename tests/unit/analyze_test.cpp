@@ -43,6 +43,29 @@ float3 ToView(float3 WorldPos)
 }
 )";
 
+// lwc-missing-precise tells verify which operation an error-free transformation computes, so the
+// harness can judge it against the exact value; a high/low difference is not error-free.
+TEST(Facts, AnErrorFreeTransformationNamesItsOperation) {
+  std::string code = test::read(test::source_dir() + "/corpus/ue5.4/DoubleFloatHelpers.ush") +
+                     "float2 Product(float A, float B)\n{\n\tfloat P = A * B;\n\tfloat E = fma(A, B, -P);\n\treturn float2(P, E);\n}\n"
+                     "float2 Fast(float A, float B)\n{\n\tfloat S = A + B;\n\tfloat E = B - (S - A);\n\treturn float2(S, E);\n}\n"
+                     "float Diff(float aHigh, float aLow, float bHigh, float bLow)\n{\n\tfloat H = aHigh - bHigh;\n"
+                     "\tfloat L = aLow - bLow;\n\treturn H + L;\n}\n";
+  AnalyzeOptions options;
+  options.lang = Lang::hlsl;
+  std::map<std::string, std::string> operations;  // the finding's line -> operation ("" for none)
+  Source source("helpers.ush", code);
+  for (const Finding& f : analyze(source, options))
+    if (f.rule == "lwc-missing-precise")
+      operations[source.text().substr(f.span.begin, f.span.end - f.span.begin)] = f.facts.count("error-free") ? f.facts.at("error-free") : "";
+  EXPECT_EQ(operations["(A - (S - V)) + (B - V)"], "sum");
+  EXPECT_EQ(operations["A - Hi"], "split");
+  EXPECT_EQ(operations["fma(A, B, -P)"], "product");
+  EXPECT_EQ(operations["B - (S - A)"], "fast-sum");
+  EXPECT_EQ(operations["H + L"], "");
+  EXPECT_EQ(operations.size(), 5u);
+}
+
 TEST(Variants, FindingsInEveryArmAreReportedOnce) {
   auto findings = test::lint_text(kArms, Lang::hlsl, "lwc-primary-view");
   ASSERT_EQ(count(findings, "lwc-primary-view"), 3u);

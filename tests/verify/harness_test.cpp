@@ -2,6 +2,8 @@
 // measured against the float64 reference (and against it on the inputs they inherit), edge cases.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -122,6 +124,46 @@ TEST(HarnessOnLavapipe, HidingANaNFailsAndSharingTheOriginalsEdgeBehaviourDoesNo
   EXPECT_EQ(r.variants[2].status, "fail");
   EXPECT_NE(r.variants[2].worst.find("case 'NaN input (local position)'"), std::string::npos) << r.variants[2].worst;
   EXPECT_NE(r.variants[2].worst.find("finite where the reference is not"), std::string::npos) << r.variants[2].worst;
+}
+
+// An error-free transformation's (high, low) result has no float64 reference (promoted, its low
+// part is 0): it is judged by its defining property against the exact value on the CPU. Lavapipe
+// folds an unprotected TwoSum's error term (fails); with `precise` it is exact (passes); a split
+// that keeps its high part whole is exact but not a split; a product that halves its error term
+// is off by a quarter ULP, which a float64 promotion could never see.
+TEST(HarnessOnLavapipe, AnErrorFreeTransformationIsJudgedByItsDefiningPropertyAgainstAnExactValue) {
+  Driver d = start_driver();
+  ASSERT_NE(d.device, nullptr);
+  auto two_sum = [](const char* q) {
+    return fmt::format("float2 TwoSum(float A, float B)\n{{\n\t{0}float S = A + B;\n\t{0}float V = S - A;\n"
+                       "\t{0}float E = (A - (S - V)) + (B - V);\n\treturn float2(S, E);\n}}\n", q);
+  };
+  HarnessSetup setup = small_setup(Lang::hlsl, "eft.usf");
+  setup.facts.error_free = {{"TwoSum", "sum"}, {"Split", "split"}, {"Product", "product"}};
+  FunctionResult sum = verify_function(*d.device, d.probes, setup, "TwoSum", {{"original (float32)", two_sum("")}, {"fixed", two_sum("precise ")}});
+  EXPECT_NE(sum.reference.find("exact"), std::string::npos) << sum.reference;
+  ASSERT_EQ(sum.variants.size(), 2u);
+  EXPECT_EQ(sum.variants[0].status, "fail");
+  EXPECT_NE(sum.variants[0].worst.find("where the exact value is"), std::string::npos) << sum.variants[0].worst;
+  EXPECT_EQ(sum.variants[1].status, "pass") << sum.variants[1].worst;
+  EXPECT_EQ(sum.variants[1].max_ulps, 0);
+
+  std::string split = "float2 Split(float A)\n{\n\tprecise float T = 4097.0f * A;\n\tprecise float Hi = T - (T - A);\n"
+                      "\tprecise float Lo = A - Hi;\n\treturn float2(Hi, Lo);\n}\n";
+  std::string whole = "float2 Split(float A)\n{\n\treturn float2(A, 0.0f);\n}\n";
+  FunctionResult halves = verify_function(*d.device, d.probes, setup, "Split", {{"original (float32)", split}, {"whole", whole}});
+  ASSERT_EQ(halves.variants.size(), 2u);
+  EXPECT_EQ(halves.variants[0].status, "pass") << halves.variants[0].worst;
+  EXPECT_EQ(halves.variants[1].status, "fail");
+  EXPECT_NE(halves.variants[1].worst.find("where a split's hold at most 12"), std::string::npos) << halves.variants[1].worst;
+
+  std::string product = "float2 Product(float A, float B)\n{\n\tprecise float P = A * B;\n\tprecise float E = fma(A, B, -P);\n"
+                        "\treturn float2(P, E * 0.5f);\n}\n";
+  FunctionResult halved = verify_function(*d.device, d.probes, setup, "Product", {{"original (float32)", product}});
+  ASSERT_EQ(halved.variants.size(), 1u);
+  EXPECT_EQ(halved.variants[0].status, "fail");
+  EXPECT_GT(halved.variants[0].max_ulps, 0);
+  EXPECT_NE(halved.variants[0].worst.find("ULPs off"), std::string::npos) << halved.variants[0].worst;
 }
 
 // A bool result is a decision: differences are counted, not measured in ULPs.

@@ -536,18 +536,22 @@ bool start_verifier(const Options& o, Verifier& v, std::ostream& err, unsigned c
 
 // The functions that hold the file's findings, each once, in order: what verification runs.
 // A finding outside any function (a uniform, a stage input) counts in every function that uses it.
-// `return_kinds`, when given, gets what the world-space model says each function of the file returns.
+// `facts`, when given, gets what the analysis says of the file's functions (harness.h).
 std::vector<std::string> functions_with_findings(const Source& source, const AnalyzeOptions& options, Lang lang,
-                                                 std::map<std::string, Kind>* return_kinds = nullptr) {
+                                                 FunctionFacts* facts = nullptr) {
   const std::string& text = source.text();
   std::optional<FileSummary> summary;
   AnalyzeOptions with_summary = options;
-  if (return_kinds) with_summary.summary_for_includers = &summary;
+  if (facts) with_summary.summary_for_includers = &summary;
   std::vector<Finding> findings = analyze(source, with_summary);
-  if (return_kinds && summary) *return_kinds = summary->function_returns;
+  if (facts && summary) facts->returns = summary->function_returns;
   std::vector<uint32_t> offsets;
   for (const Finding& finding : findings) offsets.push_back(finding.span.begin);
   std::vector<std::string> found = enclosing_functions(lang, text, offsets);
+  if (facts)
+    for (size_t i = 0; i < findings.size(); ++i)
+      if (auto op = findings[i].facts.find("error-free"); op != findings[i].facts.end() && !found[i].empty())
+        facts->error_free[found[i]] = op->second;
   std::set<std::string_view> global_names;  // what findings outside any function name
   for (size_t i = 0; i < findings.size(); ++i)
     if (found[i].empty()) global_names.insert(std::string_view(text).substr(findings[i].span.begin, findings[i].span.end - findings[i].span.begin));
@@ -654,13 +658,13 @@ HarnessSetup harness_setup(const InputFile& file, const LoadedFile& f, Lang lang
 std::string verify_fix(Verifier& verifier, const InputFile& file, const LoadedFile& f, Lang lang, const FixOutcome& fixed,
                        IncludeSummaries& includes, std::vector<std::string>& verified) {
   const Source& source = *f.source;
-  std::map<std::string, Kind> return_kinds;
-  std::vector<std::string> names = functions_with_findings(source, f.options, lang, &return_kinds);
+  FunctionFacts facts;
+  std::vector<std::string> names = functions_with_findings(source, f.options, lang, &facts);
   for (const std::string& name : functions_a_fix_changes(lang, source.text(), fixed.text))
     if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
   if (names.empty()) return "no function of the file holds a finding or is changed by the fix, so there is nothing to run";
   HarnessSetup setup = harness_setup(file, f, lang, includes);
-  setup.return_kinds = std::move(return_kinds);
+  setup.facts = std::move(facts);
   std::vector<FileVariant> variants = {{"original (float32)", source.text(), unreal_era(source.text()), {}}, fixed_variant("fixed", fixed, lang)};
   for (const std::string& name : names) {
     FunctionResult r = on_big_stack([&] { return verify_function(*verifier.device, verifier.probes, setup, name, variants); });
@@ -678,7 +682,14 @@ std::string verify_fix(Verifier& verifier, const InputFile& file, const LoadedFi
       return fmt::format("the rewrite of `{}` did not pass verification on {}: {}{}", name, verifier.device->name(), v.status,
                          v.worst.empty() ? "" : "; worst " + v.worst);
     std::string timing = fmt::format("{:.3g} ns per invocation, the original {:.3g}", v.ns_per_invocation, original.ns_per_invocation);
-    if (v.passed())
+    if (v.passed() && r.reference.starts_with("exact"))
+      verified.push_back(fmt::format("verified on {}: the rewrite of `{}` is error-free on every input: high + low is the exact {} "
+                                     "and the pair canonical ({})", verifier.device->name(), name,
+                                     setup.facts.error_free.at(name) == "product" ? "product" : setup.facts.error_free.at(name) == "split" ? "value" : "sum", timing));
+    else if (v.passed() && !v.world_outputs)
+      verified.push_back(fmt::format("verified on {}: the rewrite of `{}` is within 16 float32 ULPs of the float64 reference (max "
+                                     "{:.3g} ULPs; {})", verifier.device->name(), name, v.max_ulps, timing));
+    else if (v.passed())
       verified.push_back(fmt::format("verified on {}: the rewrite of `{}` is within {} of the float64 reference (max {:.3g} cm; {})",
                                      verifier.device->name(), name, format_distance(setup.scene.precision), v.max_error, timing));
     else
@@ -1080,8 +1091,8 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
     if (!lang) continue;
     if (with_code.size() <= file.argument) with_code.resize(file.argument + 1);
     ++with_code[file.argument];
-    std::map<std::string, Kind> return_kinds;
-    std::vector<std::string> names = functions_with_findings(source, f.options, *lang, &return_kinds);
+    FunctionFacts facts;
+    std::vector<std::string> names = functions_with_findings(source, f.options, *lang, &facts);
     std::vector<FileVariant> variants = {{"original (float32)", source.text(), unreal_era(source.text()), {}}};
     for (auto [strategy, label] : {std::pair{Strategy::translated, "translated world"}, std::pair{Strategy::df, "DoubleFloat"}}) {
       AnalyzeOptions a = f.options;
@@ -1102,7 +1113,7 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
                             variants[i].hand_fixes, false});
     total += names.size();
     work.push_back({&file, harness_setup(file, f, *lang, includes), std::move(names), std::move(variants)});
-    work.back().setup.return_kinds = std::move(return_kinds);
+    work.back().setup.facts = std::move(facts);
   }
   // Functions run side by side, one per driver process; results keep their order. Progress on a
   // terminal (standard error), one line rewritten in place; nothing when redirected.

@@ -1,4 +1,5 @@
 #pragma once
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -48,6 +49,9 @@ struct Finding {
   std::vector<std::string> withheld;  // rewrites considered and not offered, each "strategy: why"
   std::string decision;    // the scene planner's choice and its numbers, where the rule is scene-dependent
   bool not_needed = false;  // the scene does not need this fixed: never fails a run
+  // What the check recognised, for the other faces: lwc-missing-precise's "error-free" is the
+  // transformation's operation ("sum", "fast-sum", "product", "split"), which verify judges by.
+  std::map<std::string, std::string> facts;
 };
 
 // Sorted by span, then rule id: the order every output uses.

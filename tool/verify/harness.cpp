@@ -21,8 +21,10 @@
 #include "core/source.h"
 #include "lang/tokens.h"
 #include "shaderlib/shaderlib.h"
+#include "verify/double_double.h"
 #include "verify/kernel.h"
 #include "verify/kernel_builder.h"
+#include "verify/library_accuracy.h"
 #include "verify/probes.h"
 #include "verify/spirv.h"
 #include "verify/worker.h"
@@ -611,6 +613,73 @@ struct Kernel {
   std::string problem;
 };
 
+// ---- Error-free transformations ---------------------------------------------------------------
+
+// A function lint found an error-free transformation in (FunctionFacts::error_free), called with
+// its float operands and returning its (high, low) pair: the shape its defining property is judged
+// on. Its float64 promotion is no reference: in double the transformation's low part is 0.
+struct ErrorFreeCall {
+  std::string operation;         // "sum", "fast-sum", "product", "split"
+  std::vector<size_t> operands;  // input leaves, in parameter order
+};
+
+std::optional<ErrorFreeCall> error_free_call(const FunctionFacts& facts, const std::string& function, const HarnessKernel& k) {
+  auto it = facts.error_free.find(function);
+  if (it == facts.error_free.end()) return std::nullopt;
+  ErrorFreeCall call{it->second, {}};
+  for (size_t l = 0; l < k.inputs.size(); ++l) {
+    const Leaf& leaf = k.inputs[l];
+    if (leaf.path.starts_with("lwc_p") && leaf.components == 1 && !leaf.integer && leaf.encoding == Encoding::plain)
+      call.operands.push_back(l);
+  }
+  int components = 0;
+  for (const Leaf& o : k.outputs) components += o.integer ? 3 : o.components;  // a decision is not half of a pair
+  if (call.operands.size() != (call.operation == "split" ? 1u : 2u) || components != 2) return std::nullopt;
+  return call;
+}
+
+// The operands' failure modes (the library's adversarial cases): cancellation, exponent gaps and
+// ties for sums, |a| >= |b| for Fast2Sum (its precondition), significands just above 1 and
+// all-ones for products and splits.
+InputFamily operand_family(const std::string& operation) {
+  return operation == "sum" ? InputFamily::sum : operation == "fast-sum" ? InputFamily::ordered : InputFamily::product;
+}
+
+int significant_bits(float x) {
+  if (x == 0 || !std::isfinite(x)) return 0;
+  int exponent;
+  auto m = static_cast<uint32_t>(std::frexp(std::fabs(x), &exponent) * 0x1p24);
+  int bits = 24;
+  for (; m % 2 == 0; m /= 2) --bits;
+  return bits;
+}
+
+// The defining property on one input: high + low is exactly the sum, the product or the split
+// value of the operands (a double-double on the CPU), and the pair is canonical: a sum's or a
+// product's high part is that value rounded to float, a split's halves hold 12 bits each. "" when
+// it holds, else what is wrong; `ulps` gets how far high + low is off, in ULPs of the exact value.
+std::string error_free_miss(const std::string& operation, float a, float b, float high, float low, double& ulps) {
+  dd::Value exact = operation == "split"     ? dd::from(a)
+                    : operation == "product" ? dd::from(static_cast<double>(a) * b)  // 48 bits: exact in double
+                                             : dd::two_sum(a, b);
+  dd::Value got = dd::two_sum(high, low), off = dd::sub(got, exact);
+  float rounded = std::fabs(static_cast<float>(exact.hi));
+  ulps = std::fabs(off.approx()) / (std::nextafter(rounded, std::numeric_limits<float>::infinity()) - rounded);
+  if (!std::isfinite(got.hi)) ulps = std::numeric_limits<double>::infinity();
+  if (!(ulps == 0))
+    return fmt::format("high + low = {:.17g} where the exact value is {:.17g} ({:.3g} ULPs off)", got.approx(), exact.approx(), ulps);
+  if (operation == "split") {
+    if (significant_bits(high) > 12 || significant_bits(low) > 12)
+      return fmt::format("the halves {:.9g} and {:.9g} hold {} and {} significant bits, where a split's hold at most 12", high,
+                         low, significant_bits(high), significant_bits(low));
+    return "";
+  }
+  float neighbour = std::nextafter(high, low > 0 ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity());
+  if (std::fabs(low) > std::fabs(static_cast<double>(neighbour) - high) / 2)
+    return fmt::format("not canonical: the low part {:.9g} is more than half an ULP of the high part {:.9g}", low, high);
+  return "";
+}
+
 // A variant's text, preprocessed (promoted to double for the reference), and whether the whole
 // file compiles; once per file and variant, not per function.
 struct PreparedVariant {
@@ -794,6 +863,11 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
   std::vector<bool> drawn_at(n);
   for (size_t i = 0; i < n; ++i) drawn_at[i] = states[i].non_finite || distance(states[i]) <= setup.scene.view_distance;
   auto drawn = [&](size_t i) { return drawn_at[i]; };
+  // An error-free transformation's operands (when lint found one in this function), from its
+  // failure modes: the same values in float32 and in float64.
+  std::vector<FloatOperands> operands;
+  if (auto it = setup.facts.error_free.find(function); it != setup.facts.error_free.end())
+    operands = float_operands(operand_family(it->second), n);
 
   // Fills the input records of a kernel from the states. Leaves marked in `as_float32` get what a
   // float32 kernel of the same type would see (the reference on a variant's inherited inputs), and
@@ -817,11 +891,15 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
       roles.push_back({role, fnv1a(leaf.name), half});
     }
     if (rounding) rounding->assign(k.inputs.size(), 0.0);
+    std::vector<int> operand_of(k.inputs.size(), -1);
+    if (std::optional<ErrorFreeCall> call = operands.empty() ? std::nullopt : error_free_call(setup.facts, function, k))
+      for (size_t j = 0; j < call->operands.size(); ++j) operand_of[call->operands[j]] = static_cast<int>(j);
     for (size_t i = 0; i < n; ++i) {
       std::fill(record.begin(), record.end(), 0.0);
       for (size_t l = 0; l < k.inputs.size(); ++l) {
         const Leaf& leaf = k.inputs[l];
-        std::vector<double> value = role_value(roles[l].role, leaf.components, states[i], roles[l].hash, i);
+        std::vector<double> value = operand_of[l] >= 0 ? std::vector<double>{operand_of[l] == 0 ? operands[i].a : operands[i].b}
+                                                       : role_value(roles[l].role, leaf.components, states[i], roles[l].hash, i);
         if (roles[l].half != Half::none)
           for (double& x : value) x = roles[l].half == Half::high ? static_cast<float>(x) : x - static_cast<float>(x);
         if (l < as_float32.size() && as_float32[l]) {
@@ -865,9 +943,13 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
 
   // The reference: the original, every float promoted to double.
   Kernel reference = build(variants.front(), true);
+  std::optional<ErrorFreeCall> error_free = reference.problem.empty() ? error_free_call(setup.facts, function, reference.code) : std::nullopt;
   Run ref_run;
-  if (reference.problem.empty()) ref_run = run(reference, true, inputs_for(reference.code, true));
-  if (!reference.problem.empty() && !build(variants.front(), false).problem.empty()) {
+  if (reference.problem.empty() && !error_free) ref_run = run(reference, true, inputs_for(reference.code, true));
+  if (error_free) {
+    result.reference = fmt::format("exact: high + low against the operands' exact {} (a double-double on the CPU), the pair canonical",
+                                   error_free->operation == "split" ? "value" : error_free->operation == "product" ? "product" : "sum");
+  } else if (!reference.problem.empty() && !build(variants.front(), false).problem.empty()) {
     result.reference = "no float64 reference: the original does not compile (its error, with the file's lines, is below)";
   } else if (!reference.problem.empty() || !ref_run.problem.empty()) {
     result.reference = "no float64 reference: " + (reference.problem.empty() ? ref_run.problem : reference.problem);
@@ -975,7 +1057,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
       bool ref_translated;
       frame_free(ref_leaf.path, ref_translated);
       Role role = role_of(ref_leaf.name == "return" ? function : ref_leaf.name, ref_leaf.components);
-      if (auto kind = setup.return_kinds.find(function); ref_leaf.name == "return" && kind != setup.return_kinds.end())
+      if (auto kind = setup.facts.returns.find(function); ref_leaf.name == "return" && kind != setup.facts.returns.end())
         role = role_of_kind(kind->second).value_or(role);
       bool clip = is_clip(ref_leaf);
       bool world = !clip && (world_units(role) || translated != ref_translated);
@@ -1024,6 +1106,40 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     return cmp;
   };
 
+  // An error-free transformation's (high, low) result against the exact value of its operands.
+  auto judge_error_free = [&](const Kernel& k, const Run& r, VariantResult& vr) {
+    std::optional<ErrorFreeCall> call = error_free_call(setup.facts, function, k.code);
+    if (!call) {
+      vr.status = "not compared: this form no longer takes the transformation's float operands and returns its (high, low) pair";
+      return;
+    }
+    std::vector<std::string> case_names = adversarial_case_names(operand_family(call->operation));
+    size_t misses = 0;
+    double worst_ulps = -1;
+    std::vector<double> pair;
+    for (size_t i = 0; i < n; ++i) {
+      pair.clear();
+      for (const Leaf& o : k.code.outputs)
+        for (double x : decode(o, &r.out[i * k.code.out_stride])) pair.push_back(x);
+      const FloatOperands& in = operands[i];
+      double ulps = 0;
+      std::string miss = error_free_miss(call->operation, in.a, in.b, static_cast<float>(pair[0]), static_cast<float>(pair[1]), ulps);
+      vr.max_ulps = std::max(vr.max_ulps, ulps);
+      if (miss.empty()) continue;
+      ++misses;
+      if (ulps <= worst_ulps) continue;
+      worst_ulps = ulps;
+      vr.worst = fmt::format("case '{}': operands {:.9g}{}; {}", in.case_index < 0 ? "random" : case_names[in.case_index], in.a,
+                             call->operation == "split" ? "" : fmt::format(", {:.9g}", in.b), miss);
+    }
+    vr.own_max_ulps = vr.max_ulps;
+    vr.status = misses ? "fail" : "pass";
+    if (misses) {
+      vr.worst += fmt::format(" ({} of {} inputs miss)", misses, n);
+      vr.worst_over_target = std::isfinite(vr.max_ulps) ? std::max(vr.max_ulps, 1.0) : std::numeric_limits<double>::max();
+    }
+  };
+
   // The variants that ran, timed together once their results are known (result index, the
   // kernel kept in the driver process).
   std::vector<std::pair<size_t, uint64_t>> timed;
@@ -1058,44 +1174,49 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     vr.pipeline_seconds = r.seconds;
     vr.measured = true;
     timed.emplace_back(result.variants.size(), kept);
-    const Oracle* oracle = ref_run.problem.empty() && reference.problem.empty() ? oracle_for(k.code) : nullptr;
-    if (!oracle) {
-      vr.status = "timed only: " + result.reference;
-      result.variants.push_back(vr);
-      continue;
-    }
-
     bool is_original = &v == &variants.front();
-    Comparison total = compare(k, r, ref_run, is_original), own = compare(k, r, oracle->run, is_original);
-    vr.world_outputs = !total.errors.empty();
-    if (!total.errors.empty()) {
-      vr.max_error = *std::max_element(total.errors.begin(), total.errors.end());
-      std::nth_element(total.errors.begin(), total.errors.begin() + total.errors.size() / 2, total.errors.end());
-      vr.median_error = total.errors[total.errors.size() / 2];
-    }
-    if (!own.errors.empty()) vr.own_max_error = *std::max_element(own.errors.begin(), own.errors.end());
-    vr.max_ulps = total.max_ulps;
-    vr.own_max_ulps = own.max_ulps;
-    vr.mismatches = total.mismatches;
-    vr.worst_over_target = std::max(total.worst_score, 0.0);
-    if (own.failed) {
-      vr.status = "fail";
-      vr.worst = own.worst;
-    } else if (total.failed) {
-      vr.status = "input-limited";
-      std::vector<std::pair<double, std::string>> rounded;
-      for (size_t l = 0; l < ref_inputs.size(); ++l) {
-        Role role = role_of(ref_inputs[l].name, ref_inputs[l].components);
-        if (oracle->rounding[l] > 0 && (world_units(role) || ref_inputs[l].components >= 9))
-          rounded.emplace_back(oracle->rounding[l], ref_inputs[l].name);
-      }
-      std::sort(rounded.rbegin(), rounded.rend());
-      for (size_t i = 0; i < rounded.size() && i < 3; ++i)
-        vr.inherited_rounding += fmt::format("{}`{}` by up to {:.3g} cm", i ? ", " : "", rounded[i].second, rounded[i].first);
-      vr.worst = total.worst + "; its own arithmetic is within the target on the inputs as it receives them" +
-                 (vr.inherited_rounding.empty() ? "" : "; inherited inputs round: " + vr.inherited_rounding);
+    Comparison total;
+    if (error_free) {
+      judge_error_free(k, r, vr);
     } else {
-      vr.status = "pass";
+      const Oracle* oracle = ref_run.problem.empty() && reference.problem.empty() ? oracle_for(k.code) : nullptr;
+      if (!oracle) {
+        vr.status = "timed only: " + result.reference;
+        result.variants.push_back(vr);
+        continue;
+      }
+      total = compare(k, r, ref_run, is_original);
+      Comparison own = compare(k, r, oracle->run, is_original);
+      vr.world_outputs = !total.errors.empty();
+      if (!total.errors.empty()) {
+        vr.max_error = *std::max_element(total.errors.begin(), total.errors.end());
+        std::nth_element(total.errors.begin(), total.errors.begin() + total.errors.size() / 2, total.errors.end());
+        vr.median_error = total.errors[total.errors.size() / 2];
+      }
+      if (!own.errors.empty()) vr.own_max_error = *std::max_element(own.errors.begin(), own.errors.end());
+      vr.max_ulps = total.max_ulps;
+      vr.own_max_ulps = own.max_ulps;
+      vr.mismatches = total.mismatches;
+      vr.worst_over_target = std::max(total.worst_score, 0.0);
+      if (own.failed) {
+        vr.status = "fail";
+        vr.worst = own.worst;
+      } else if (total.failed) {
+        vr.status = "input-limited";
+        std::vector<std::pair<double, std::string>> rounded;
+        for (size_t l = 0; l < ref_inputs.size(); ++l) {
+          Role role = role_of(ref_inputs[l].name, ref_inputs[l].components);
+          if (oracle->rounding[l] > 0 && (world_units(role) || ref_inputs[l].components >= 9))
+            rounded.emplace_back(oracle->rounding[l], ref_inputs[l].name);
+        }
+        std::sort(rounded.rbegin(), rounded.rend());
+        for (size_t i = 0; i < rounded.size() && i < 3; ++i)
+          vr.inherited_rounding += fmt::format("{}`{}` by up to {:.3g} cm", i ? ", " : "", rounded[i].second, rounded[i].first);
+        vr.worst = total.worst + "; its own arithmetic is within the target on the inputs as it receives them" +
+                   (vr.inherited_rounding.empty() ? "" : "; inherited inputs round: " + vr.inherited_rounding);
+      } else {
+        vr.status = "pass";
+      }
     }
     if (!vr.contraction_losses.empty()) vr.status = "fail: lost NoContraction";
     // A rewrite that keeps, inside this very function, code lwcport could not port (a finding with

@@ -37,6 +37,17 @@ struct FileVariant {
 class VariantCache;
 std::shared_ptr<VariantCache> make_variant_cache();
 
+// What lint's analysis says about a file's functions, which the judge goes by rather than names.
+struct FunctionFacts {
+  // What each function returns, by the world-space model: a position is judged in world units
+  // whatever the function is called; otherwise its name decides.
+  std::map<std::string, Kind> returns;
+  // Functions holding an error-free transformation (lwc-missing-precise's fact): its operation,
+  // "sum", "fast-sum", "product" or "split". Their (high, low) result is judged by the defining
+  // property against an exact CPU reference, not against a float64 promotion (whose low part is 0).
+  std::map<std::string, std::string> error_free;
+};
+
 struct HarnessSetup {
   Lang lang = Lang::hlsl;
   std::string display;   // the file, for messages
@@ -44,9 +55,7 @@ struct HarnessSetup {
   bool unreal = false;
   IncludeResolver include;
   std::vector<std::pair<std::string, std::string>> defines;  // the build's macros (.lwcport.json)
-  // What each function returns, by the world-space model (lint's): a position is judged in world
-  // units whatever the function is called; otherwise its name decides.
-  std::map<std::string, Kind> return_kinds;
+  FunctionFacts facts;
   SceneNumbers scene;
   int invocations = 16384;  // per dispatch
   TimingPlan timing;        // how the variants are timed against each other

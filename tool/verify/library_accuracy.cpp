@@ -484,6 +484,23 @@ const std::vector<LibraryOp>& library_ops() {
   return ops;
 }
 
+std::vector<FloatOperands> float_operands(InputFamily family, size_t count) {
+  Random r(0x6566742d6f7073ull);
+  std::vector<NamedCase> cases = adversarial_cases(family);
+  std::vector<FloatOperands> out;
+  for (size_t c = 0; c < cases.size() && out.size() < count; ++c)
+    for (int i = 0; i < 256 && !cases[c].beyond_split_limit; ++i) {
+      Operands o = cases[c].make(r);
+      out.push_back({o.a.hi, o.b.hi, static_cast<int>(c)});
+    }
+  while (out.size() < count) {
+    Operands o = random_operands(r, family);
+    out.push_back({o.a.hi, o.b.hi, -1});
+  }
+  out.resize(count);
+  return out;
+}
+
 std::vector<std::string> adversarial_case_names(InputFamily family) {
   std::vector<std::string> out;
   for (const NamedCase& c : adversarial_cases(family)) out.push_back(c.name);

@@ -98,6 +98,15 @@ struct LibraryCheckOptions {
 
 LibraryAccuracy check_library(WorkerDevice& device, const DriverProbes& probes, const LibraryCheckOptions& options);
 
+// Plain float operands for a shader's own error-free transformation (a TwoSum or Split helper):
+// the family's adversarial cases (inputs beyond Dekker's split limit left out), then random
+// ones; the same every run.
+struct FloatOperands {
+  float a = 0, b = 0;
+  int case_index = -1;  // into adversarial_case_names(family); -1: random
+};
+std::vector<FloatOperands> float_operands(InputFamily family, size_t count);
+
 // The named adversarial cases of a family (LWC-BRIEF §6), for docs and messages.
 std::vector<std::string> adversarial_case_names(InputFamily family);
 

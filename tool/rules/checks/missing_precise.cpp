@@ -122,6 +122,7 @@ class MissingPrecise : public Check {
       for (size_t i = 0; i < missing.size(); ++i) names += (i ? ", " : "") + missing[i];
       Finding& f = ctx.report(t.span(id), {{"eft", eft.name}, {"names", names.empty() ? where : "not precise: " + names}});
       if (!eft.error_free) f.severity = Severity::warning;
+      else f.facts["error-free"] = eft.operation;
       if (!no_precise.empty()) {
         f.withheld.push_back(fmt::format(
             "GLSL {} has no `precise` (it arrived in GLSL 4.00 and ES 3.20; WebGL has none, nor SPIR-V NoContraction through "
@@ -321,6 +322,7 @@ class MissingPrecise : public Check {
     std::string name;        // empty: not one
     bool error_free = true;  // false for a high/low difference
     std::vector<int> temporaries;
+    std::string operation;   // what an error-free one computes exactly: "sum", "fast-sum", "product", "split"
   };
 
   // What a precise helper computes ("add", "subtract", ...; "" when `name` is not one).
@@ -361,7 +363,8 @@ class MissingPrecise : public Check {
       bool rounds = e.rounded || e.split || e.product || e.fma;
       if (expanded && is_zero(*expanded) && !e.expanded.empty() && rounds && !e.integer) {
         std::string name = e.fma || e.product ? "TwoProduct" : e.split ? "Dekker split" : e.reused ? "TwoSum" : "Fast2Sum";
-        return {name + " error term", true, e.expanded};
+        std::string operation = e.fma || e.product ? "product" : e.split ? "split" : e.reused ? "sum" : "fast-sum";
+        return {name + " error term", true, e.expanded, operation};
       }
     }
     if (t.is(id, "binary_expression") && op(t, id) == "+") {
@@ -380,7 +383,7 @@ class MissingPrecise : public Check {
       };
       std::vector<int> temps;
       int a = definition(left, temps), b = definition(right, temps);
-      if (difference_of(t, a, high_) && difference_of(t, b, low_)) return {"high/low difference", false, temps};
+      if (difference_of(t, a, high_) && difference_of(t, b, low_)) return {"high/low difference", false, temps, ""};
     }
     return {};
   }
