@@ -151,6 +151,27 @@ TEST(VerifyCli, AResultIsJudgedByTheKindItHasNotByItsName) {
   EXPECT_EQ(verdict.find("ULPs"), std::string::npos) << verdict;
 }
 
+// Inputs take their roles from the world-space model where it has a kind for them: UE4's
+// `LightPositionAndInvRadius` is an absolute position by the model (by its name alone, a local
+// one), so the float32 original is caught at large coordinates. `--explain` says what decided each
+// role. A unitless result (a colour) is judged within 2^-12, not in float32 ULPs: SunAndFog's
+// original, 5.6e-6 off in a colour with the camera at the origin, is float32 itself, not a failure.
+TEST(VerifyCli, InputRolesComeFromTheModelAndExplainSaysSo) {
+  std::string corpus = test::source_dir() + "/corpus/";
+  test::Run r = test::run(test::binary() + " verify " + corpus + "ue4/DeferredLightPixelShaders.usf " + corpus +
+                          "glsl/SunAndFog.frag --explain --fail-on none --color never 2>&1");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("  input `LightPositionAndInvRadius` (float4): an absolute world position (the object's point); by the "
+                       "world-space model (kind absolute-position)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  input `ScreenPosition` (parameter 1, float4): a local position (within 100 cm of its origin); by its name"),
+            std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("SetupLightDataForStandardDeferred: original (float32) input-limited"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("DeferredLightPixelMain: original (float32) fail"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("SunAndFog.frag: main: original (float32) pass"), std::string::npos) << r.out;
+  test::Run plain = test::run(test::binary() + " verify " + corpus + "glsl/SunAndFog.frag --fail-on none --color never 2>&1");
+  EXPECT_EQ(plain.out.find("  input `"), std::string::npos) << plain.out;  // only with --explain
+}
+
 // A struct of 2,000 members once overflowed the stack (the verifier read text with std::regex,
 // which recursed per matched character) and killed the run; now it is verified like any other file.
 // (The function does not read the struct: filling 2,000 values per invocation takes minutes on the

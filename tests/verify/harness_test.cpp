@@ -14,6 +14,7 @@
 #include "verify/double_intrinsics.h"
 #include "verify/harness.h"
 #include "verify/kernel.h"
+#include "verify/library_accuracy.h"
 #include "verify/probes.h"
 #include "verify/worker.h"
 
@@ -195,6 +196,42 @@ CorpusFile corpus_file(const std::string& path) {
   CorpusFile file{source.text(), fix_source(source, AnalyzeOptions{}, true).text, small_setup(Lang::hlsl, path)};
   file.setup.unreal = true;
   return file;
+}
+
+// The corpus-level mutant (issue 15 §3): `precise` removed from the library, so lavapipe folds
+// every error term. The original (5.4 DoubleFloat code) and its reference call the library as
+// much as the rewrite does. Judged blind, the correct rewrite is refuted; with the library checked
+// first (as `verify` does), it is not judged and the library is named, and the reference, which
+// calls the same broken functions, is not trusted.
+TEST(HarnessOnLavapipe, ACorrectRewriteIsNotBlamedForAFaultInTheLibraryItCalls) {
+  Driver d = start_driver();
+  ASSERT_NE(d.device, nullptr);
+  std::string mutated = full_library_text(Lang::hlsl);
+  size_t removed = 0;
+  for (size_t at; (at = mutated.find("precise ")) != std::string::npos; ++removed) mutated.erase(at, 8);
+  ASSERT_GT(removed, 0u);
+  LibraryCheckOptions check;
+  check.langs = {Lang::hlsl};
+  check.inputs = 16384;
+  check.library[Lang::hlsl] = mutated;
+  std::map<std::string, std::string> faults = library_faults(check_library(*d.device, d.probes, check), Lang::hlsl);
+  ASSERT_TRUE(faults.count("DFAddDemote")) << faults.size();
+
+  CorpusFile file = corpus_file("corpus/ue5.4/DistanceFieldShadowDF.usf");
+  file.setup.unreal_library = mutated;
+  std::vector<FileVariant> variants = {{"original (float32)", file.original, 504}, {"fixed", file.fixed, 504}};
+  FunctionResult blind = verify_function(*d.device, d.probes, file.setup, "WorldOffsetFromCamera", variants);
+  ASSERT_EQ(blind.variants.size(), 2u);
+  EXPECT_TRUE(blind.variants[1].refuted()) << blind.variants[1].status;  // the blame the check prevents
+
+  file.setup.library_faults = faults;
+  file.setup.cache = make_variant_cache();
+  FunctionResult r = verify_function(*d.device, d.probes, file.setup, "WorldOffsetFromCamera", variants);
+  ASSERT_EQ(r.variants.size(), 2u);
+  EXPECT_TRUE(r.reference.starts_with("no reference to trust: the original calls `DF")) << r.reference;
+  EXPECT_TRUE(r.variants[1].status.starts_with("not judged: it calls `DF")) << r.variants[1].status;
+  EXPECT_NE(r.variants[1].status.find("fails the DoubleFloat library's own check on this driver"), std::string::npos);
+  EXPECT_FALSE(r.variants[1].refuted());
 }
 
 // The UE 5.0 tile/offset vertex factory moved to DoubleFloat matrices: the low part of each

@@ -167,7 +167,7 @@ TimeSplit time_split(const std::vector<FunctionResult>& results) {
 }  // namespace
 
 void print_functions_text(std::ostream& out, const std::string& device, const DriverProbes& probes,
-                          const std::vector<FunctionResult>& results, double wall_seconds) {
+                          const std::vector<FunctionResult>& results, double wall_seconds, bool explain) {
   out << fmt::format("Verification on {}\n\n", device);
   // The verdicts first, one line per function; the tables and the reasons follow.
   for (const FunctionResult& r : results) {
@@ -185,6 +185,8 @@ void print_functions_text(std::ostream& out, const std::string& device, const Dr
   std::vector<std::pair<std::string, size_t>> statuses;  // each kind of result, in order of first appearance
   for (const FunctionResult& r : results) {
     out << fmt::format("\n{}: {} (reference: {})\n", r.file, r.function, r.reference);
+    if (explain)
+      for (const std::string& input : r.inputs) out << "  input " << input << '\n';
     size_t w = 20;  // the label column fits the longest label
     for (const VariantResult& v : r.variants) w = std::max(w, v.label.size());
     out << fmt::format("  {:<{}} {:>11} {:>11} {:>11} {:>10} {:>13} {:>7}  {:<6} {}\n", "variant", w, "max error", "median", "own max",
@@ -245,7 +247,7 @@ void print_functions_json(std::ostream& out, const std::string& device, const Dr
                     {"pipelineSeconds", v.pipeline_seconds},
                     {"spirvInstructions", v.spirv_instructions}, {"paretoFront", v.pareto},
                     {"contractionLosses", v.contraction_losses}, {"worst", v.worst}});
-    fns.push_back({{"file", r.file}, {"function", r.function}, {"reference", r.reference}, {"pick", r.pick},
+    fns.push_back({{"file", r.file}, {"function", r.function}, {"reference", r.reference}, {"inputs", r.inputs}, {"pick", r.pick},
                    {"timingRounds", r.timing_rounds}, {"timingProblem", r.timing}, {"variants", vs}});
   }
   TimeSplit t = time_split(results);

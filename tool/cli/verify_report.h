@@ -20,9 +20,9 @@ void print_library_json(std::ostream& out, const std::string& device, const Driv
                         const LibraryAccuracy& accuracy, size_t inputs);
 
 // `wall_seconds`: the whole run, for the time split (functions per second; glslang, pipelines
-// and JIT, dispatches).
+// and JIT, dispatches). `explain`: each function's inputs, their roles and how they are filled.
 void print_functions_text(std::ostream& out, const std::string& device, const DriverProbes& probes,
-                          const std::vector<FunctionResult>& results, double wall_seconds);
+                          const std::vector<FunctionResult>& results, double wall_seconds, bool explain = false);
 void print_functions_json(std::ostream& out, const std::string& device, const DriverProbes& probes,
                           const std::vector<FunctionResult>& results, double wall_seconds);
 

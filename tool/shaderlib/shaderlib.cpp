@@ -209,8 +209,8 @@ std::string unreal_engine_header_text(bool engine_headers_read) {
   return (engine_headers_read ? "#define LWCPORT_READS_ENGINE_HEADERS 1\n" : "") + std::string(embedded("unreal_engine_header.ush"));
 }
 
-std::string unreal_environment_text() {
-  return full_library_text(Lang::hlsl) + "\n" + std::string(embedded("unreal_stub.ush"));
+std::string unreal_environment_text(const std::string& library) {
+  return (library.empty() ? full_library_text(Lang::hlsl) : library) + "\n" + std::string(embedded("unreal_stub.ush"));
 }
 
 }  // namespace lwc

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -420,6 +421,77 @@ std::optional<Role> role_of_kind(Kind kind) {
   }
 }
 
+// An input's role: the world-space model's kind, where it has one, decides the family (absolute
+// or translated world, the camera offset, a direction, which matrix), the name the member of it
+// (the camera or an object's point); without a kind, the name alone.
+Role role_for(const std::string& name, int components, std::optional<Kind> kind) {
+  Role by_name = role_of(name, components);
+  if (!kind || *kind == Kind::unknown) return by_name;
+  auto keep = [&](std::initializer_list<Role> family, Role otherwise) {
+    return std::find(family.begin(), family.end(), by_name) != family.end() ? by_name : otherwise;
+  };
+  bool matrix = components >= 9;
+  switch (*kind) {
+    case Kind::absolute: return matrix ? by_name : keep({Role::camera, Role::world_position, Role::object_origin}, Role::world_position);
+    case Kind::translated: return matrix ? by_name : keep({Role::translated_camera, Role::translated_position}, Role::translated_position);
+    case Kind::camera_offset: return matrix ? by_name : Role::pre_view_translation;
+    case Kind::direction: return matrix ? by_name : Role::direction;
+    case Kind::local: return matrix ? by_name : keep({Role::local_position, Role::direction, Role::other}, Role::local_position);
+    case Kind::world_matrix: return keep({Role::model, Role::world_view_projection}, Role::model);
+    case Kind::translated_world_matrix: return Role::translated_model;
+    case Kind::from_world_matrix: return keep({Role::view, Role::view_projection, Role::world_to_local}, Role::view_projection);
+    case Kind::from_translated_matrix: return keep({Role::translated_view, Role::translated_view_projection}, Role::translated_view_projection);
+    case Kind::rotation_matrix: return keep({Role::rotation_scale, Role::model_normal}, Role::rotation_scale);
+    case Kind::local_matrix: return keep({Role::projection, Role::model_normal, Role::rotation_scale}, Role::projection);
+    case Kind::unknown: break;
+  }
+  return by_name;
+}
+
+// What the model says an input is: a whole parameter's kind, or a global's ("" paths of members
+// and array elements are the name's to say).
+std::optional<Kind> model_kind(const FunctionFacts& facts, const std::string& function, const Leaf& leaf) {
+  const std::string& path = leaf.path;
+  if (path.starts_with("lwc_p")) {
+    size_t index = 0;
+    auto [end, error] = std::from_chars(path.data() + 5, path.data() + path.size(), index);
+    auto kinds = facts.parameters.find(function);
+    if (error != std::errc() || end != path.data() + path.size() || kinds == facts.parameters.end() || index >= kinds->second.size())
+      return std::nullopt;
+    return kinds->second[index];
+  }
+  if (path.find_first_of(".[") != std::string::npos) return std::nullopt;
+  auto it = facts.globals.find(path);
+  return it == facts.globals.end() ? std::nullopt : std::optional<Kind>(it->second);
+}
+
+// What a role is filled with, for `verify --explain`.
+std::string_view role_text(Role role) {
+  switch (role) {
+    case Role::camera: return "the camera's absolute position";
+    case Role::translated_camera: return "the camera in translated world (0)";
+    case Role::pre_view_translation: return "minus the camera's position (PreViewTranslation)";
+    case Role::world_position: return "an absolute world position (the object's point)";
+    case Role::translated_position: return "the object's point relative to the camera";
+    case Role::object_origin: return "the object's origin";
+    case Role::local_position: return "a local position (within 100 cm of its origin)";
+    case Role::direction: return "a unit direction";
+    case Role::model: return "the object's local-to-world matrix";
+    case Role::translated_model: return "the object's local-to-translated-world matrix";
+    case Role::world_to_local: return "the object's world-to-local matrix";
+    case Role::model_normal: return "the object's normal matrix";
+    case Role::rotation_scale: return "the object's rotation and scale";
+    case Role::view: return "the world-to-view matrix";
+    case Role::translated_view: return "the translated-world-to-view matrix";
+    case Role::view_projection: return "the world-to-clip matrix";
+    case Role::translated_view_projection: return "the translated-world-to-clip matrix";
+    case Role::world_view_projection: return "the local-to-clip matrix";
+    case Role::projection: return "the projection (90 degrees)";
+    case Role::other: break;
+  }
+  return "a value in [0.25, 1], fixed per name";
+}
+
 bool world_units(Role r) {
   return r == Role::camera || r == Role::translated_camera || r == Role::pre_view_translation || r == Role::world_position ||
          r == Role::translated_position || r == Role::object_origin || r == Role::local_position;
@@ -613,6 +685,27 @@ struct Kernel {
   std::string problem;
 };
 
+// Whether code calls `name` (an identifier followed by an opening parenthesis).
+bool calls(std::string_view code, std::string_view name) {
+  auto ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  for (size_t at = code.find(name); at != std::string_view::npos; at = code.find(name, at + 1)) {
+    size_t after = at + name.size();
+    while (after < code.size() && (code[after] == ' ' || code[after] == '\t')) ++after;
+    if ((at == 0 || !ident(code[at - 1])) && after < code.size() && code[after] == '(') return true;
+  }
+  return false;
+}
+
+// The first library function with a fault (HarnessSetup::library_faults) a kernel calls, and why:
+// "" when it calls none.
+std::string faulty_call(const HarnessKernel& k, const std::map<std::string, std::string>& faults) {
+  for (const auto& [name, why] : faults)
+    if (calls(k.declarations, name) || calls(k.body, name))
+      return fmt::format("`{}`, which fails the DoubleFloat library's own check on this driver ({}), so the library is at fault, "
+                         "not this code", name, why);
+  return "";
+}
+
 // ---- Error-free transformations ---------------------------------------------------------------
 
 // A function lint found an error-free transformation in (FunctionFacts::error_free), called with
@@ -687,6 +780,11 @@ struct PreparedVariant {
   std::string text;                           // preprocessed, promoted when float64
   std::optional<CompileResult> whole_failed;  // float32 only: the file's own compile error
 };
+
+// A unitless result (a colour, a direction, a fraction, a dot product) passes within 2^-12 of
+// max(|reference|, 1): a sixteenth of an 8-bit colour step, 0.014 degrees of a unit direction. In
+// float32 ULPs of max(|reference|, 1) that is 2^11; as a factor on ULPs, its inverse.
+constexpr double kUlpsPerUnitlessTolerance = 0x1p-11;
 
 // Costs closer than this (relative) are not told apart, whatever the spreads say: on a shared
 // 2-core machine the same SPIR-V measured up to 12% apart between two idle runs, and two
@@ -785,7 +883,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     in.text = v.text;
     in.include = setup.include;
     in.preamble = "#define LWC_DF_FUSED_FMA " + fused + "\n" + define_lines(setup.defines);
-    if (setup.unreal) in.preamble += fmt::format("#define LWCPORT_UE_VERSION {}\n", v.ue_version) + unreal_environment_text();
+    if (setup.unreal) in.preamble += fmt::format("#define LWCPORT_UE_VERSION {}\n", v.ue_version) + unreal_environment_text(setup.unreal_library);
     if (setup.lang == Lang::hlsl) {
       // Every part of the preprocessed text marked with where it came from (verify/kernel_builder.h).
       in.preamble = "#line 1 \"lwcport environment\"\n" + in.preamble;
@@ -847,6 +945,8 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     k.compiled = compile_kernel(spec);
     if (!k.compiled.ok)
       k.problem = whole_failed ? file_problem(float64 ? nullptr : &k.compiled) : "the harness kernel does not compile: " + format_messages(k.compiled);
+    else if (std::string fault = faulty_call(k.code, setup.library_faults); !fault.empty())
+      k.problem = "not judged: it calls " + fault;
     else if (float64) k.problem = float32_in_reference(k.compiled.spirv, kernel_source(spec));
     return k;
   };
@@ -869,6 +969,20 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
   if (auto it = setup.facts.error_free.find(function); it != setup.facts.error_free.end())
     operands = float_operands(operand_family(it->second), n);
 
+  // An input's role (role_for), and `source` what decided it.
+  auto input_role = [&](const Leaf& leaf, std::string* source = nullptr) {
+    auto [base, half] = split_half(leaf.name, leaf.encoding);
+    std::optional<Kind> kind = model_kind(setup.facts, function, leaf);
+    Role role = role_for(base, leaf.components, kind);
+    bool bare_half = half != Half::none && base.empty();
+    if (bare_half) role = Role::world_position;  // a bare `high`/`low` pair
+    if (source)
+      *source = bare_half ? "by its name (a bare high/low half)"
+                : kind && *kind != Kind::unknown ? fmt::format("by the world-space model (kind {})", kind_name(*kind))
+                                                 : "by its name";
+    return role;
+  };
+
   // Fills the input records of a kernel from the states. Leaves marked in `as_float32` get what a
   // float32 kernel of the same type would see (the reference on a variant's inherited inputs), and
   // `rounding` gets, per leaf, the most that made a drawn value move.
@@ -884,12 +998,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
       Half half;
     };
     std::vector<LeafRole> roles;  // per leaf, once: names are slow to read
-    for (const Leaf& leaf : k.inputs) {
-      auto [base, half] = split_half(leaf.name, leaf.encoding);
-      Role role = role_of(base, leaf.components);
-      if (half != Half::none && base.empty()) role = Role::world_position;  // a bare `high`/`low` pair
-      roles.push_back({role, fnv1a(leaf.name), half});
-    }
+    for (const Leaf& leaf : k.inputs) roles.push_back({input_role(leaf), fnv1a(leaf.name), split_half(leaf.name, leaf.encoding).second});
     if (rounding) rounding->assign(k.inputs.size(), 0.0);
     std::vector<int> operand_of(k.inputs.size(), -1);
     if (std::optional<ErrorFreeCall> call = operands.empty() ? std::nullopt : error_free_call(setup.facts, function, k))
@@ -941,6 +1050,44 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     return r;
   };
 
+  // Each input of a kernel, its role and how it is filled (verify --explain).
+  auto explain_inputs = [&](const HarnessKernel& k, const std::optional<ErrorFreeCall>& call) {
+    std::vector<std::string> lines;
+    for (size_t l = 0; l < k.inputs.size(); ++l) {
+      const Leaf& leaf = k.inputs[l];
+      std::string name = fmt::format("`{}` ({})", leaf.path, leaf.type);
+      if (leaf.path.starts_with("lwc_texel_")) {
+        name = fmt::format("a texel of `{}` ({})", leaf.path.substr(10), leaf.type);
+      } else if (leaf.path.starts_with("lwc_p")) {
+        size_t member = leaf.path.find_first_of(".[");
+        int index = std::atoi(leaf.path.c_str() + 5) + 1;
+        name = member == std::string::npos ? fmt::format("`{}` (parameter {}, {})", leaf.name, index, leaf.type)
+                                           : fmt::format("`{}` of parameter {} ({})", leaf.path.substr(member), index, leaf.type);
+      }
+      std::string source;
+      std::string what(role_text(input_role(leaf, &source)));
+      if (leaf.integer) what = "0 (an index or a flag)", source = "by its type";
+      if (call)
+        for (size_t j = 0; j < call->operands.size(); ++j)
+          if (call->operands[j] == l)
+            what = fmt::format("operand {} of the error-free {}: the library's adversarial cases for it, then random floats", j + 1,
+                               call->operation),
+            source = "by lint's error-free transformation";
+      auto [base, half] = split_half(leaf.name, leaf.encoding);
+      std::string_view form = leaf.encoding == Encoding::df                    ? ", as a DoubleFloat pair"
+                              : leaf.encoding == Encoding::lwc                 ? ", as a tile/offset pair"
+                              : leaf.encoding == Encoding::df_matrix           ? ", as an FDFMatrix (PostTranslation after M)"
+                              : leaf.encoding == Encoding::df_inverse_matrix   ? ", as an FDFInverseMatrix (PreTranslation before M)"
+                              : leaf.encoding == Encoding::lwc_matrix          ? ", as an FLWCMatrix"
+                              : leaf.encoding == Encoding::lwc_inverse_matrix  ? ", as an FLWCInverseMatrix"
+                              : half == Half::high                             ? ", its high half (float)"
+                              : half == Half::low                              ? ", its low half (the rest)"
+                                                                               : "";
+      lines.push_back(fmt::format("{}: {}{}; {}", name, what, form, source));
+    }
+    return lines;
+  };
+
   // The reference: the original, every float promoted to double.
   Kernel reference = build(variants.front(), true);
   std::optional<ErrorFreeCall> error_free = reference.problem.empty() ? error_free_call(setup.facts, function, reference.code) : std::nullopt;
@@ -949,6 +1096,8 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
   if (error_free) {
     result.reference = fmt::format("exact: high + low against the operands' exact {} (a double-double on the CPU), the pair canonical",
                                    error_free->operation == "split" ? "value" : error_free->operation == "product" ? "product" : "sum");
+  } else if (reference.problem.starts_with("not judged: it calls ")) {
+    result.reference = "no reference to trust: the original calls " + reference.problem.substr(21);
   } else if (!reference.problem.empty() && !build(variants.front(), false).problem.empty()) {
     result.reference = "no float64 reference: the original does not compile (its error, with the file's lines, is below)";
   } else if (!reference.problem.empty() || !ref_run.problem.empty()) {
@@ -995,7 +1144,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     double error = 0, ulps = 0;
     bool bad = false, off_screen = false;
     std::string what;  // set for a wrong decision or finiteness
-    double score = 0;  // error over the target (ULPs over 16 where not world units); max when `what` is set
+    double score = 0;  // error over the target (world units, else the unitless tolerance); max when `what` is set
   };
   auto judge = [&](const std::vector<double>& got, const std::vector<double>& want, const State& s, bool integer, bool clip,
                    bool world) {
@@ -1018,9 +1167,11 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
         v.error = std::max(v.error, e);
         v.ulps = std::max(v.ulps, e / ulp32(want[c]));
       }
-      v.bad = (world || clip) ? !(v.error <= setup.scene.precision) : !(v.ulps <= 16);
+      v.bad = (world || clip) ? !(v.error <= setup.scene.precision) : !(v.ulps * kUlpsPerUnitlessTolerance <= 1);
     }
-    v.score = !v.what.empty() ? std::numeric_limits<double>::max() : (world || clip) ? v.error / setup.scene.precision : v.ulps / 16;
+    v.score = !v.what.empty() ? std::numeric_limits<double>::max()
+              : (world || clip)  ? v.error / setup.scene.precision
+                                 : v.ulps * kUlpsPerUnitlessTolerance;
     if (!std::isfinite(v.score)) v.score = std::numeric_limits<double>::max();
     return v;
   };
@@ -1148,6 +1299,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     vr.label = v.label;
     vr.writable = v.writable;
     Kernel k = build(v, false);
+    if (&v == &variants.front()) result.inputs = explain_inputs(k.code, error_free);
     if (!k.problem.empty()) {
       vr.status = k.problem;
       result.variants.push_back(vr);
@@ -1205,7 +1357,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
         vr.status = "input-limited";
         std::vector<std::pair<double, std::string>> rounded;
         for (size_t l = 0; l < ref_inputs.size(); ++l) {
-          Role role = role_of(ref_inputs[l].name, ref_inputs[l].components);
+          Role role = input_role(ref_inputs[l]);
           if (oracle->rounding[l] > 0 && (world_units(role) || ref_inputs[l].components >= 9))
             rounded.emplace_back(oracle->rounding[l], ref_inputs[l].name);
         }

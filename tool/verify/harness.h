@@ -46,6 +46,10 @@ struct FunctionFacts {
   // "sum", "fast-sum", "product" or "split". Their (high, low) result is judged by the defining
   // property against an exact CPU reference, not against a float64 promotion (whose low part is 0).
   std::map<std::string, std::string> error_free;
+  // The model's kinds of the file's globals, and of each function's parameters (its first
+  // definition's, in order): an input's role comes from them where they say something.
+  std::map<std::string, Kind> globals;
+  std::map<std::string, std::vector<Kind>> parameters;
 };
 
 struct HarnessSetup {
@@ -56,6 +60,10 @@ struct HarnessSetup {
   IncludeResolver include;
   std::vector<std::pair<std::string, std::string>> defines;  // the build's macros (.lwcport.json)
   FunctionFacts facts;
+  // Library functions that fail the library's own check on this driver (library_faults): a kernel
+  // calling one is not judged; the library is at fault, not the code.
+  std::map<std::string, std::string> library_faults;
+  std::string unreal_library;  // the HLSL library of the Unreal environment ("" = lwcport's own; a test injects faults)
   SceneNumbers scene;
   int invocations = 16384;  // per dispatch
   TimingPlan timing;        // how the variants are timed against each other
@@ -102,6 +110,7 @@ struct FunctionResult {
   std::string file, function;
   std::vector<VariantResult> variants;  // variants[0] is the original
   std::string reference;   // how the reference was computed, or why it could not be
+  std::vector<std::string> inputs;  // each input of the original: its role and how it is filled (verify --explain)
   std::string pick;        // which variant the scene picks, and why
   int timing_rounds = 0;   // interleaved rounds the costs come from
   std::string timing;      // "" or why the variants could not be timed

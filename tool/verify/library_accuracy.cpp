@@ -484,6 +484,17 @@ const std::vector<LibraryOp>& library_ops() {
   return ops;
 }
 
+std::map<std::string, std::string> library_faults(const LibraryAccuracy& accuracy, Lang lang) {
+  std::map<std::string, std::string> faults;
+  for (const OpReport& r : accuracy.ops) {
+    auto m = r.by_lang.find(lang);
+    if (m == r.by_lang.end() || m->second.status != "fail") continue;
+    std::string& why = faults[r.op->call.substr(0, r.op->call.find('('))];
+    if (why.empty()) why = fmt::format("{}: {}", r.op->name(), m->second.worst);
+  }
+  return faults;
+}
+
 std::vector<FloatOperands> float_operands(InputFamily family, size_t count) {
   Random r(0x6566742d6f7073ull);
   std::vector<NamedCase> cases = adversarial_cases(family);

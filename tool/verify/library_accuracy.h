@@ -98,6 +98,10 @@ struct LibraryCheckOptions {
 
 LibraryAccuracy check_library(WorkerDevice& device, const DriverProbes& probes, const LibraryCheckOptions& options);
 
+// The library functions that fail their own check in `lang`, each with the check's verdict: a
+// kernel calling one cannot be judged (the library is at fault, not the code).
+std::map<std::string, std::string> library_faults(const LibraryAccuracy& accuracy, Lang lang);
+
 // Plain float operands for a shader's own error-free transformation (a TwoSum or Split helper):
 // the family's adversarial cases (inputs beyond Dekker's split limit left out), then random
 // ones; the same every run.

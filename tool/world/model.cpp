@@ -1436,6 +1436,7 @@ void FileSummary::merge(const FileSummary& from) {
   macros.insert(from.macros.begin(), from.macros.end());
   field_types.insert(from.field_types.begin(), from.field_types.end());
   parameter_uses.insert(from.parameter_uses.begin(), from.parameter_uses.end());
+  parameter_kinds.insert(from.parameter_kinds.begin(), from.parameter_kinds.end());
 }
 
 std::string WorldModel::function_return_type(const std::string& name) const {
@@ -1460,6 +1461,8 @@ FileSummary WorldModel::summary() const {
     int name = tree_.declarator_name(tree_.child_by_field(fn, "declarator"));
     if (name < 0) continue;
     std::string key = std::string(tree_.text(name)) + "/" + std::to_string(params.size());
+    if (auto& kinds = s.parameter_kinds[std::string(tree_.text(name))]; kinds.empty())
+      for (int p : params) kinds.push_back(variables_[p].kind);
     auto& entry = s.parameter_uses[key];
     bool first = seen.insert(key).second;
     entry.resize(params.size());

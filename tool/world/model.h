@@ -137,6 +137,9 @@ struct FileSummary {
   std::map<std::string, std::string> field_types;  // "Struct.Field" -> declared type
   // "name/arity" -> its parameters' uses (over every overload of that arity).
   std::map<std::string, std::vector<ParameterUse>> parameter_uses;
+  // A function's first definition -> its parameters' kinds, as the model reads them from the
+  // declaration (types, names where they count): what verify fills each argument with.
+  std::map<std::string, std::vector<Kind>> parameter_kinds;
 
   // Adds what `from` knows; what this summary already knows wins.
   void merge(const FileSummary& from);
