@@ -448,21 +448,35 @@ Role role_for(const std::string& name, int components, std::optional<Kind> kind)
   return by_name;
 }
 
-// What the model says an input is: a whole parameter's kind, or a global's ("" paths of members
-// and array elements are the name's to say).
+// What the model says an input is: a whole parameter's kind, a global's, or what the world-space
+// data says of its path (engine members: `Parameters.WorldPosition_CamRelative` is translated).
+// Naming conventions are left to the name.
 std::optional<Kind> model_kind(const FunctionFacts& facts, const std::string& function, const Leaf& leaf) {
   const std::string& path = leaf.path;
-  if (path.starts_with("lwc_p")) {
+  size_t member = path.find_first_of(".[");
+  if (path.starts_with("lwc_p") && member == std::string::npos) {
     size_t index = 0;
     auto [end, error] = std::from_chars(path.data() + 5, path.data() + path.size(), index);
     auto kinds = facts.parameters.find(function);
-    if (error != std::errc() || end != path.data() + path.size() || kinds == facts.parameters.end() || index >= kinds->second.size())
-      return std::nullopt;
-    return kinds->second[index];
+    if (error == std::errc() && end == path.data() + path.size() && kinds != facts.parameters.end() && index < kinds->second.size() &&
+        kinds->second[index] != Kind::unknown)
+      return kinds->second[index];
+  } else if (member == std::string::npos) {
+    if (auto it = facts.globals.find(path); it != facts.globals.end() && it->second != Kind::unknown) return it->second;
   }
-  if (path.find_first_of(".[") != std::string::npos) return std::nullopt;
-  auto it = facts.globals.find(path);
-  return it == facts.globals.end() ? std::nullopt : std::optional<Kind>(it->second);
+  if (!facts.world) return std::nullopt;
+  Path segments;
+  for (size_t at = 0; at <= path.size();) {
+    size_t end = path.find('.', at);
+    if (end == std::string::npos) end = path.size();
+    std::string name = path.substr(at, end - at);
+    name = name.substr(0, name.find('['));
+    segments.push_back({name, false});
+    at = end + 1;
+  }
+  for (const WorldData::Source& source : facts.world->sources)
+    if (!source.by_name && source.pattern.matches(segments)) return source.kind;
+  return std::nullopt;
 }
 
 // What a role is filled with, for `verify --explain`.
@@ -1149,10 +1163,15 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
   auto judge = [&](const std::vector<double>& got, const std::vector<double>& want, const State& s, bool integer, bool clip,
                    bool world) {
     Verdict v;
-    if (s.non_finite || integer) {
-      for (size_t c = 0; c < got.size(); ++c)
-        v.bad = v.bad || (integer ? got[c] != want[c] : std::isfinite(got[c]) != std::isfinite(want[c]));
-      if (v.bad) v.what = integer ? "a different decision" : "finite where the reference is not, or the reverse";
+    if (integer) {
+      for (size_t c = 0; c < got.size(); ++c) v.bad = v.bad || got[c] != want[c];
+      if (v.bad) v.what = "a different decision";
+    } else if (s.non_finite) {
+      // A value is non-finite when any component is: normalize((-Inf, 0, 0)) is (NaN, 0, 0) in one
+      // form and all NaN in another, and both keep the bad input visible.
+      auto finite = [](const std::vector<double>& x) { return std::all_of(x.begin(), x.end(), [](double c) { return std::isfinite(c); }); };
+      v.bad = finite(got) != finite(want);
+      if (v.bad) v.what = "finite where the reference is not, or the reverse";
     } else if (clip && got.size() == 4) {
       // NDC error times the view depth (clip w): the world-space offset it shows as.
       double w = want[3];

@@ -50,6 +50,9 @@ struct FunctionFacts {
   // definition's, in order): an input's role comes from them where they say something.
   std::map<std::string, Kind> globals;
   std::map<std::string, std::vector<Kind>> parameters;
+  // The world-space data (rules/world-space.json and the project's sources): the kinds of engine
+  // members and other paths (`*.WorldPosition_CamRelative` is translated), naming conventions aside.
+  const WorldData* world = nullptr;
 };
 
 struct HarnessSetup {
