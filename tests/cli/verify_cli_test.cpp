@@ -193,7 +193,8 @@ TEST(VerifyCli, AHugeStructDoesNotKillTheRun) {
 TEST(VerifyCli, FixVerifyAppliesThePassingRewriteAndHoldsBackTheOthersWithTheirReason) {
   std::string dir = test::scratch("fix-verify");
   // Adding `precise` to a plain TwoSum passes; forward.vert's translated-world rewrite misses 1/16 cm
-  // (float32 local-space maths; which case is worst depends on the samples), so it is held back. `ToCamera`'s
+  // on far objects (a float32 translated position; which case is worst depends on the samples), so
+  // it is held back, saying on which cases and how the original does there. `ToCamera`'s
   // DFSubtractDemote is exact on the float3 it is handed, but that float3 minus the exact camera is
   // further off than the original's float3 minus a float3 camera (their roundings cancel): held
   // back, naming the parameter to widen.
@@ -213,7 +214,9 @@ TEST(VerifyCli, FixVerifyAppliesThePassingRewriteAndHoldsBackTheOthersWithTheirR
   EXPECT_EQ(test::read(dir + "/b_fails.vert"), forward);
   EXPECT_NE(r.out.find("b_fails.vert:1:1: warning: fix held back: the rewrite of `main` did not pass verification"), std::string::npos) << r.out;
   EXPECT_TRUE(std::regex_search(r.out, std::regex("did not pass verification[^\n]*: fail; worst case '[^']+': camera [^\n]*; "
-                                                  "error [0-9.e+-]+ cm"))) << r.out;
+                                                  "error [0-9.e+-]+ cm; it misses the target on [0-9]+ of [0-9]+ cases: '[^']+' "
+                                                  "\\([0-9.e+-]+ cm, the object [0-9.e+-]+ cm from the camera, where float32 values are "
+                                                  "[0-9.e+-]+ cm apart; the original [^)]+\\)"))) << r.out;
   EXPECT_EQ(test::read(dir + "/c_input_limited.usf"), to_camera);
   EXPECT_NE(r.out.find("c_input_limited.usf:1:1: warning: fix held back: the rewrite of `ToCamera` is right on the inputs it is "
                        "handed, but further from the float64 reference than the original"), std::string::npos) << r.out;

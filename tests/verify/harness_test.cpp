@@ -267,14 +267,33 @@ TEST(HarnessOnLavapipe, ARewriteThatKeepsAMarkerInTheFunctionIsIncompleteNotRefu
   ASSERT_FALSE(rewrite.hand_fixes.empty());
   HarnessSetup& setup = file.setup;
   std::vector<FileVariant> variants = {{"original (float32)", file.original, 500}, rewrite};
+  // The fix leaves this function as it was (its marker kept): unchanged, though the fixed file
+  // builds against UE 5.4 and the original against 5.0.
   FunctionResult wind = verify_function(*d.device, d.probes, setup, "GetObjectWorldPositionForWind", variants);
   ASSERT_EQ(wind.variants.size(), 2u);
   EXPECT_EQ(wind.variants[0].status, "fail");
-  EXPECT_EQ(wind.variants[1].status.rfind("incomplete: line ", 0), 0u) << wind.variants[1].status;
-  EXPECT_NE(wind.variants[1].status.find("lwc-hack-marker"), std::string::npos);
+  EXPECT_EQ(wind.variants[1].status.rfind("unchanged: ", 0), 0u) << wind.variants[1].status;
   EXPECT_FALSE(wind.variants[1].refuted());
   FunctionResult transform = verify_function(*d.device, d.probes, setup, "TransformLocalToWorld", variants);
   EXPECT_EQ(transform.variants[1].status.find("incomplete"), std::string::npos) << transform.variants[1].status;
+
+  // Here the fix changes what the function calls (GetWorldPosition) but keeps its marker: the
+  // error it still has is what the marker keeps.
+  CorpusFile material = corpus_file("corpus/ue5.0/MaterialTemplateLWC.ush");
+  AnalyzeOptions translated;
+  translated.strategy = Strategy::translated;
+  Source material_source("corpus/ue5.0/MaterialTemplateLWC.ush", material.original);
+  FileVariant ported{"translated world", fix_source(material_source, translated, true).text, 504, {}};
+  Source ported_source("fixed", ported.text);
+  for (int line = 1; line <= ported_source.line_count(); ++line)
+    if (ported_source.line_text(line).find("LWCHackToFloat(") != std::string_view::npos) ported.hand_fixes[line] = "lwc-hack-marker";
+  ASSERT_FALSE(ported.hand_fixes.empty());
+  FunctionResult noise = verify_function(*d.device, d.probes, material.setup, "CalcPixelWorldPositionForNoise",
+                                         {{"original (float32)", material.original, 500}, ported});
+  ASSERT_EQ(noise.variants.size(), 2u);
+  EXPECT_EQ(noise.variants[1].status.rfind("incomplete: line ", 0), 0u) << noise.variants[1].status;
+  EXPECT_NE(noise.variants[1].status.find("lwc-hack-marker"), std::string::npos);
+  EXPECT_FALSE(noise.variants[1].refuted());
 }
 
 // FDFInverseMatrix as UE 5.4's DoubleFloat.ush has it: PreTranslation is subtracted before M (and

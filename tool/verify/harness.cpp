@@ -397,16 +397,13 @@ std::pair<std::string, Half> split_half(const std::string& name, Encoding encodi
 
 // The same tokens, whatever the layout: a fix that only removes a comment line moves the
 // `#line`s and blank lines of the code after it, not the code.
-bool same_code(std::string_view a, std::string_view b) {
-  TokenText ta(a), tb(b);
-  auto next = [](const TokenText& t, size_t i) {
-    while (i < t.size() && t[i].starts_with("#line")) ++i;
-    return i;
-  };
-  size_t i = next(ta, 0), j = next(tb, 0);
-  for (; i < ta.size() && j < tb.size(); i = next(ta, i + 1), j = next(tb, j + 1))
-    if (ta[i] != tb[j]) return false;
-  return i == ta.size() && j == tb.size();
+bool same_code(const std::string& a, const std::string& b) {
+  std::string plain_a = without_line_directives(a), plain_b = without_line_directives(b);
+  TokenText ta(plain_a), tb(plain_b);
+  if (ta.size() != tb.size()) return false;
+  for (size_t i = 0; i < ta.size(); ++i)
+    if (ta[i] != tb[i]) return false;
+  return true;
 }
 
 // The role a world-space kind gives a result, where it says more than a name: a position (a
@@ -1212,7 +1209,12 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     double worst_score = -1;
     std::string worst;
     std::string unmatched;
+    // Per case (harness_case_names), outside the edge cases: the worst score, its error in the
+    // output's own terms, and how far the object was from the camera there; -1 where none was judged.
+    std::vector<double> case_score = std::vector<double>(cases().size(), -1), case_error = case_score, case_distance = case_score;
+    bool world = false;  // some judged output is in world units (the case errors are cm)
   };
+  std::optional<Comparison> original_total;  // the original against the reference, per case
   auto compare = [&](const Kernel& k, const Run& r, const Run& ref, bool is_original) {
     Comparison cmp;
     for (const Leaf& leaf : k.code.outputs) {
@@ -1258,6 +1260,10 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
         }
         cmp.failed |= v.bad;
         if (integer) cmp.mismatches += v.bad;
+        if (size_t c = i % cases().size(); !s.edge && v.what.empty() && v.score > cmp.case_score[c]) {
+          cmp.case_score[c] = v.score, cmp.case_error[c] = v.error, cmp.case_distance[c] = distance(s);
+          cmp.world |= world || clip;
+        }
         if ((world || clip) && !s.non_finite && !integer) cmp.errors.push_back(v.error);
         cmp.max_ulps = std::max(cmp.max_ulps, v.ulps);
         if (v.score > cmp.worst_score) {
@@ -1310,9 +1316,40 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     }
   };
 
+  // Where a failing variant misses: each case over the target with the original's error on it, and
+  // how many cases it meets. A rewrite limited by float32 work it keeps (the product with an
+  // ill-conditioned object matrix; a far object in float32 translated world) shows it here.
+  auto where_it_misses = [&](const Comparison& own, const Comparison& original) {
+    std::vector<std::string> missed;
+    int met = 0;
+    auto amount = [](const Comparison& c, size_t k) {
+      return c.world ? fmt::format("{:.3g} cm", c.case_error[k]) : fmt::format("{:.3g}", c.case_error[k]);
+    };
+    for (size_t c = 0; c < cases().size(); ++c) {
+      if (own.case_score[c] < 0) continue;
+      if (own.case_score[c] <= 1) {
+        ++met;
+        continue;
+      }
+      std::string text = fmt::format("'{}' ({}", cases()[c].name, amount(own, c));
+      if (own.world && own.case_distance[c] > 0) {
+        // What a float32 translated position can hold there: its spacing at that distance.
+        int exponent;
+        std::frexp(own.case_distance[c], &exponent);
+        text += fmt::format(", the object {:.3g} cm from the camera, where float32 values are {:.3g} cm apart", own.case_distance[c],
+                            std::ldexp(1.0, exponent - 24));
+      }
+      missed.push_back(text + (original.case_score[c] >= 0 ? fmt::format("; the original {})", amount(original, c)) : ")"));
+    }
+    if (missed.empty()) return std::string();
+    return fmt::format("; it misses the target on {} of {} cases: {}; within it on the other {}", missed.size(), missed.size() + met,
+                       fmt::join(missed, ", "), met);
+  };
+
   // The variants that ran, timed together once their results are known (result index, the
   // kernel kept in the driver process).
   std::vector<std::pair<size_t, uint64_t>> timed;
+  std::map<int, Kernel> original_at_era;  // the original built for a variant's engine era
   for (const FileVariant& v : variants) {
     VariantResult vr;
     vr.label = v.label;
@@ -1326,7 +1363,24 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     }
     // A rewrite that leaves this function and everything it uses as they were is not a rewrite
     // of it: neither passed nor refuted, whatever the original does.
-    if (original_kernel && same_code(k.code.declarations, original_kernel->code.declarations) && k.code.body == original_kernel->code.body) {
+    // (Against the original built for this variant's engine era: a fixed Unreal file compiles
+    // against UE 5.4, and a function the fix left alone still reads 5.4's types there.)
+    auto same_as_original = [&] {
+      if (!original_kernel) return false;
+      const Kernel* original = original_kernel;
+      if (v.ue_version != variants.front().ue_version) {
+        auto [at, added] = original_at_era.try_emplace(v.ue_version);
+        if (added) {
+          FileVariant at_era = variants.front();
+          at_era.ue_version = v.ue_version;
+          at->second = build(at_era, false);
+        }
+        if (!at->second.problem.empty()) return false;
+        original = &at->second;
+      }
+      return same_code(k.code.declarations, original->code.declarations) && k.code.body == original->code.body;
+    };
+    if (same_as_original()) {
       vr.status = "unchanged: the fix leaves this function and everything it uses as in the original";
       result.variants.push_back(vr);
       continue;
@@ -1372,6 +1426,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
       if (own.failed) {
         vr.status = "fail";
         vr.worst = own.worst;
+        if (!is_original && original_total) vr.worst += where_it_misses(own, *original_total);
       } else if (total.failed) {
         vr.status = "input-limited";
         std::vector<std::pair<double, std::string>> rounded;
@@ -1410,7 +1465,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
       vr.worst += (vr.worst.empty() ? "" : "; ") + std::string("not compared (no counterpart in the original): ") + total.unmatched;
     result.variants.push_back(vr);
     if (is_original) {
-      original_k = std::move(k), original_r = std::move(r);
+      original_k = std::move(k), original_r = std::move(r), original_total = std::move(total);
       original_kernel = &original_k, original_run = &original_r;
     }
   }

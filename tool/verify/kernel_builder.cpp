@@ -33,15 +33,6 @@ bool is_line_directive(std::string_view item) {
   return at != std::string_view::npos && item.substr(at, 4) == "line";
 }
 
-// The text with each `#line` directive blanked (its line kept, so offsets within lines shift only).
-std::string without_line_directives(std::string text) {
-  for (size_t begin = 0; begin < text.size();) {
-    size_t end = std::min(text.find('\n', begin), text.size());
-    if (is_line_directive(std::string_view(text).substr(begin, end - begin))) text.erase(begin, end - begin), end = begin;
-    begin = end + 1;
-  }
-  return text;
-}
 
 // Where each offset of a preprocessed HLSL text came from, by the `#line` directives the includer
 // writes around every include: the cut-down kernel carries one before each item it keeps, so its
@@ -957,6 +948,16 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
   k.out_stride = std::max(out_offset, 1);
   if (k.outputs.empty() && k.problem.empty()) k.problem = fmt::format("`{}` has no result to compare (no return value, out parameter or stage output)", function);
   return k;
+}
+
+// Its line kept, so offsets within lines shift only.
+std::string without_line_directives(std::string text) {
+  for (size_t begin = 0; begin < text.size();) {
+    size_t end = std::min(text.find('\n', begin), text.size());
+    if (is_line_directive(std::string_view(text).substr(begin, end - begin))) text.erase(begin, end - begin), end = begin;
+    begin = end + 1;
+  }
+  return text;
 }
 
 }  // namespace lwc

@@ -43,6 +43,9 @@ struct HarnessKernel {
 // GLSL `main` is renamed). `float64` promotes every float type to double (the reference).
 HarnessKernel build_harness_kernel(Lang lang, const std::string& text, const std::string& function, bool float64);
 
+// The text with each `#line` directive blanked (its line kept).
+std::string without_line_directives(std::string text);
+
 // The names of the functions whose definitions contain each offset ("" outside any function).
 std::vector<std::string> enclosing_functions(Lang lang, const std::string& text, const std::vector<uint32_t>& offsets);
 
