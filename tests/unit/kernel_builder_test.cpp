@@ -52,6 +52,35 @@ TEST(KernelBuilder, HlslTextureSamplesBecomeOneValuePerInvocation) {
 // Real plugin code hands textures and samplers to helpers and keeps them in structs, splits a
 // buffer over `inout T x[2][4]` parameters, and uses groupshared scratch arrays: each becomes
 // something the kernel can hold, and the kernel compiles, float32 and float64.
+// A global struct holding a texture and a sampler (Unreal's `View.PerlinNoiseGradientTexture`) is
+// filled member by member: the texture with its texel's value, the sampler with an int, as the
+// kernel declares them.
+TEST(KernelBuilder, AGlobalStructWithTextureMembersIsFilled) {
+  std::string text = "struct FViewUniforms\n{\n\tfloat4 ViewSizeAndInvSize;\n\tTexture2D NoiseTexture;\n\tSamplerState NoiseSampler;\n"
+                     "};\nFViewUniforms View;\n"
+                     "float4 Noise(float2 UV)\n{\n\treturn View.NoiseTexture.SampleLevel(View.NoiseSampler, UV, 0) * View.ViewSizeAndInvSize;\n}\n";
+  for (bool float64 : {false, true}) {
+    HarnessKernel k = build_harness_kernel(Lang::hlsl, float64 ? promote_to_double(Lang::hlsl, text) : text, "Noise", float64);
+    ASSERT_EQ(k.problem, "");
+    const Leaf* texture = find_leaf(k.inputs, "View.NoiseTexture");
+    const Leaf* sampler = find_leaf(k.inputs, "View.NoiseSampler");
+    ASSERT_NE(texture, nullptr);
+    ASSERT_NE(sampler, nullptr);
+    EXPECT_EQ(texture->components, 4);
+    EXPECT_TRUE(sampler->integer);
+    KernelSpec spec;
+    spec.lang = Lang::hlsl;
+    spec.name = "view.usf";
+    spec.declarations = k.declarations;
+    spec.body = k.body;
+    spec.in_stride = k.in_stride;
+    spec.out_stride = k.out_stride;
+    spec.float64 = float64;
+    CompileResult compiled = compile_kernel(spec);
+    EXPECT_TRUE(compiled.ok) << format_messages(compiled) << kernel_source(spec);
+  }
+}
+
 TEST(KernelBuilder, TexturesPassedOnArrayParametersAndGroupsharedScratchBuild) {
   std::string text =
       "struct FResources\n{\n\tTexture2D<float4> Irradiance;\n\tSamplerState Bilinear;\n};\n"

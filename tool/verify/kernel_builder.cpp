@@ -199,6 +199,19 @@ bool collect_leaves(const Structs& structs, const std::string& type, const std::
   } else if (Basic b = basic_type(type); b.count()) {
     leaf.components = leaf.width = b.count();
     leaf.integer = b.integer;
+  } else if (std::string_view kind = std::string_view(type).starts_with("RW") ? std::string_view(type).substr(2) : type;
+             kind.starts_with("Texture")) {
+    // A texture member holds its texel's value in the kernel (textures_as_values), a sampler an int.
+    size_t open = type.find('<');
+    leaf.type = open == std::string::npos ? "float4" : type.substr(open + 1, type.rfind('>') - open - 1);
+    Basic element = basic_type(leaf.type);
+    if (!element.count()) return false;
+    leaf.components = leaf.width = element.count();
+    leaf.integer = element.integer;
+  } else if (type == "SamplerState" || type == "SamplerComparisonState") {
+    leaf.type = "int";
+    leaf.components = leaf.width = 1;
+    leaf.integer = true;
   } else if (auto s = structs.find(type); s != structs.end()) {
     bool ok = true;
     for (const Field& f : s->second)
