@@ -151,6 +151,36 @@ TEST(VerifyCli, AResultIsJudgedByTheKindItHasNotByItsName) {
   EXPECT_EQ(verdict.find("ULPs"), std::string::npos) << verdict;
 }
 
+// A material custom-node include for a 5.4 plugin: no include of its own (its includer, the
+// material, brings the engine: "force-includes"), a byte-order mark, the 5.0 marker it still
+// calls (so its era reads as 5.0, while the engine's headers it needs are 5.4's: it is compiled
+// against the project's engine), bit casts, atan2 and a texture's size, which the float64
+// reference must take as they are (not refuse as narrowing).
+TEST(VerifyCli, AMaterialIncludeIsVerifiedWithItsIncludersContext) {
+  std::string dir = test::scratch("verify-material-include");
+  test::write(dir + "/.lwcport.json", R"({"unreal": "5.4", "virtual-roots": {"/Engine/": "engine/"},
+    "force-includes": ["/Engine/Private/Common.ush"]})");
+  test::write(dir + "/engine/Private/Common.ush",
+              "#pragma once\nfloat3 CameraOrigin() { return DFHackToFloat(PrimaryView.WorldCameraOrigin); }\n");
+  test::write(dir + "/Shaders/Raymarch.usf",
+              "\xEF\xBB\xBF" "Texture2D Depths;\n"
+              "float3 RayStart(FMaterialPixelParameters Parameters, float4 Packed)\n{\n"
+              "\tfloat W, H;\n\tDepths.GetDimensions(W, H);\n"
+              "\tfloat Angle = atan2(Packed.y, Packed.x) + float(asuint(Packed.w) & 1u);\n"
+              "\tfloat3 Eye = LWCHackToFloat(PrimaryView.WorldCameraOrigin) - CameraOrigin();\n"
+              "\treturn Parameters.WorldPosition_CamRelative + Eye * Angle + W / H;\n}\n");
+  test::Run r = test::run(test::binary() + " verify " + dir + " --fail-on none --color never 2>&1");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_EQ(r.out.find("does not compile"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("no float64 reference"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Raymarch.usf: RayStart: original (float32) "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("RayStart (reference: the original promoted to float64"), std::string::npos) << r.out;
+  // Without the forced include the function cannot be built: the test is not vacuous.
+  test::write(dir + "/.lwcport.json", R"({"unreal": "5.4", "virtual-roots": {"/Engine/": "engine/"}})");
+  test::Run bare = test::run(test::binary() + " verify " + dir + " --fail-on none --color never 2>&1");
+  EXPECT_NE(bare.out.find("'CameraOrigin' : no matching overloaded function found"), std::string::npos) << bare.out;
+}
+
 // Inputs take their roles from the world-space model where it has a kind for them: UE4's
 // `LightPositionAndInvRadius` is an absolute position by the model (by its name alone, a local
 // one), so the float32 original is caught at large coordinates. `--explain` says what decided each

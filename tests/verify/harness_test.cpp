@@ -234,6 +234,27 @@ TEST(HarnessOnLavapipe, ACorrectRewriteIsNotBlamedForAFaultInTheLibraryItCalls) 
   EXPECT_FALSE(r.variants[1].refuted());
 }
 
+// A matrix demoted whole by the migration marker keeps its large translation, rounded to float32
+// (the stub once returned the float4x4 without it: original and reference then agreed on a wrong
+// position, and the hack passed).
+TEST(HarnessOnLavapipe, AMatrixDemotedByTheMarkerKeepsItsTranslationInFloat32) {
+  Driver d = start_driver();
+  ASSERT_NE(d.device, nullptr);
+  HarnessSetup setup = small_setup(Lang::hlsl, "Hack.usf");
+  setup.unreal = true;
+  setup.facts.returns["ToWorld"] = Kind::absolute;  // as lint's model says of it
+  std::string code = "#include \"/Engine/Private/Common.ush\"\n"
+                     "float3 ToWorld(float3 LocalPosition)\n{\n"
+                     "\treturn mul(float4(LocalPosition, 1), LWCHackToFloat(GetPrimitiveData(0).LocalToWorld)).xyz;\n}\n";
+  FunctionResult r = verify_function(*d.device, d.probes, setup, "ToWorld", {{"original (float32)", code, 504}});
+  ASSERT_EQ(r.variants.size(), 1u);
+  const VariantResult& v = r.variants[0];
+  ASSERT_TRUE(v.measured) << v.status;
+  EXPECT_EQ(v.status, "fail");
+  EXPECT_GT(v.max_error, 1.0);       // float32 translations far out: centimetres to kilometres off
+  EXPECT_LT(v.median_error, 1e4);    // but the translation is there: not the object's whole distance from the origin
+}
+
 // The UE 5.0 tile/offset vertex factory moved to DoubleFloat matrices: the low part of each
 // matrix's translation reaches the shader (a GCC 12 vectoriser bug once dropped it on the host).
 TEST(HarnessOnLavapipe, DoubleFloatMatrixRewriteOfATileOffsetFactoryIsSubCentimetre) {

@@ -466,6 +466,7 @@ int lint(const Options& o, std::ostream& out, std::ostream& err) {
 // The engine era an Unreal file was written for (its stub's LWCPORT_UE_VERSION).
 int unreal_era(const std::string& text) { return static_cast<int>(infer_unreal_era(text)); }
 
+
 // The same code with each accurate DoubleFloat addition replaced by its DFFast* twin: fewer flops,
 // exact only within their preconditions (same signs, |a| >= |b|), which the harness's cases probe.
 std::string fast_double_float_form(const std::string& text) {
@@ -649,6 +650,7 @@ HarnessSetup harness_setup(const InputFile& file, const LoadedFile& f, Lang lang
   setup.scene = f.options.scene;
   std::shared_ptr<const ProjectConfig> config = file.config;
   setup.defines = config->defines_for(file.path);
+  setup.force_includes = config->force_includes;
   // An include is named by its real path (relative to the working folder when under it), so an
   // include inside it resolves from its own folder and errors show where it really is.
   setup.include = [&includes, target = file.path, display = file.display, config, lang](
@@ -670,6 +672,19 @@ HarnessSetup harness_setup(const InputFile& file, const LoadedFile& f, Lang lang
   return setup;
 }
 
+// The engine an original compiles against: the era its own code is written for (the corpus ports
+// UE4 code in a project set to 5.4), unless it only compiles against the project's engine ("unreal"
+// in .lwcport.json): a plugin for 5.4 that still calls LWCHackToFloat, with the engine's real
+// headers read, which are 5.4's.
+int original_era(const std::string& text, const AnalyzeOptions& options, const HarnessSetup& setup) {
+  int written = unreal_era(text);
+  if (!setup.unreal || !options.unreal || static_cast<int>(*options.unreal) == written) return written;
+  FileBuild build{setup.lang, setup.display, written, false, setup.include, setup.defines, setup.force_includes};
+  if (compile_file(build, text).ok) return written;
+  build.unreal_version = static_cast<int>(*options.unreal);
+  return compile_file(build, text).ok ? *build.unreal_version : written;
+}
+
 // `fix --verify`: runs every function with a finding as written and as fixed. "" when each fixed
 // form passes; else why the fix is held back. `verified` gets one line per function that passed.
 std::string verify_fix(Verifier& verifier, const InputFile& file, const LoadedFile& f, Lang lang, const FixOutcome& fixed,
@@ -683,7 +698,8 @@ std::string verify_fix(Verifier& verifier, const InputFile& file, const LoadedFi
   HarnessSetup setup = harness_setup(file, f, lang, includes);
   setup.facts = std::move(facts);
   setup.library_faults = verifier.library_faults[lang];
-  std::vector<FileVariant> variants = {{"original (float32)", source.text(), unreal_era(source.text()), {}}, fixed_variant("fixed", fixed, lang)};
+  std::vector<FileVariant> variants = {{"original (float32)", source.text(), original_era(source.text(), f.options, setup), {}},
+                                       fixed_variant("fixed", fixed, lang)};
   for (const std::string& name : names) {
     FunctionResult r = on_big_stack([&] { return verify_function(*verifier.device, verifier.probes, setup, name, variants); });
     const VariantResult &v = r.variants.back(), &original = r.variants.front();
@@ -733,7 +749,7 @@ struct BuildCheck {
 BuildCheck check_build(const InputFile& file, const LoadedFile& f, Lang lang, const std::string& original,
                        const FixOutcome& fixed, IncludeSummaries& includes) {
   HarnessSetup setup = harness_setup(file, f, lang, includes);
-  FileBuild target{lang, file.display, std::nullopt, false, setup.include, setup.defines};
+  FileBuild target{lang, file.display, std::nullopt, false, setup.include, setup.defines, setup.force_includes};
   std::string where = "glslang";
   std::optional<UnrealEra> written;
   if (setup.unreal) {
@@ -1111,7 +1127,8 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
     ++with_code[file.argument];
     FunctionFacts facts;
     std::vector<std::string> names = functions_with_findings(source, f.options, *lang, &facts);
-    std::vector<FileVariant> variants = {{"original (float32)", source.text(), unreal_era(source.text()), {}}};
+    HarnessSetup setup = harness_setup(file, f, *lang, includes);
+    std::vector<FileVariant> variants = {{"original (float32)", source.text(), original_era(source.text(), f.options, setup), {}}};
     for (auto [strategy, label] : {std::pair{Strategy::translated, "translated world"}, std::pair{Strategy::df, "DoubleFloat"}}) {
       AnalyzeOptions a = f.options;
       a.strategy = strategy;
@@ -1130,7 +1147,7 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
         variants.push_back({variants[i].label.substr(0, variants[i].label.find(" (")) + ", DFFast*", fast, variants[i].ue_version,
                             variants[i].hand_fixes, false});
     total += names.size();
-    work.push_back({&file, harness_setup(file, f, *lang, includes), std::move(names), std::move(variants)});
+    work.push_back({&file, std::move(setup), std::move(names), std::move(variants)});
     work.back().setup.facts = std::move(facts);
     work.back().setup.library_faults = verifier.library_faults[*lang];
   }

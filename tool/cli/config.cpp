@@ -89,7 +89,7 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
     if (!find_rule(id)) fail(fmt::format("unknown rule id \"{}\"", id));
   };
   for (const auto& item : j.items()) {
-    static const char* known[] = {"severity", "select", "ignore", "include-dirs", "virtual-roots", "exclude", "world-sources", "max-file-bytes", "max-parse-seconds", "macros", "unreal", "library-definitions", "extensions", "defines", "overrides"};
+    static const char* known[] = {"severity", "select", "ignore", "include-dirs", "virtual-roots", "exclude", "world-sources", "max-file-bytes", "max-parse-seconds", "macros", "unreal", "library-definitions", "extensions", "defines", "overrides", "force-includes"};
     const std::string& key = item.key();
     if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) == std::end(known))
       fail(fmt::format("unknown key \"{}\"", key));
@@ -229,6 +229,15 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
       }
       entry.defines = defines(o.at("defines"), where + ".defines");
       c.overrides.push_back(std::move(entry));
+    }
+  }
+  if (j.contains("force-includes")) {
+    const auto& list = j.at("force-includes");
+    auto bad = [&] { fail("\"force-includes\" must be an array of include names (\"/Engine/Private/Common.ush\")"); };
+    if (!list.is_array()) bad();
+    for (const auto& name : list) {
+      if (!name.is_string() || name.get<std::string>().empty() || name.get<std::string>().find_first_of("\"\n") != std::string::npos) bad();
+      c.force_includes.push_back(name.get<std::string>());
     }
   }
   if (j.contains("library-definitions")) {

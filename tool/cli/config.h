@@ -45,6 +45,10 @@ struct ProjectConfig {
   // Parses a config's text; throws std::runtime_error naming the file and the problem.
   static ProjectConfig parse(const std::filesystem::path& file, const std::string& text);
   bool excluded(const std::filesystem::path& path, bool is_dir) const;
+  // Headers included ahead of every HLSL file verify or --check-build compiles, as a compiler's
+  // forced include (`-include`, /FI): the context a material custom-node include or a shader built
+  // into a generated one gets from its includer (`"/Engine/Private/Common.ush"`).
+  std::vector<std::string> force_includes;
   // The defines for one file: `defines`, then each override whose pattern matches it.
   Defines defines_for(const std::filesystem::path& file) const;
 };

@@ -1,5 +1,7 @@
 #include "shaderlib/shaderlib.h"
 
+#include "lang/tokens.h"
+
 #include <cctype>
 #include <map>
 #include <stdexcept>
@@ -209,8 +211,14 @@ std::string unreal_engine_header_text(bool engine_headers_read) {
   return (engine_headers_read ? "#define LWCPORT_READS_ENGINE_HEADERS 1\n" : "") + std::string(embedded("unreal_engine_header.ush"));
 }
 
-std::string unreal_environment_text(const std::string& library) {
-  return (library.empty() ? full_library_text(Lang::hlsl) : library) + "\n" + std::string(embedded("unreal_stub.ush"));
+std::string unreal_environment_text(std::string_view code, const std::string& library) {
+  TokenText tokens(code);
+  bool declares_material_parameters = false;
+  for (size_t i = 0; i + 1 < tokens.size() && !declares_material_parameters; ++i)
+    declares_material_parameters = tokens[i] == "struct" && tokens[i + 1] == "FMaterialPixelParameters";
+  return (library.empty() ? full_library_text(Lang::hlsl) : library) + "\n" +
+         (declares_material_parameters ? "#define LWCPORT_FILE_DECLARES_MATERIAL_PARAMETERS 1\n" : "") +
+         std::string(embedded("unreal_stub.ush"));
 }
 
 }  // namespace lwc

@@ -24,8 +24,9 @@ bool is_written_library(std::string_view text);
 // An Unreal environment for compiling Unreal-era shaders without the engine: the library plus
 // declarations of the View / PrimaryView / ResolvedView / Primitive members, the LWC tile/offset
 // (FLWC*) types and functions, and the hack markers the rules touch (tool/shaderlib/src/unreal_stub.ush).
-// `library`: the HLSL library text to put first ("" = lwcport's own).
-std::string unreal_environment_text(const std::string& library = "");
+// `code`: the file compiled in it (a file that declares the material template's parameter structs
+// itself does not get the stub's). `library`: the HLSL library text to put first ("" = lwcport's own).
+std::string unreal_environment_text(std::string_view code = {}, const std::string& library = "");
 // What an `/Engine/...` include that lwcport does not read gives: the engine's everyday macros
 // (loop attributes, stereo declarations), and its small helpers (PI, Square, ConvertFromDeviceZ)
 // unless the engine's own headers are read (unreal_engine_header.ush).

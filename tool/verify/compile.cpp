@@ -51,7 +51,11 @@ EShLanguage to_glslang(Stage stage) {
 // Hands glslang the text the caller's resolver finds; keeps it alive until glslang releases it.
 class Includer : public glslang::TShader::Includer {
  public:
-  explicit Includer(const CompileInput& input) : input_(input) {}
+  // The file compiled counts as included once already when it says `#pragma once` (a forced
+  // include of the engine's Common.ush, compiling Common.ush itself).
+  explicit Includer(const CompileInput& input) : input_(input) {
+    if (has_pragma_once(input.text)) included_once_.insert(input.name);
+  }
   IncludeResult* includeLocal(const char* name, const char* from, size_t) override { return find(name, from); }
   IncludeResult* includeSystem(const char* name, const char* from, size_t) override { return find(name, from); }
   void releaseInclude(IncludeResult*) override {}
@@ -61,6 +65,7 @@ class Includer : public glslang::TShader::Includer {
     if (!input_.include) return nullptr;
     std::optional<IncludedFile> found = input_.include(name, from ? from : "");
     if (!found) return nullptr;
+    found->text.erase(0, found->text.size() - without_bom(found->text).size());
     // glslang ignores `#pragma once` (Unreal's headers rely on it): a second include of such a
     // file is empty here, else the engine's include graph is read again on every path into it.
     if (included_once_.count(found->name)) found->text.clear();
@@ -257,11 +262,19 @@ std::string define_lines(const std::vector<std::pair<std::string, std::string>>&
   return out;
 }
 
+std::string_view without_bom(std::string_view text) { return text.starts_with("\xEF\xBB\xBF") ? text.substr(3) : text; }
+
+std::string with_forced_includes(const std::vector<std::string>& force_includes, const std::string& name, std::string_view text) {
+  std::string out;
+  for (const std::string& include : force_includes) out += fmt::format("#include \"{}\"\n", include);
+  return out + fmt::format("#line 1 \"{}\"\n", name) + std::string(without_bom(text));
+}
+
 CompileResult compile_file(const FileBuild& build, const std::string& text) {
   CompileInput in;
   in.lang = build.lang;
   in.name = build.name;
-  in.text = text;
+  in.text = build.lang == Lang::hlsl ? with_forced_includes(build.force_includes, build.name, text) : std::string(without_bom(text));
   in.include = build.include;
   in.vulkan = build.vulkan;
   in.preamble = define_lines(build.defines);
@@ -270,7 +283,7 @@ CompileResult compile_file(const FileBuild& build, const std::string& text) {
     in.entry = "lwcport_compile_check";
     in.text += "\nvoid lwcport_compile_check() {}\n";
     if (build.unreal_version)
-      in.preamble += "#define LWCPORT_UE_VERSION " + std::to_string(*build.unreal_version) + "\n" + unreal_environment_text();
+      in.preamble += "#define LWCPORT_UE_VERSION " + std::to_string(*build.unreal_version) + "\n" + unreal_environment_text(text);
   } else {
     std::optional<Stage> stage = stage_from_extension(build.name);
     in.stage = stage.value_or(Stage::fragment);

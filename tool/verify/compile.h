@@ -66,6 +66,10 @@ PreprocessResult preprocess_shader(const CompileInput& input);
 // .mesh, .rgen, .rchit, .rahit, .rmiss, .rint, .rcall), if any.
 std::optional<Stage> stage_from_extension(const std::string& path);
 
+// The text without a leading UTF-8 byte-order mark, which glslang reads as a bad token (Unreal's
+// editors write one in some headers).
+std::string_view without_bom(std::string_view text);
+
 // A whole file compiled on its own, as `fix --check-build` and the corpus tests check it: HLSL
 // through a do-nothing entry point appended after it (every function is type-checked; line
 // numbers unchanged), Unreal code after the engine stub of an era (LWCPORT_UE_VERSION 427, 500,
@@ -77,9 +81,12 @@ struct FileBuild {
   bool vulkan = false;                // GLSL: compile for Vulkan
   IncludeResolver include;
   std::vector<std::pair<std::string, std::string>> defines;  // the build's macros (.lwcport.json)
+  std::vector<std::string> force_includes;                    // HLSL: included ahead of the file (.lwcport.json)
 };
 // `#define NAME VALUE` lines, for a preamble.
 std::string define_lines(const std::vector<std::pair<std::string, std::string>>& defines);
+// An HLSL text with `force_includes` included ahead of it, its own lines still its own (`#line`).
+std::string with_forced_includes(const std::vector<std::string>& force_includes, const std::string& name, std::string_view text);
 CompileResult compile_file(const FileBuild& build, const std::string& text);
 
 }  // namespace lwc

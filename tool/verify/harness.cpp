@@ -891,14 +891,14 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     in.lang = setup.lang;
     in.stage = setup.stage;
     in.name = setup.display;
-    in.text = v.text;
+    in.text = without_bom(v.text);
     in.include = setup.include;
     in.preamble = "#define LWC_DF_FUSED_FMA " + fused + "\n" + define_lines(setup.defines);
-    if (setup.unreal) in.preamble += fmt::format("#define LWCPORT_UE_VERSION {}\n", v.ue_version) + unreal_environment_text(setup.unreal_library);
+    if (setup.unreal) in.preamble += fmt::format("#define LWCPORT_UE_VERSION {}\n", v.ue_version) + unreal_environment_text(v.text, setup.unreal_library);
     if (setup.lang == Lang::hlsl) {
       // Every part of the preprocessed text marked with where it came from (verify/kernel_builder.h).
       in.preamble = "#line 1 \"lwcport environment\"\n" + in.preamble;
-      in.text = fmt::format("#line 1 \"{}\"\n{}", setup.display, v.text);
+      in.text = with_forced_includes(setup.force_includes, setup.display, v.text);
     }
     std::string key = fmt::format("{}{}\n{}", float64 ? 'd' : 'f', v.ue_version, v.text);
     std::shared_ptr<const PreparedVariant> prepared = setup.cache->get(key, [&] {

@@ -62,6 +62,7 @@ struct HarnessSetup {
   bool unreal = false;
   IncludeResolver include;
   std::vector<std::pair<std::string, std::string>> defines;  // the build's macros (.lwcport.json)
+  std::vector<std::string> force_includes;                    // HLSL: included ahead of the file (.lwcport.json)
   FunctionFacts facts;
   // Library functions that fail the library's own check on this driver (library_faults): a kernel
   // calling one is not judged; the library is at fault, not the code.

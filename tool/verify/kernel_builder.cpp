@@ -391,6 +391,16 @@ void replace_texture_accesses(Lang lang, std::string& text, const std::string& n
       return t.ident(i) && t[i] == name && t[i + 1] == "." && t.ident(i + 2) && sample && t[i + 3] == "(" ? i + 3 : none;
     }, whole);
     text = replace_bracketed(text, [&](const TokenText& t, size_t i) { return t.ident(i) && t[i] == name && t[i + 1] == "[" ? i + 1 : none; }, whole);
+    // Its size: a fixed 64 texels (and 64 mip levels) to every output; with 4 or 5 arguments the
+    // first is the mip level asked about, an input.
+    text = replace_bracketed(text, [&](const TokenText& t, size_t i) {
+      return t.ident(i) && t[i] == name && t[i + 1] == "." && t[i + 2] == "GetDimensions" && t[i + 3] == "(" ? i + 3 : none;
+    }, [](std::string_view inside) {
+      std::vector<std::string> args = split_arguments(std::string(inside));
+      std::string out;
+      for (size_t a = args.size() >= 4 ? 1 : 0; a < args.size(); ++a) out += (out.empty() ? "" : ", ") + args[a] + " = 64";
+      return "(" + out + ")";
+    });
     if (texel == name) return;
     TokenText t(text);
     std::vector<Edit> bare;
@@ -518,9 +528,17 @@ std::vector<std::string> enclosing_functions(Lang lang, const std::string& text,
   return out;
 }
 
+// A float's bits read as an integer (a packed datum, not a value): in the reference they are the
+// bits of the float32 value, read through a wrapper the narrowing check knows.
+const std::set<std::string_view>& bit_casts(Lang lang) {
+  static const std::set<std::string_view> hlsl = {"asuint", "asint"}, glsl = {"floatBitsToUint", "floatBitsToInt"};
+  return lang == Lang::hlsl ? hlsl : glsl;
+}
+
 std::string promote_to_double(Lang lang, const std::string& text) {
   // Transcendentals have no double form on the GPU: they run in float32 (on small values, as a rule).
-  static const std::set<std::string_view> float32_only = {"sin", "cos", "tan", "asin", "acos", "atan", "pow", "exp", "log", "exp2", "log2"};
+  static const std::set<std::string_view> float32_only = {"sin",  "cos", "tan", "asin", "acos", "atan", "atan2", "sinh", "cosh",
+                                                           "tanh", "pow", "exp", "log",  "exp2", "log2", "log10"};
   TokenText t(text);
   std::vector<Edit> edits;
   for (size_t i = 0; i < t.size(); ++i) {
@@ -531,7 +549,7 @@ std::string promote_to_double(Lang lang, const std::string& text) {
       i += 3;
     } else if (std::string twin = double_type(lang, t[i]); !twin.empty()) {
       edits.push_back(t.replace(i, i, twin));
-    } else if (float32_only.count(t[i]) && t[i + 1] == "(") {
+    } else if ((float32_only.count(t[i]) || bit_casts(lang).count(t[i])) && t[i + 1] == "(") {
       edits.push_back(t.replace(i, i, "lwc_f32_" + std::string(t[i])));
     } else if (lang == Lang::hlsl && narrowed_hlsl_intrinsics().count(t[i]) && t[i + 1] == "(") {
       edits.push_back(t.replace(i, i, "lwc_d_" + std::string(t[i])));
@@ -879,13 +897,33 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
     // float32 transcendentals for the double reference (see promote_to_double).
     std::string d = "double", f = "float";
     std::string v = lang == Lang::hlsl ? "double" : "dvec", fv = lang == Lang::hlsl ? "float" : "vec";
-    for (const char* fn : {"sin", "cos", "tan", "asin", "acos", "atan", "exp", "log", "exp2", "log2"}) {
+    std::vector<const char*> unary = {"sin", "cos", "tan", "asin", "acos", "atan", "sinh", "cosh", "tanh", "exp", "log", "exp2", "log2"};
+    if (lang == Lang::hlsl) unary.push_back("log10");
+    for (const char* fn : unary) {
       prefix += fmt::format("{0} lwc_f32_{1}({0} x) {{ return {0}({1}({2}(x))); }}\n", d, fn, f);
       for (int n = 2; n <= 4; ++n) prefix += fmt::format("{0}{3} lwc_f32_{1}({0}{3} x) {{ return {0}{3}({1}({2}{3}(x))); }}\n", v, fn, fv, n);
     }
-    prefix += fmt::format("{0} lwc_f32_pow({0} x, {0} y) {{ return {0}(pow({1}(x), {1}(y))); }}\n", d, f);
-    for (int n = 2; n <= 4; ++n)
-      prefix += fmt::format("{0}{2} lwc_f32_pow({0}{2} x, {0}{2} y) {{ return {0}{2}(pow({1}{2}(x), {1}{2}(y))); }}\n", v, fv, n);
+    // Two arguments: pow, and the angle of (y, x): HLSL's atan2, GLSL's atan.
+    for (const char* fn : {"pow", lang == Lang::hlsl ? "atan2" : "atan"}) {
+      prefix += fmt::format("{0} lwc_f32_{2}({0} x, {0} y) {{ return {0}({2}({1}(x), {1}(y))); }}\n", d, f, fn);
+      for (int n = 2; n <= 4; ++n)
+        prefix += fmt::format("{0}{2} lwc_f32_{3}({0}{2} x, {0}{2} y) {{ return {0}{2}({3}({1}{2}(x), {1}{2}(y))); }}\n", v, fv, n, fn);
+    }
+    // Bit casts (see bit_casts): of a double, the float32 value's bits; of an HLSL integer, as written.
+    auto type = [&](std::string_view scalar, int n) -> std::string {
+      if (n == 1) return std::string(scalar);
+      if (lang == Lang::hlsl) return fmt::format("{}{}", scalar, n);
+      return fmt::format("{}vec{}", scalar == "double" ? "d" : scalar == "uint" ? "u" : scalar == "int" ? "i" : "", n);
+    };
+    for (std::string_view cast : bit_casts(lang)) {
+      std::string_view result = cast.ends_with("uint") || cast.ends_with("Uint") ? "uint" : "int";
+      for (int n = 1; n <= 4; ++n) {
+        prefix += fmt::format("{0} lwc_f32_{1}({2} x) {{ return {1}({3}(x)); }}\n", type(result, n), cast, type("double", n), type("float", n));
+        if (lang == Lang::hlsl)
+          for (std::string_view integer : {"int", "uint"})
+            prefix += fmt::format("{0} lwc_f32_{1}({2} x) {{ return {1}(x); }}\n", type(result, n), cast, type(integer, n));
+      }
+    }
     if (lang == Lang::hlsl) prefix += hlsl_double_intrinsics();
   }
   k.declarations = prefix + decl;
