@@ -16,6 +16,20 @@ const Leaf* find_leaf(const std::vector<Leaf>& leaves, const std::string& path) 
   return it == leaves.end() ? nullptr : &*it;
 }
 
+// The kernel compiles with glslang (HLSL), the error and the source shown when it does not.
+void ExpectKernelCompiles(const HarnessKernel& k, bool float64) {
+  KernelSpec spec;
+  spec.lang = Lang::hlsl;
+  spec.name = "kernel.usf";
+  spec.declarations = k.declarations;
+  spec.body = k.body;
+  spec.in_stride = k.in_stride;
+  spec.out_stride = k.out_stride;
+  spec.float64 = float64;
+  CompileResult compiled = compile_kernel(spec);
+  EXPECT_TRUE(compiled.ok) << format_messages(compiled) << kernel_source(spec);
+}
+
 TEST(KernelBuilder, HlslOutAndInoutParametersAreResults) {
   std::string text = "void Split(float3 WorldPosition, out float3 High, inout float3 Low : TEXCOORD0)\n"
                      "{\n\tHigh = WorldPosition;\n\tLow += WorldPosition - High;\n}\n";
@@ -68,16 +82,7 @@ TEST(KernelBuilder, AGlobalStructWithTextureMembersIsFilled) {
     ASSERT_NE(sampler, nullptr);
     EXPECT_EQ(texture->components, 4);
     EXPECT_TRUE(sampler->integer);
-    KernelSpec spec;
-    spec.lang = Lang::hlsl;
-    spec.name = "view.usf";
-    spec.declarations = k.declarations;
-    spec.body = k.body;
-    spec.in_stride = k.in_stride;
-    spec.out_stride = k.out_stride;
-    spec.float64 = float64;
-    CompileResult compiled = compile_kernel(spec);
-    EXPECT_TRUE(compiled.ok) << format_messages(compiled) << kernel_source(spec);
+    ExpectKernelCompiles(k, float64);
   }
 }
 
@@ -100,16 +105,7 @@ TEST(KernelBuilder, TexturesPassedOnArrayParametersAndGroupsharedScratchBuild) {
     EXPECT_NE(find_leaf(k.outputs, "lwc_p1[1][3]"), nullptr);  // and it is a result (inout)
     for (const Leaf& l : k.inputs) EXPECT_EQ(l.path.find("Scratch"), std::string::npos) << "groupshared is not an input: " << l.path;
     EXPECT_EQ(k.declarations.find("SampleLevel"), std::string::npos) << k.declarations;
-    KernelSpec spec;
-    spec.lang = Lang::hlsl;
-    spec.name = "plugin.usf";
-    spec.declarations = k.declarations;
-    spec.body = k.body;
-    spec.in_stride = k.in_stride;
-    spec.out_stride = k.out_stride;
-    spec.float64 = float64;
-    CompileResult compiled = compile_kernel(spec);
-    EXPECT_TRUE(compiled.ok) << format_messages(compiled) << kernel_source(spec);
+    ExpectKernelCompiles(k, float64);
   }
 }
 
