@@ -255,6 +255,29 @@ TEST(HarnessOnLavapipe, AMatrixDemotedByTheMarkerKeepsItsTranslationInFloat32) {
   EXPECT_LT(v.median_error, 1e4);    // but the translation is there: not the object's whole distance from the origin
 }
 
+// A result's unit comes from the model too: an output the model says is an absolute position is
+// judged in centimetres whatever it is called, and a render target (SV_Target) is unitless
+// whatever it was computed from.
+TEST(HarnessOnLavapipe, AResultsUnitComesFromTheModelAndARenderTargetIsUnitless) {
+  Driver d = start_driver();
+  ASSERT_NE(d.device, nullptr);
+  HarnessSetup setup = glsl_setup();
+  setup.facts.globals["vP"] = Kind::absolute;
+  std::string glsl = "#version 320 es\nprecision highp float;\nuniform mat4 modelMatrix;\nout vec3 vP;\n"
+                     "void place(vec3 position) { vP = (modelMatrix * vec4(position, 1.0)).xyz; }\nvoid main() {}\n";
+  FunctionResult placed = verify_function(*d.device, d.probes, setup, "place", {{"original (float32)", glsl}});
+  ASSERT_EQ(placed.variants.size(), 1u);
+  EXPECT_TRUE(placed.variants[0].world_outputs) << placed.variants[0].status;
+  EXPECT_GT(placed.variants[0].max_error, 1.0);  // a float32 world position far out, in cm
+
+  HarnessSetup hlsl = small_setup(Lang::hlsl, "Target.usf");
+  hlsl.facts.parameters["Shade"] = {Kind::absolute, Kind::absolute};
+  std::string target = "void Shade(float3 WorldPosition, out float4 OutColor : SV_Target0)\n{\n\tOutColor = float4(WorldPosition * 0.001f, 1);\n}\n";
+  FunctionResult shaded = verify_function(*d.device, d.probes, hlsl, "Shade", {{"original (float32)", target}});
+  ASSERT_EQ(shaded.variants.size(), 1u);
+  EXPECT_FALSE(shaded.variants[0].world_outputs) << shaded.variants[0].worst;
+}
+
 // The UE 5.0 tile/offset vertex factory moved to DoubleFloat matrices: the low part of each
 // matrix's translation reaches the shader (a GCC 12 vectoriser bug once dropped it on the host).
 TEST(HarnessOnLavapipe, DoubleFloatMatrixRewriteOfATileOffsetFactoryIsSubCentimetre) {

@@ -1228,9 +1228,13 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
       const Leaf& ref_leaf = *match->second;
       bool ref_translated;
       frame_free(ref_leaf.path, ref_translated);
-      Role role = role_of(ref_leaf.name == "return" ? function : ref_leaf.name, ref_leaf.components);
+      // What the result is: the model's kind of the function's return, of a global or an `out`
+      // parameter, or of its path in the world-space data; else its name.
+      Role role = ref_leaf.name == "return" ? role_of(function, ref_leaf.components)
+                                            : role_for(ref_leaf.name, ref_leaf.components, model_kind(setup.facts, function, ref_leaf));
       if (auto kind = setup.facts.returns.find(function); ref_leaf.name == "return" && kind != setup.facts.returns.end())
         role = role_of_kind(kind->second).value_or(role);
+      if (lower(ref_leaf.semantic).starts_with("sv_target")) role = Role::other;  // a render target's value: unitless
       bool clip = is_clip(ref_leaf);
       bool world = !clip && (world_units(role) || translated != ref_translated);
       bool integer = ref_leaf.integer || leaf.integer;

@@ -940,10 +940,10 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
   std::string body;
   int in_offset = 0, out_offset = 0;
   std::string fill;
-  auto add_inputs = [&](const std::string& type, const std::string& path, const std::string& name) {
+  auto add_inputs = [&](const std::string& type, const std::string& path, const std::string& name, const std::string& semantic = "") {
     std::vector<Leaf> leaves;
     int width = 0;
-    if (!collect_leaves(structs, type, path, name, "", leaves, width))
+    if (!collect_leaves(structs, type, path, name, semantic, leaves, width))
       k.problem = fmt::format("`{}` has type `{}`, which the harness cannot fill", name, type);
     for (Leaf& leaf : leaves) {
       if (!reads(leaf)) {
@@ -955,8 +955,8 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
       k.inputs.push_back(std::move(leaf));
     }
   };
-  auto add_outputs = [&](const std::string& type, const std::string& path, const std::string& name) {
-    if (!collect_leaves(structs, type, path, name, "", k.outputs, out_offset))
+  auto add_outputs = [&](const std::string& type, const std::string& path, const std::string& name, const std::string& semantic = "") {
+    if (!collect_leaves(structs, type, path, name, semantic, k.outputs, out_offset))
       k.problem = fmt::format("`{}` has type `{}`, which the harness cannot read", name, type);
   };
   if (params >= 0) {
@@ -975,11 +975,17 @@ HarnessKernel build_harness_kernel(Lang lang, const std::string& input_text, con
       bool out = direction == "out" || direction == "inout";
       bool in = direction != "out";
       std::string local = fmt::format("lwc_p{}", index++);
+      // Its HLSL semantic (`out float4 Color : SV_Target0`): a render target's value is unitless.
+      // (The parser's node ends before it: semantics are masked.)
+      std::string semantic;
+      size_t end = text.find_first_of(",)", t.at(p).end);
+      TokenText after(std::string_view(text).substr(t.at(p).end, end == std::string::npos ? 0 : end - t.at(p).end));
+      if (after.size() == 2 && after[0] == ":" && after.ident(1)) semantic = after[1];
       std::string dimensions = array_suffix(original, pname);  // `inout T x[2][4]`
       body += fmt::format("\t{} {}{};\n", ptype, local, dimensions);
       ptype += dimensions;
-      if (in) add_inputs(ptype, local, pname);
-      if (out) add_outputs(ptype, local, pname);
+      if (in) add_inputs(ptype, local, pname, semantic);
+      if (out) add_outputs(ptype, local, pname, semantic);
       args.push_back(local);
     }
   }
