@@ -13,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli/files.h"
+#include "project/files.h"
 #include "support.h"
 
 namespace fs = std::filesystem;

@@ -21,9 +21,9 @@
 #include <sstream>
 #include <thread>
 
-#include "cli/config.h"
-#include "cli/files.h"
-#include "cli/includes.h"
+#include "project/config.h"
+#include "project/files.h"
+#include "project/includes.h"
 #include "cli/report.h"
 #include "cli/verify_report.h"
 #include "fix/apply.h"
@@ -284,19 +284,10 @@ LoadedFile load(const InputFile& file, const Options& o, IncludeSummaries& inclu
     return problem(input_finding(Severity::error, 0, "cannot read: " + r.error, "check the path and its permissions"));
   if (r.too_large) return problem(too_large_finding(r.size, config.max_file_bytes));
   AnalyzeOptions& a = out.options;
+  a = analysis_options(config);
   a.lang = o.lang;
-  a.select = o.select;
-  a.ignore = o.ignore;
-  if (a.select.empty()) a.select.insert(config.select.begin(), config.select.end());
-  a.ignore.insert(config.ignore.begin(), config.ignore.end());
-  a.severity = config.severity;
-  a.world_sources = config.world_sources;
-  a.macros = config.macros;
-  a.unreal = config.unreal;
-  a.lint_library = config.lint_library;
-  a.formats = &config.formats;
-  a.max_bytes = config.max_file_bytes;
-  a.max_parse_seconds = config.max_parse_seconds;
+  if (!o.select.empty()) a.select = o.select;  // the command line's selection replaces the project's
+  a.ignore.insert(o.ignore.begin(), o.ignore.end());
   a.strategy = o.strategy;
   if (o.scene) a.scene = o.scene->for_path(file.display);
   out.source.emplace(file.display, std::move(r.text));

@@ -6,8 +6,8 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "cli/config.h"
-#include "cli/files.h"
+#include "project/config.h"
+#include "project/files.h"
 #include "rules/rule.h"
 
 namespace lwc {

@@ -1,4 +1,4 @@
-#include "cli/config.h"
+#include "project/config.h"
 
 #include <fmt/format.h>
 
@@ -307,6 +307,21 @@ std::shared_ptr<const ProjectConfig> ConfigFinder::for_dir(const fs::path& start
   }
   for (const auto& d : visited) by_dir_[d] = found;
   return found;
+}
+
+AnalyzeOptions analysis_options(const ProjectConfig& config) {
+  AnalyzeOptions a;
+  a.select.insert(config.select.begin(), config.select.end());
+  a.ignore.insert(config.ignore.begin(), config.ignore.end());
+  a.severity = config.severity;
+  a.world_sources = config.world_sources;
+  a.macros = config.macros;
+  a.unreal = config.unreal;
+  a.lint_library = config.lint_library;
+  a.formats = &config.formats;
+  a.max_bytes = config.max_file_bytes;
+  a.max_parse_seconds = config.max_parse_seconds;
+  return a;
 }
 
 }  // namespace lwc

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/config.h"
+#include "project/config.h"
 #include "lang/syntax.h"
 
 namespace lwc {

@@ -1,4 +1,4 @@
-#include "cli/files.h"
+#include "project/files.h"
 
 #include <fcntl.h>
 #include <signal.h>

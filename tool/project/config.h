@@ -11,6 +11,7 @@
 #include "core/finding.h"
 #include "lang/formats.h"
 #include "lang/macros.h"
+#include "rules/analyze.h"
 #include "world/era.h"
 
 namespace lwc {
@@ -68,5 +69,9 @@ class ConfigFinder {
 
 // .gitignore-style match of a pattern against a path relative to the pattern's folder.
 bool gitignore_match(std::string_view pattern, std::string_view relative, bool is_dir);
+
+// What the project's settings say about analysing its files (rules, severities, world sources,
+// macros, engine, formats, limits): what every face starts from before its own flags.
+AnalyzeOptions analysis_options(const ProjectConfig& config);
 
 }  // namespace lwc

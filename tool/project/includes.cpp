@@ -1,9 +1,9 @@
-#include "cli/includes.h"
+#include "project/includes.h"
 
 #include <algorithm>
 #include <set>
 
-#include "cli/files.h"
+#include "project/files.h"
 #include "rules/analyze.h"
 
 namespace fs = std::filesystem;

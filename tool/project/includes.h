@@ -9,7 +9,7 @@
 #include <tuple>
 #include <vector>
 
-#include "cli/config.h"
+#include "project/config.h"
 #include "world/model.h"
 
 namespace lwc {
