@@ -26,6 +26,7 @@
 #include "project/includes.h"
 #include "cli/report.h"
 #include "cli/verify_report.h"
+#include "lsp/server.h"
 #include "fix/apply.h"
 #include "fix/diff.h"
 #include "fix/scene.h"
@@ -57,6 +58,8 @@ commands:
   parse [PATHS...]    parse only and count syntax errors (the benchmark's baseline); with
                       --verbose, each error's position and the text around it
   rules               list the rules
+  lsp                 serve editors over the Language Server Protocol (stdio): diagnostics as
+                      you type (docs/editors.md)
 
 lint and fix options:
   --format text|json|sarif|github   output format (default: text)
@@ -1236,6 +1239,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     if (o.command == "fix") return fix(o, out, err);
     if (o.command == "parse") return parse_only(o, out, err);
     if (o.command == "verify") return verify(o, out, err);
+    if (o.command == "lsp") return run_language_server(std::cin, out);
     if (o.command == "rules") {
       list_rules(out);
       return 0;

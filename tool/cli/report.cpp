@@ -147,8 +147,6 @@ nlohmann::json artifact_location(const std::string& path) {
   return {{"uri", uri_encode(rel)}, {"uriBaseId", "SRCROOT"}};
 }
 
-const std::string kDocs = "https://github.com/lwcport/lwcport/blob/main/docs/rules/";
-
 nlohmann::json sarif_rules() {
   nlohmann::json rules = nlohmann::json::array();
   for (const RuleInfo& r : all_rules()) {
@@ -156,8 +154,8 @@ nlohmann::json sarif_rules() {
                      {"name", r.name},
                      {"shortDescription", {{"text", sentence(r.summary)}}},
                      {"fullDescription", {{"text", sentence(r.rationale)}}},
-                     {"help", {{"text", sentence(r.hint)}, {"markdown", fmt::format("{} See [{}]({}{}.md).", sentence(r.rationale), r.id, kDocs, r.id)}}},
-                     {"helpUri", kDocs + r.id + ".md"},
+                     {"help", {{"text", sentence(r.hint)}, {"markdown", fmt::format("{} See [{}]({}).", sentence(r.rationale), r.id, rule_doc_url(r.id))}}},
+                     {"helpUri", rule_doc_url(r.id)},
                      {"defaultConfiguration", {{"level", sarif_level(r.severity)}}},
                      {"properties", {{"tags", {"large-world-coordinates", "precision"}}}}});
   }

@@ -146,4 +146,8 @@ Fix* CheckContext::fix(Finding& finding, std::string_view kind, const Vars& vars
   return &finding.fixes.emplace_back(make_fix(rule, kind, vars, std::move(edits)));
 }
 
+std::string rule_doc_url(std::string_view id) {
+  return "https://github.com/lwcport/lwcport/blob/main/docs/rules/" + std::string(id) + ".md";
+}
+
 }  // namespace lwc

@@ -35,6 +35,8 @@ struct RuleInfo {
 
 // Every rule, sorted by id. Throws std::runtime_error on malformed rule data (a build defect).
 const std::vector<RuleInfo>& all_rules();
+// The page that documents a rule (SARIF's helpUri, the editor's code description).
+std::string rule_doc_url(std::string_view id);
 const RuleInfo* find_rule(std::string_view id);
 // The "world-space" object of rules/world-space.json.
 const nlohmann::json& world_space_data();

@@ -1,0 +1,159 @@
+// `lwcport lsp` driven by scripted JSON-RPC sessions: the framed messages go in on standard input,
+// every reply and notification is read back from standard output, in order.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "support.h"
+
+namespace lwc {
+namespace {
+
+using nlohmann::json;
+
+std::string frame(const json& message) {
+  std::string body = message.dump();
+  return "Content-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body;
+}
+
+struct Session {
+  int exit_code = -1;
+  std::vector<json> messages;  // what the server wrote, in order
+};
+
+// Runs the server on `input` (already framed) and reads every message it writes.
+Session serve(const std::string& input) {
+  std::string dir = test::scratch("lsp");
+  test::write(dir + "/in", input);
+  test::Run r = test::run(test::binary() + " lsp < " + dir + "/in");
+  Session s;
+  s.exit_code = r.exit_code;
+  for (size_t at = 0; at < r.out.size();) {
+    size_t head = r.out.find("\r\n\r\n", at);
+    if (head == std::string::npos) break;
+    size_t length = std::stoul(r.out.substr(r.out.find(':', at) + 1, head - at));
+    s.messages.push_back(json::parse(r.out.substr(head + 4, length)));
+    at = head + 4 + length;
+  }
+  return s;
+}
+
+json request(int id, const std::string& method, const json& params = json::object()) {
+  return {{"jsonrpc", "2.0"}, {"id", id}, {"method", method}, {"params", params}};
+}
+json notification(const std::string& method, const json& params = json::object()) {
+  return {{"jsonrpc", "2.0"}, {"method", method}, {"params", params}};
+}
+json initialize(const json& capabilities = json::object()) { return request(1, "initialize", {{"capabilities", capabilities}}); }
+std::string end_session() { return frame(request(99, "shutdown")) + frame(notification("exit")); }
+
+const json* reply_to(const Session& s, int id) {
+  for (const json& m : s.messages)
+    if (m.contains("id") && m["id"] == id) return &m;
+  return nullptr;
+}
+std::vector<json> diagnostics(const Session& s) {
+  std::vector<json> out;
+  for (const json& m : s.messages)
+    if (m.value("method", "") == "textDocument/publishDiagnostics") out.push_back(m["params"]);
+  return out;
+}
+
+// The server's diagnostics for a corpus file are `lint`'s findings, at the same places; an edit
+// above them moves them down; a malformed message gets a parse error and the server answers the
+// next request; an unknown request is "method not found"; shutdown, then exit, ends with 0.
+TEST(LanguageServer, DiagnosticsAreLintsFindingsAndFollowEdits) {
+  std::string path = test::source_dir() + "/corpus/glsl/forward.vert";
+  std::string text = test::read(path);
+  std::string uri = "file://" + path;
+  json lint = json::parse(test::run(test::binary() + " lint " + path + " --format json --fail-on none").out);
+  ASSERT_FALSE(lint["findings"].empty());
+  json insert = {{"range", {{"start", {{"line", 0}, {"character", 0}}}, {"end", {{"line", 0}, {"character", 0}}}}}, {"text", "// a\n"}};
+  Session s = serve(frame(initialize()) + frame(notification("initialized")) +
+                    frame(notification("textDocument/didOpen", {{"textDocument", {{"uri", uri}, {"languageId", "glsl"}, {"version", 1}, {"text", text}}}})) +
+                    frame(notification("textDocument/didChange", {{"textDocument", {{"uri", uri}, {"version", 2}}}, {"contentChanges", {insert}}})) +
+                    "Content-Length: 5\r\n\r\n{bad}" + frame(request(7, "textDocument/noSuchThing")) + end_session());
+  EXPECT_EQ(s.exit_code, 0);
+  const json* init = reply_to(s, 1);
+  ASSERT_NE(init, nullptr);
+  EXPECT_EQ((*init)["result"]["capabilities"]["positionEncoding"], "utf-16");
+  std::vector<json> published = diagnostics(s);
+  ASSERT_EQ(published.size(), 2u);
+  EXPECT_EQ(published[0]["version"], 1);
+  EXPECT_EQ(published[1]["version"], 2);
+  ASSERT_EQ(published[0]["diagnostics"].size(), lint["findings"].size());
+  for (size_t i = 0; i < lint["findings"].size(); ++i) {
+    const json &d = published[0]["diagnostics"][i], &f = lint["findings"][i], &moved = published[1]["diagnostics"][i];
+    EXPECT_EQ(d["code"], f["rule"]);
+    EXPECT_EQ(d["source"], "lwcport");
+    EXPECT_EQ(d["range"]["start"]["line"], f["start"]["line"].get<int>() - 1);  // lint: 1-based lines and columns
+    EXPECT_EQ(d["range"]["start"]["character"], f["start"]["column"].get<int>() - 1);
+    EXPECT_EQ(moved["range"]["start"]["line"], d["range"]["start"]["line"].get<int>() + 1);
+    EXPECT_NE(d["codeDescription"]["href"].get<std::string>().find(f["rule"].get<std::string>()), std::string::npos);
+  }
+  bool parse_error = false;
+  for (const json& m : s.messages) parse_error |= m.contains("error") && m["error"]["code"] == -32700 && m["id"].is_null();
+  EXPECT_TRUE(parse_error);
+  const json* unknown = reply_to(s, 7);
+  ASSERT_NE(unknown, nullptr);
+  EXPECT_EQ((*unknown)["error"]["code"], -32601);
+  const json* shutdown = reply_to(s, 99);
+  ASSERT_NE(shutdown, nullptr);
+  EXPECT_TRUE((*shutdown)["result"].is_null());
+}
+
+// Columns count UTF-16 code units unless the client offers UTF-8: a character outside the BMP
+// (two UTF-16 units, four bytes) before a finding moves it by 2 or by 4. An edit given in those
+// units lands where the client means it.
+TEST(LanguageServer, ColumnsAreInTheNegotiatedEncoding) {
+  std::string dir = test::scratch("lsp-utf16");
+  std::string text = "#version 300 es\n/* \xF0\x9F\x8C\x8D */ uniform mat4 modelMatrix;\nin vec3 position;\n"
+                     "void main() { gl_Position = modelMatrix * vec4(position, 1.0); }\n";
+  std::string uri = "file://" + dir + "/globe.vert";
+  auto open = frame(notification("textDocument/didOpen", {{"textDocument", {{"uri", uri}, {"languageId", "glsl"}, {"version", 1}, {"text", text}}}}));
+  auto column = [&](const Session& s) {
+    std::vector<json> published = diagnostics(s);
+    if (published.empty()) return -2;
+    for (const json& d : published.front()["diagnostics"])
+      if (d["code"] == "lwc-uniform-world-float") return d["range"]["start"]["character"].get<int>();
+    return -1;
+  };
+  Session utf16 = serve(frame(initialize()) + open + end_session());
+  Session utf8 = serve(frame(initialize({{"general", {{"positionEncodings", {"utf-8", "utf-16"}}}}})) + open + end_session());
+  EXPECT_EQ((*reply_to(utf8, 1))["result"]["capabilities"]["positionEncoding"], "utf-8");
+  EXPECT_EQ(column(utf16), 3 + 2 + 4 + 13);  // "/* ", the globe (2 units), " */ ", "uniform mat4 "
+  EXPECT_EQ(column(utf8), 3 + 4 + 4 + 13);
+  // Deleting the globe in UTF-16 units (characters 3 to 5) leaves the finding at column 3 + 4 + 13.
+  json remove = {{"range", {{"start", {{"line", 1}, {"character", 3}}}, {"end", {{"line", 1}, {"character", 5}}}}}, {"text", ""}};
+  Session edited = serve(frame(initialize()) + open +
+                         frame(notification("textDocument/didChange", {{"textDocument", {{"uri", uri}, {"version", 2}}}, {"contentChanges", {remove}}})) +
+                         end_session());
+  std::vector<json> published = diagnostics(edited);
+  ASSERT_EQ(published.size(), 2u);
+  for (const json& d : published[1]["diagnostics"])
+    if (d["code"] == "lwc-uniform-world-float") EXPECT_EQ(d["range"]["start"]["character"], 3 + 4 + 13);
+}
+
+// A stale change (a version the document already has) is ignored; closing clears the document's
+// diagnostics; requests before initialize are refused; exit without shutdown ends with 1.
+TEST(LanguageServer, StaleChangesCloseAndLifecycle) {
+  std::string dir = test::scratch("lsp-stale");
+  std::string uri = "file://" + dir + "/a.vert";
+  std::string text = "#version 300 es\nuniform mat4 modelMatrix;\nvoid main() { gl_Position = modelMatrix[3]; }\n";
+  json blank = {{"text", "#version 300 es\nvoid main() {}\n"}};
+  Session s = serve(frame(request(3, "shutdown")) + frame(initialize()) +
+                    frame(notification("textDocument/didOpen", {{"textDocument", {{"uri", uri}, {"languageId", "glsl"}, {"version", 5}, {"text", text}}}})) +
+                    frame(notification("textDocument/didChange", {{"textDocument", {{"uri", uri}, {"version", 4}}}, {"contentChanges", {blank}}})) +
+                    frame(notification("textDocument/didClose", {{"textDocument", {{"uri", uri}}}})) + frame(notification("exit")));
+  EXPECT_EQ(s.exit_code, 1);
+  const json* early = reply_to(s, 3);
+  ASSERT_NE(early, nullptr);
+  EXPECT_EQ((*early)["error"]["code"], -32002);
+  std::vector<json> published = diagnostics(s);
+  ASSERT_EQ(published.size(), 2u);  // the open, then the close; the stale change published nothing
+  EXPECT_FALSE(published[0]["diagnostics"].empty());
+  EXPECT_TRUE(published[1]["diagnostics"].empty());
+}
+
+}  // namespace
+}  // namespace lwc
