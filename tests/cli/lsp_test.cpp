@@ -2,6 +2,8 @@
 // every reply and notification is read back from standard output, in order.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "support.h"
@@ -132,6 +134,69 @@ TEST(LanguageServer, ColumnsAreInTheNegotiatedEncoding) {
   ASSERT_EQ(published.size(), 2u);
   for (const json& d : published[1]["diagnostics"])
     if (d["code"] == "lwc-uniform-world-float") EXPECT_EQ(d["range"]["start"]["character"], 3 + 4 + 13);
+}
+
+// Applies LSP text edits (ASCII text: characters are bytes) to a text.
+std::string apply(std::string text, const json& edits) {
+  std::vector<size_t> starts = {0};
+  for (size_t i = 0; i < text.size(); ++i)
+    if (text[i] == '\n') starts.push_back(i + 1);
+  auto at = [&](const json& p) { return starts[p["line"].get<size_t>()] + p["character"].get<size_t>(); };
+  std::vector<json> sorted(edits.begin(), edits.end());
+  std::sort(sorted.begin(), sorted.end(), [&](const json& a, const json& b) { return at(a["range"]["start"]) > at(b["range"]["start"]); });
+  for (const json& e : sorted) {
+    size_t begin = at(e["range"]["start"]), end = at(e["range"]["end"]);
+    text.replace(begin, end - begin, e["newText"].get<std::string>());
+  }
+  return text;
+}
+
+// Code actions: the quick fix applied gives exactly `lwcport fix`'s file (one finding), fix-all
+// gives `lwcport fix`'s file (several), and "ignore for this line" silences the finding.
+TEST(LanguageServer, CodeActionsGiveWhatFixGives) {
+  std::string dir = test::scratch("lsp-actions");
+  std::string text = test::read(test::source_dir() + "/corpus/ue5.4/DoubleFloatHelpers.ush");
+  test::write(dir + "/Helpers.ush", text);
+  test::Run fixed_run = test::run(test::binary() + " fix " + dir + "/Helpers.ush --fail-on none > /dev/null");
+  std::string fixed = test::read(dir + "/Helpers.ush");
+  ASSERT_NE(fixed, text);
+  std::string uri = "file://" + dir + "/Other.ush";  // not on disk: the text is the client's
+  json whole = {{"start", {{"line", 0}, {"character", 0}}}, {"end", {{"line", 200}, {"character", 0}}}};
+  // The TwoSum finding (line 21) only: a range on it.
+  json on_two_sum = {{"start", {{"line", 20}, {"character", 0}}}, {"end", {{"line", 21}, {"character", 0}}}};
+  Session s = serve(frame(initialize()) +
+                    frame(notification("textDocument/didOpen", {{"textDocument", {{"uri", uri}, {"languageId", "hlsl"}, {"version", 1}, {"text", text}}}})) +
+                    frame(request(2, "textDocument/codeAction", {{"textDocument", {{"uri", uri}}}, {"range", whole}, {"context", {{"diagnostics", json::array()}}}})) +
+                    frame(request(3, "textDocument/codeAction", {{"textDocument", {{"uri", uri}}}, {"range", on_two_sum}, {"context", {{"diagnostics", json::array()}}}})) +
+                    end_session());
+  const json* all = reply_to(s, 2);
+  const json* one = reply_to(s, 3);
+  ASSERT_NE(all, nullptr);
+  ASSERT_NE(one, nullptr);
+  const json* fix_all = nullptr;
+  for (const json& a : (*all)["result"])
+    if (a["kind"] == "source.fixAll.lwcport") fix_all = &a;
+  ASSERT_NE(fix_all, nullptr) << all->dump(2);
+  EXPECT_EQ(apply(text, (*fix_all)["edit"]["changes"][uri]), fixed);
+  const json *quick = nullptr, *ignore = nullptr;
+  for (const json& a : (*one)["result"]) {
+    if (a["kind"] == "quickfix" && a.value("isPreferred", false)) quick = &a;
+    if (a["title"].get<std::string>().starts_with("ignore lwc-missing-precise")) ignore = &a;
+  }
+  ASSERT_NE(quick, nullptr) << one->dump(2);
+  ASSERT_NE(ignore, nullptr) << one->dump(2);
+  // Applied alone, the quick fix makes TwoSumPlain precise, as fix does: fix's file, but for the
+  // Split finding the range left out.
+  std::string quick_fixed = apply(text, (*quick)["edit"]["changes"][uri]);
+  EXPECT_NE(quick_fixed.find("\tprecise float S = A + B;\n\tprecise float V = S - A;"), std::string::npos) << quick_fixed;
+  EXPECT_EQ(quick_fixed.find("precise float T = 4097.0f * A;"), std::string::npos);
+  std::string ignored = apply(text, (*ignore)["edit"]["changes"][uri]);
+  test::write(dir + "/Ignored.ush", ignored);
+  json lint = json::parse(test::run(test::binary() + " lint " + dir + "/Ignored.ush --format json --fail-on none").out);
+  for (const json& f : lint["findings"]) EXPECT_FALSE(f["rule"] == "lwc-missing-precise" && f["start"]["line"] == 22) << f.dump();
+  int missing_precise = 0;
+  for (const json& f : lint["findings"]) missing_precise += f["rule"] == "lwc-missing-precise";
+  EXPECT_EQ(missing_precise, 1);  // the Split one is still there
 }
 
 // A stale change (a version the document already has) is ignored; closing clears the document's

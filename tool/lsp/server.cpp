@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/source.h"
+#include "fix/apply.h"
 #include "project/config.h"
 #include "project/includes.h"
 #include "rules/analyze.h"
@@ -104,6 +105,7 @@ class Server {
       else if (method == "textDocument/didOpen") open(params.at("textDocument"));
       else if (method == "textDocument/didChange") change(params.at("textDocument"), params.at("contentChanges"));
       else if (method == "textDocument/didClose") close(params.at("textDocument").at("uri"));
+      else if (method == "textDocument/codeAction") reply(id, code_actions(params));
       else if (request) reply_error(id, kMethodNotFound, "no method " + method);
     } catch (const json::exception& e) {
       if (request) reply_error(id, kInvalidParams, std::string("bad parameters: ") + e.what());
@@ -121,6 +123,8 @@ class Server {
     std::string text;
     int version = 0;
     std::optional<Lang> lang;
+    AnalyzeOptions options;         // from the project, as of the last analysis
+    std::vector<Finding> findings;  // of the last analysis: what code actions offer
   };
 
   json initialize(const json& params) {
@@ -129,7 +133,8 @@ class Server {
     utf8_ = std::find(offered.begin(), offered.end(), "utf-8") != offered.end();
     return {{"capabilities",
              {{"positionEncoding", utf8_ ? "utf-8" : "utf-16"},
-              {"textDocumentSync", {{"openClose", true}, {"change", 2}}}}},  // 2: incremental
+              {"textDocumentSync", {{"openClose", true}, {"change", 2}}},  // 2: incremental
+              {"codeActionProvider", {{"codeActionKinds", {"quickfix", "source.fixAll.lwcport"}}}}}},
             {"serverInfo", {{"name", "lwcport"}, {"version", "0.1.0"}}}};
   }
 
@@ -214,7 +219,7 @@ class Server {
   }
 
   // The document's findings, as the command line's `lint` gives them for the same text.
-  void publish(const std::string& uri, const Document& d) {
+  void publish(const std::string& uri, Document& d) {
     json diagnostics = json::array();
     std::vector<size_t> starts = line_starts(d.text);
     auto range = [&](size_t begin, size_t end) {
@@ -222,8 +227,7 @@ class Server {
                   {"end", position(d.text, starts, std::min(end, d.text.size()))}};
     };
     try {
-      fs::path folder = d.path.has_parent_path() && d.path.is_absolute() ? d.path.parent_path() : fs::current_path();
-      std::shared_ptr<const ProjectConfig> config = configs_.for_dir(folder);
+      std::shared_ptr<const ProjectConfig> config = configs_.for_dir(folder_of(d));
       AnalyzeOptions options = analysis_options(*config);
       if (d.lang) options.lang = d.lang;
       std::optional<FileSummary> summary;
@@ -231,7 +235,10 @@ class Server {
         summary = includes_.for_file(d.path, d.text, *config);
         options.includes = &*summary;
       }
-      for (const Finding& f : analyze(Source(d.path.string(), d.text), options)) {
+      d.options = options;
+      d.options.includes = nullptr;  // the summary lives for this analysis only
+      d.findings = analyze(Source(d.path.string(), d.text), options);
+      for (const Finding& f : d.findings) {
         int severity = f.severity == Severity::error ? 1 : f.severity == Severity::warning ? 2 : 3;
         diagnostics.push_back({{"range", range(f.span.begin, f.span.end)},
                                {"severity", severity},
@@ -248,6 +255,69 @@ class Server {
     send({{"jsonrpc", "2.0"},
           {"method", "textDocument/publishDiagnostics"},
           {"params", {{"uri", uri}, {"version", d.version}, {"diagnostics", diagnostics}}}});
+  }
+
+  // Quick fixes (each finding's rewrite; a safe one preferred, an unsafe one titled so), "ignore
+  // <rule> for this line", and every safe fix at once (source.fixAll.lwcport), for the findings the
+  // range touches. A rewrite that needs lwcport's library file written beside the document is left
+  // to `lwcport fix`, which writes it.
+  json code_actions(const json& params) {
+    std::string uri = params.at("textDocument").at("uri");
+    json actions = json::array();
+    auto it = documents_.find(uri);
+    if (it == documents_.end()) return actions;
+    const Document& d = it->second;
+    size_t from = offset(d.text, params.at("range").at("start")), to = offset(d.text, params.at("range").at("end"));
+    std::vector<size_t> starts = line_starts(d.text);
+    Source source(d.path.string(), d.text);
+    // The edits as a workspace edit; `written`: their text is in the document's line endings already.
+    auto edit_of = [&](const std::vector<Edit>& edits, bool written = false) {
+      json list = json::array();
+      for (const Edit& e : edits)
+        list.push_back({{"range", {{"start", position(d.text, starts, e.span.begin)}, {"end", position(d.text, starts, e.span.end)}}},
+                        {"newText", written ? e.text : in_line_endings(source, e.text)}});
+      return json{{"changes", {{uri, list}}}};
+    };
+    for (const Finding& f : d.findings) {
+      if (f.span.end < from || f.span.begin > to) continue;
+      for (const Fix& fix : f.fixes) {
+        if (!fix.library.empty()) continue;
+        bool safe = fix.applicability == Applicability::safe;
+        actions.push_back({{"title", safe ? fix.title : fix.title + " (unsafe: " + fix.reason + ")"},
+                           {"kind", "quickfix"}, {"isPreferred", safe}, {"edit", edit_of(fix.edits)}});
+      }
+      if (f.rule != "lwc-input") {
+        // A line of its own above the finding's line, indented as it is.
+        Position at = source.position(f.span.begin);
+        uint32_t line_start = source.offset({at.line, 1});
+        std::string_view line = source.line_text(at.line);
+        std::string indent(line.substr(0, line.find_first_not_of(" \t")));
+        bool continued = line.ends_with('\\') || (at.line > 1 && source.line_text(at.line - 1).ends_with('\\'));
+        if (!continued)
+          actions.push_back({{"title", "ignore " + f.rule + " for this line"}, {"kind", "quickfix"},
+                             {"edit", edit_of({{{line_start, line_start}, indent + "// lwcport-ignore: " + f.rule + "\n"}})}});
+      }
+    }
+    bool any_safe = std::any_of(d.findings.begin(), d.findings.end(), [](const Finding& f) {
+      return std::any_of(f.fixes.begin(), f.fixes.end(), [](const Fix& x) { return x.applicability == Applicability::safe; });
+    });
+    if (any_safe) {
+      AnalyzeOptions options = d.options;
+      std::optional<FileSummary> summary;
+      if (d.text.find("include") != std::string::npos) {
+        summary = includes_.for_file(d.path, d.text, *configs_.for_dir(folder_of(d)));
+        options.includes = &*summary;
+      }
+      FixOutcome fixed = fix_source(source, options, false);
+      if (fixed.applied > 0 && fixed.library.empty())
+        actions.push_back({{"title", "lwcport: apply every safe fix"}, {"kind", "source.fixAll.lwcport"},
+                           {"edit", edit_of({{{0, static_cast<uint32_t>(d.text.size())}, fixed.text}}, true)}});
+    }
+    return actions;
+  }
+
+  static fs::path folder_of(const Document& d) {
+    return d.path.has_parent_path() && d.path.is_absolute() ? d.path.parent_path() : fs::current_path();
   }
 
   void reply(const json& id, const json& result) { send({{"jsonrpc", "2.0"}, {"id", id}, {"result", result}}); }
