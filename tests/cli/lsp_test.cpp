@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <random>
 
 #include <nlohmann/json.hpp>
 
@@ -197,6 +198,102 @@ TEST(LanguageServer, CodeActionsGiveWhatFixGives) {
   int missing_precise = 0;
   for (const json& f : lint["findings"]) missing_precise += f["rule"] == "lwc-missing-precise";
   EXPECT_EQ(missing_precise, 1);  // the Split one is still there
+}
+
+// UTF-16 units of a UTF-8 text up to a byte offset, and the byte offset of a (line, UTF-16
+// character) position: what a client computes.
+size_t byte_offset(const std::string& text, size_t line, size_t character) {
+  size_t at = 0;
+  for (size_t l = 0; l < line && at < text.size(); ++at)
+    if (text[at] == '\n') ++l;
+  for (size_t units = 0; at < text.size() && text[at] != '\n' && units < character;) {
+    unsigned char lead = static_cast<unsigned char>(text[at]);
+    size_t n = lead >= 0xF0 ? 4 : lead >= 0xE0 ? 3 : lead >= 0xC0 ? 2 : 1;
+    units += n == 4 ? 2 : 1;
+    at += n;
+  }
+  return at;
+}
+
+// Random edit sequences (seeded): after each batch the server's diagnostics for its copy of the
+// text are lint's for the text the client holds, which it built with the same edits (positions in
+// UTF-16 units, multi-byte characters and CRLF line ends among the inserted text).
+TEST(LanguageServer, RandomEditsKeepDiagnosticsEqualToAFreshLint) {
+  std::string dir = test::scratch("lsp-random");
+  std::string text = test::read(test::source_dir() + "/corpus/ue4/DeferredLightPixelShaders.usf");
+  std::string uri = "file://" + dir + "/Light.usf";
+  const std::vector<std::string> pieces = {"float3 WorldPos = View.WorldCameraOrigin;\n", " ", "\r\n", "/* \xC3\xA9 */",
+                                           "// \xF0\x9F\x8C\x8D\n", "/* \xF0\x9F\x8C\x8D */", "LightData.Position", ";", "}", "\n\n", ""};
+  std::mt19937 random(20261123);
+  std::string input = frame(initialize()) +
+                      frame(notification("textDocument/didOpen", {{"textDocument", {{"uri", uri}, {"languageId", "hlsl"}, {"version", 1}, {"text", text}}}}));
+  for (int version = 2; version <= 60; ++version) {
+    size_t lines = static_cast<size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
+    size_t l1 = random() % lines, c1 = random() % 30, l2 = l1 + random() % 2, c2 = random() % 30;
+    size_t begin = byte_offset(text, l1, c1), end = byte_offset(text, l2, c2);
+    if (end < begin) std::swap(begin, end), std::swap(l1, l2), std::swap(c1, c2);
+    // The positions as sent, clamped as the server clamps them, must name these bytes: send the
+    // ones recomputed from the bytes (a client never sends a character past a line's end).
+    auto units = [&](size_t at) {
+      size_t line_start = text.rfind('\n', at == 0 ? 0 : at - 1);
+      line_start = (line_start == std::string::npos || at == 0) ? 0 : line_start + 1;
+      size_t u = 0;
+      for (size_t i = line_start; i < at;) {
+        unsigned char lead = static_cast<unsigned char>(text[i]);
+        size_t n = lead >= 0xF0 ? 4 : lead >= 0xE0 ? 3 : lead >= 0xC0 ? 2 : 1;
+        u += n == 4 ? 2 : 1;
+        i += n;
+      }
+      return json{{"line", std::count(text.begin(), text.begin() + static_cast<long>(at), '\n')}, {"character", u}};
+    };
+    std::string piece = pieces[random() % pieces.size()];
+    json change = {{"range", {{"start", units(begin)}, {"end", units(end)}}}, {"text", piece}};
+    text.replace(begin, end - begin, piece);
+    input += frame(notification("textDocument/didChange", {{"textDocument", {{"uri", uri}, {"version", version}}}, {"contentChanges", {change}}}));
+  }
+  Session s = serve(input + end_session());
+  std::vector<json> published = diagnostics(s);
+  ASSERT_EQ(published.size(), 60u);
+  test::write(dir + "/Light.usf", text);
+  json lint = json::parse(test::run(test::binary() + " lint " + dir + "/Light.usf --format json --fail-on none").out);
+  const json& last = published.back()["diagnostics"];
+  ASSERT_EQ(last.size(), lint["findings"].size()) << last.dump(1);
+  // lint's columns count code points; the server's, UTF-16 units.
+  auto utf16_column = [&](int line, int column) {
+    size_t at = byte_offset(text, static_cast<size_t>(line - 1), 0), units = 0;
+    for (int cp = 1; cp < column && at < text.size(); ++cp) {
+      unsigned char lead = static_cast<unsigned char>(text[at]);
+      size_t n = lead >= 0xF0 ? 4 : lead >= 0xE0 ? 3 : lead >= 0xC0 ? 2 : 1;
+      units += n == 4 ? 2 : 1;
+      at += n;
+    }
+    return units;
+  };
+  for (size_t i = 0; i < last.size(); ++i) {
+    const json& f = lint["findings"][i];
+    EXPECT_EQ(last[i]["code"], f["rule"]);
+    EXPECT_EQ(last[i]["range"]["start"]["line"], f["start"]["line"].get<int>() - 1);
+    EXPECT_EQ(last[i]["range"]["start"]["character"], utf16_column(f["start"]["line"], f["start"]["column"]));
+  }
+}
+
+// Hover on a finding: the rule, its message, summary and rationale, and its page.
+TEST(LanguageServer, HoverOnAFindingExplainsTheRule) {
+  std::string path = test::source_dir() + "/corpus/glsl/forward.vert";
+  std::string uri = "file://" + path;
+  Session s = serve(frame(initialize()) +
+                    frame(notification("textDocument/didOpen", {{"textDocument", {{"uri", uri}, {"languageId", "glsl"}, {"version", 1}, {"text", test::read(path)}}}})) +
+                    frame(request(2, "textDocument/hover", {{"textDocument", {{"uri", uri}}}, {"position", {{"line", 4}, {"character", 15}}}})) +
+                    frame(request(3, "textDocument/hover", {{"textDocument", {{"uri", uri}}}, {"position", {{"line", 0}, {"character", 0}}}})) +
+                    end_session());
+  const json* on = reply_to(s, 2);
+  const json* off = reply_to(s, 3);
+  ASSERT_NE(on, nullptr);
+  ASSERT_NE(off, nullptr);
+  std::string value = (*on)["result"]["contents"]["value"];
+  EXPECT_NE(value.find("**lwc-uniform-world-float**"), std::string::npos) << value;
+  EXPECT_NE(value.find("docs/rules/lwc-uniform-world-float.md"), std::string::npos) << value;
+  EXPECT_TRUE((*off)["result"].is_null());
 }
 
 // A stale change (a version the document already has) is ignored; closing clears the document's

@@ -106,6 +106,7 @@ class Server {
       else if (method == "textDocument/didChange") change(params.at("textDocument"), params.at("contentChanges"));
       else if (method == "textDocument/didClose") close(params.at("textDocument").at("uri"));
       else if (method == "textDocument/codeAction") reply(id, code_actions(params));
+      else if (method == "textDocument/hover") reply(id, hover(params));
       else if (request) reply_error(id, kMethodNotFound, "no method " + method);
     } catch (const json::exception& e) {
       if (request) reply_error(id, kInvalidParams, std::string("bad parameters: ") + e.what());
@@ -134,7 +135,8 @@ class Server {
     return {{"capabilities",
              {{"positionEncoding", utf8_ ? "utf-8" : "utf-16"},
               {"textDocumentSync", {{"openClose", true}, {"change", 2}}},  // 2: incremental
-              {"codeActionProvider", {{"codeActionKinds", {"quickfix", "source.fixAll.lwcport"}}}}}},
+              {"codeActionProvider", {{"codeActionKinds", {"quickfix", "source.fixAll.lwcport"}}}},
+              {"hoverProvider", true}}},
             {"serverInfo", {{"name", "lwcport"}, {"version", "0.1.0"}}}};
   }
 
@@ -314,6 +316,24 @@ class Server {
                            {"edit", edit_of({{{0, static_cast<uint32_t>(d.text.size())}, fixed.text}}, true)}});
     }
     return actions;
+  }
+
+  // On a finding: its message, its rule's summary and rationale, and the rule's page.
+  json hover(const json& params) {
+    auto it = documents_.find(params.at("textDocument").at("uri"));
+    if (it == documents_.end()) return nullptr;
+    const Document& d = it->second;
+    size_t at = offset(d.text, params.at("position"));
+    std::vector<size_t> starts = line_starts(d.text);
+    for (const Finding& f : d.findings) {
+      if (at < f.span.begin || at > f.span.end) continue;
+      auto rule = std::find_if(all_rules().begin(), all_rules().end(), [&](const RuleInfo& r) { return r.id == f.rule; });
+      std::string text = "**" + f.rule + "**: " + f.message;
+      if (rule != all_rules().end()) text += "\n\n" + rule->summary + ". " + rule->rationale + "\n\n[" + f.rule + "](" + rule_doc_url(f.rule) + ")";
+      return {{"contents", {{"kind", "markdown"}, {"value", text}}},
+              {"range", {{"start", position(d.text, starts, f.span.begin)}, {"end", position(d.text, starts, f.span.end)}}}};
+    }
+    return nullptr;
   }
 
   static fs::path folder_of(const Document& d) {
