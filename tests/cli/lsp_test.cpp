@@ -296,6 +296,42 @@ TEST(LanguageServer, HoverOnAFindingExplainsTheRule) {
   EXPECT_TRUE((*off)["result"].is_null());
 }
 
+// A changed `.lwcport.json` is read again: the project now ignores the rule, and the open
+// document's diagnostics are published again without it. The config changes mid-session, once
+// the server has published the first diagnostics (the script waits for them on its output).
+TEST(LanguageServer, AChangedConfigIsReadAgain) {
+  std::string dir = test::scratch("lsp-config");
+  std::string uri = "file://" + dir + "/a.vert";
+  std::string text = "#version 300 es\nuniform mat4 modelMatrix;\nin vec3 position;\n"
+                     "void main() { gl_Position = modelMatrix * vec4(position, 1.0); }\n";
+  test::write(dir + "/.lwcport.json", "{}");
+  test::write(dir + "/first", frame(initialize()) +
+                                  frame(notification("textDocument/didOpen", {{"textDocument", {{"uri", uri}, {"languageId", "glsl"}, {"version", 1}, {"text", text}}}})));
+  json changed = {{"changes", {{{"uri", "file://" + dir + "/.lwcport.json"}, {"type", 2}}}}};
+  test::write(dir + "/then", frame(notification("workspace/didChangeWatchedFiles", changed)) + end_session());
+  test::write(dir + "/ignoring.json", R"({"ignore": ["lwc-uniform-world-float", "lwc-float-world-position"]})");
+  // (The wait for the first diagnostics is bounded, so a server that never answers fails the test
+  // rather than hanging it.)
+  test::write(dir + "/session.sh", "set -e\ncd " + dir + "\nmkfifo in\n" + test::binary() + " lsp < in > out &\nserver=$!\n"
+                                   "exec 3> in\ncat first >&3\n"
+                                   "for i in $(seq 1200); do grep -qs publishDiagnostics out && break; sleep 0.05; done\n"
+                                   "cp ignoring.json .lwcport.json\ncat then >&3\nexec 3>&-\nwait $server\n");
+  test::run("bash " + dir + "/session.sh");
+  std::string out = test::read(dir + "/out");
+  Session s;
+  for (size_t at = 0; at < out.size();) {
+    size_t head = out.find("\r\n\r\n", at);
+    if (head == std::string::npos) break;
+    size_t length = std::stoul(out.substr(out.find(':', at) + 1, head - at));
+    s.messages.push_back(json::parse(out.substr(head + 4, length)));
+    at = head + 4 + length;
+  }
+  std::vector<json> published = diagnostics(s);
+  ASSERT_EQ(published.size(), 2u) << out;  // the open, and again after the notice
+  EXPECT_FALSE(published[0]["diagnostics"].empty());
+  EXPECT_TRUE(published[1]["diagnostics"].empty()) << published[1].dump();
+}
+
 // A stale change (a version the document already has) is ignored; closing clears the document's
 // diagnostics; requests before initialize are refused; exit without shutdown ends with 1.
 TEST(LanguageServer, StaleChangesCloseAndLifecycle) {

@@ -107,6 +107,7 @@ class Server {
       else if (method == "textDocument/didClose") close(params.at("textDocument").at("uri"));
       else if (method == "textDocument/codeAction") reply(id, code_actions(params));
       else if (method == "textDocument/hover") reply(id, hover(params));
+      else if (method == "workspace/didChangeWatchedFiles" || method == "workspace/didChangeConfiguration") reload();
       else if (request) reply_error(id, kMethodNotFound, "no method " + method);
     } catch (const json::exception& e) {
       if (request) reply_error(id, kInvalidParams, std::string("bad parameters: ") + e.what());
@@ -229,12 +230,12 @@ class Server {
                   {"end", position(d.text, starts, std::min(end, d.text.size()))}};
     };
     try {
-      std::shared_ptr<const ProjectConfig> config = configs_.for_dir(folder_of(d));
+      std::shared_ptr<const ProjectConfig> config = configs_->for_dir(folder_of(d));
       AnalyzeOptions options = analysis_options(*config);
       if (d.lang) options.lang = d.lang;
       std::optional<FileSummary> summary;
       if (d.text.find("include") != std::string::npos) {
-        summary = includes_.for_file(d.path, d.text, *config);
+        summary = includes_->for_file(d.path, d.text, *config);
         options.includes = &*summary;
       }
       d.options = options;
@@ -307,7 +308,7 @@ class Server {
       AnalyzeOptions options = d.options;
       std::optional<FileSummary> summary;
       if (d.text.find("include") != std::string::npos) {
-        summary = includes_.for_file(d.path, d.text, *configs_.for_dir(folder_of(d)));
+        summary = includes_->for_file(d.path, d.text, *configs_->for_dir(folder_of(d)));
         options.includes = &*summary;
       }
       FixOutcome fixed = fix_source(source, options, false);
@@ -316,6 +317,14 @@ class Server {
                            {"edit", edit_of({{{0, static_cast<uint32_t>(d.text.size())}, fixed.text}}, true)}});
     }
     return actions;
+  }
+
+  // A `.lwcport.json` (or an include) changed: every project setting and include summary is read
+  // again, and every open document analysed again.
+  void reload() {
+    configs_ = std::make_unique<ConfigFinder>();
+    includes_ = std::make_unique<IncludeSummaries>();
+    for (auto& [uri, d] : documents_) publish(uri, d);
   }
 
   // On a finding: its message, its rule's summary and rationale, and the rule's page.
@@ -352,8 +361,8 @@ class Server {
   std::ostream& out_;
   bool initialized_ = false, shut_down_ = false, utf8_ = false;
   std::map<std::string, Document> documents_;
-  ConfigFinder configs_;
-  IncludeSummaries includes_;
+  std::unique_ptr<ConfigFinder> configs_ = std::make_unique<ConfigFinder>();
+  std::unique_ptr<IncludeSummaries> includes_ = std::make_unique<IncludeSummaries>();
 };
 
 }  // namespace
