@@ -24,21 +24,25 @@ struct Session {
   std::vector<json> messages;  // what the server wrote, in order
 };
 
+// Every message framed in a server's output, in order.
+std::vector<json> read_messages(const std::string& out) {
+  std::vector<json> messages;
+  for (size_t at = 0; at < out.size();) {
+    size_t head = out.find("\r\n\r\n", at);
+    if (head == std::string::npos) break;
+    size_t length = std::stoul(out.substr(out.find(':', at) + 1, head - at));
+    messages.push_back(json::parse(out.substr(head + 4, length)));
+    at = head + 4 + length;
+  }
+  return messages;
+}
+
 // Runs the server on `input` (already framed) and reads every message it writes.
 Session serve(const std::string& input) {
   std::string dir = test::scratch("lsp");
   test::write(dir + "/in", input);
   test::Run r = test::run(test::binary() + " lsp < " + dir + "/in");
-  Session s;
-  s.exit_code = r.exit_code;
-  for (size_t at = 0; at < r.out.size();) {
-    size_t head = r.out.find("\r\n\r\n", at);
-    if (head == std::string::npos) break;
-    size_t length = std::stoul(r.out.substr(r.out.find(':', at) + 1, head - at));
-    s.messages.push_back(json::parse(r.out.substr(head + 4, length)));
-    at = head + 4 + length;
-  }
-  return s;
+  return {r.exit_code, read_messages(r.out)};
 }
 
 json request(int id, const std::string& method, const json& params = json::object()) {
@@ -318,15 +322,7 @@ TEST(LanguageServer, AChangedConfigIsReadAgain) {
                                    "cp ignoring.json .lwcport.json\ncat then >&3\nexec 3>&-\nwait $server\n");
   test::run("bash " + dir + "/session.sh");
   std::string out = test::read(dir + "/out");
-  Session s;
-  for (size_t at = 0; at < out.size();) {
-    size_t head = out.find("\r\n\r\n", at);
-    if (head == std::string::npos) break;
-    size_t length = std::stoul(out.substr(out.find(':', at) + 1, head - at));
-    s.messages.push_back(json::parse(out.substr(head + 4, length)));
-    at = head + 4 + length;
-  }
-  std::vector<json> published = diagnostics(s);
+  std::vector<json> published = diagnostics({0, read_messages(out)});
   ASSERT_EQ(published.size(), 2u) << out;  // the open, and again after the notice
   EXPECT_FALSE(published[0]["diagnostics"].empty());
   EXPECT_TRUE(published[1]["diagnostics"].empty()) << published[1].dump();
