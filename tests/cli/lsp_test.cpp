@@ -204,16 +204,21 @@ TEST(LanguageServer, CodeActionsGiveWhatFixGives) {
   EXPECT_EQ(missing_precise, 1);  // the Split one is still there
 }
 
-// UTF-16 units of a UTF-8 text up to a byte offset, and the byte offset of a (line, UTF-16
-// character) position: what a client computes.
+// The UTF-8 bytes of the character at `at`, and its UTF-16 units: what a client counts.
+size_t bytes_at(const std::string& text, size_t at) {
+  unsigned char lead = static_cast<unsigned char>(text[at]);
+  return lead >= 0xF0 ? 4 : lead >= 0xE0 ? 3 : lead >= 0xC0 ? 2 : 1;
+}
+size_t utf16_units(size_t bytes) { return bytes == 4 ? 2 : 1; }
+
+// The byte offset of a (line, UTF-16 character) position.
 size_t byte_offset(const std::string& text, size_t line, size_t character) {
   size_t at = 0;
   for (size_t l = 0; l < line && at < text.size(); ++at)
     if (text[at] == '\n') ++l;
   for (size_t units = 0; at < text.size() && text[at] != '\n' && units < character;) {
-    unsigned char lead = static_cast<unsigned char>(text[at]);
-    size_t n = lead >= 0xF0 ? 4 : lead >= 0xE0 ? 3 : lead >= 0xC0 ? 2 : 1;
-    units += n == 4 ? 2 : 1;
+    size_t n = bytes_at(text, at);
+    units += utf16_units(n);
     at += n;
   }
   return at;
@@ -243,9 +248,8 @@ TEST(LanguageServer, RandomEditsKeepDiagnosticsEqualToAFreshLint) {
       line_start = (line_start == std::string::npos || at == 0) ? 0 : line_start + 1;
       size_t u = 0;
       for (size_t i = line_start; i < at;) {
-        unsigned char lead = static_cast<unsigned char>(text[i]);
-        size_t n = lead >= 0xF0 ? 4 : lead >= 0xE0 ? 3 : lead >= 0xC0 ? 2 : 1;
-        u += n == 4 ? 2 : 1;
+        size_t n = bytes_at(text, i);
+        u += utf16_units(n);
         i += n;
       }
       return json{{"line", std::count(text.begin(), text.begin() + static_cast<long>(at), '\n')}, {"character", u}};
@@ -266,9 +270,8 @@ TEST(LanguageServer, RandomEditsKeepDiagnosticsEqualToAFreshLint) {
   auto utf16_column = [&](int line, int column) {
     size_t at = byte_offset(text, static_cast<size_t>(line - 1), 0), units = 0;
     for (int cp = 1; cp < column && at < text.size(); ++cp) {
-      unsigned char lead = static_cast<unsigned char>(text[at]);
-      size_t n = lead >= 0xF0 ? 4 : lead >= 0xE0 ? 3 : lead >= 0xC0 ? 2 : 1;
-      units += n == 4 ? 2 : 1;
+      size_t n = bytes_at(text, at);
+      units += utf16_units(n);
       at += n;
     }
     return units;

@@ -189,18 +189,21 @@ class Server {
     if (end > at && text[end - 1] == '\r') --end;
     for (long units = 0; at < end && units < character;) {
       size_t n = std::min(sequence_length(static_cast<unsigned char>(text[at])), end - at);
-      units += utf8_ ? static_cast<long>(n) : n == 4 ? 2 : 1;
+      units += units_of(n);
       at += n;
     }
     return at;
   }
+
+  // A character of `bytes` UTF-8 bytes in the negotiated units (UTF-16: two beyond the BMP).
+  long units_of(size_t bytes) const { return utf8_ ? static_cast<long>(bytes) : bytes == 4 ? 2 : 1; }
 
   json position(const std::string& text, const std::vector<size_t>& starts, size_t at) const {
     size_t line = static_cast<size_t>(std::upper_bound(starts.begin(), starts.end(), at) - starts.begin()) - 1;
     long units = 0;
     for (size_t i = starts[line]; i < at;) {
       size_t n = std::min(sequence_length(static_cast<unsigned char>(text[i])), at - i);
-      units += utf8_ ? static_cast<long>(n) : n == 4 ? 2 : 1;
+      units += units_of(n);
       i += n;
     }
     return {{"line", line}, {"character", units}};
