@@ -7,64 +7,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/lsp_client.h"
 #include "support.h"
 
 namespace lwc {
 namespace {
 
 using nlohmann::json;
+using namespace lsp_client;
 
-std::string frame(const json& message) {
-  std::string body = message.dump();
-  return "Content-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body;
-}
-
-struct Session {
-  int exit_code = -1;
-  std::vector<json> messages;  // what the server wrote, in order
-};
-
-// Every message framed in a server's output, in order.
-std::vector<json> read_messages(const std::string& out) {
-  std::vector<json> messages;
-  for (size_t at = 0; at < out.size();) {
-    size_t head = out.find("\r\n\r\n", at);
-    if (head == std::string::npos) break;
-    size_t length = std::stoul(out.substr(out.find(':', at) + 1, head - at));
-    messages.push_back(json::parse(out.substr(head + 4, length)));
-    at = head + 4 + length;
-  }
-  return messages;
-}
-
-// Runs the server on `input` (already framed) and reads every message it writes.
-Session serve(const std::string& input) {
-  std::string dir = test::scratch("lsp");
-  test::write(dir + "/in", input);
-  test::Run r = test::run(test::binary() + " lsp < " + dir + "/in");
-  return {r.exit_code, read_messages(r.out)};
-}
-
-json request(int id, const std::string& method, const json& params = json::object()) {
-  return {{"jsonrpc", "2.0"}, {"id", id}, {"method", method}, {"params", params}};
-}
-json notification(const std::string& method, const json& params = json::object()) {
-  return {{"jsonrpc", "2.0"}, {"method", method}, {"params", params}};
-}
-json initialize(const json& capabilities = json::object()) { return request(1, "initialize", {{"capabilities", capabilities}}); }
-std::string end_session() { return frame(request(99, "shutdown")) + frame(notification("exit")); }
-
-const json* reply_to(const Session& s, int id) {
-  for (const json& m : s.messages)
-    if (m.contains("id") && m["id"] == id) return &m;
-  return nullptr;
-}
-std::vector<json> diagnostics(const Session& s) {
-  std::vector<json> out;
-  for (const json& m : s.messages)
-    if (m.value("method", "") == "textDocument/publishDiagnostics") out.push_back(m["params"]);
-  return out;
-}
 
 // The server's diagnostics for a corpus file are `lint`'s findings, at the same places; an edit
 // above them moves them down; a malformed message gets a parse error and the server answers the
@@ -141,20 +92,6 @@ TEST(LanguageServer, ColumnsAreInTheNegotiatedEncoding) {
     if (d["code"] == "lwc-uniform-world-float") EXPECT_EQ(d["range"]["start"]["character"], 3 + 4 + 13);
 }
 
-// Applies LSP text edits (ASCII text: characters are bytes) to a text.
-std::string apply(std::string text, const json& edits) {
-  std::vector<size_t> starts = {0};
-  for (size_t i = 0; i < text.size(); ++i)
-    if (text[i] == '\n') starts.push_back(i + 1);
-  auto at = [&](const json& p) { return starts[p["line"].get<size_t>()] + p["character"].get<size_t>(); };
-  std::vector<json> sorted(edits.begin(), edits.end());
-  std::sort(sorted.begin(), sorted.end(), [&](const json& a, const json& b) { return at(a["range"]["start"]) > at(b["range"]["start"]); });
-  for (const json& e : sorted) {
-    size_t begin = at(e["range"]["start"]), end = at(e["range"]["end"]);
-    text.replace(begin, end - begin, e["newText"].get<std::string>());
-  }
-  return text;
-}
 
 // Code actions: the quick fix applied gives exactly `lwcport fix`'s file (one finding), fix-all
 // gives `lwcport fix`'s file (several), and "ignore for this line" silences the finding.
@@ -204,84 +141,186 @@ TEST(LanguageServer, CodeActionsGiveWhatFixGives) {
   EXPECT_EQ(missing_precise, 1);  // the Split one is still there
 }
 
-// The UTF-8 bytes of the character at `at`, and its UTF-16 units: what a client counts.
-size_t bytes_at(const std::string& text, size_t at) {
-  unsigned char lead = static_cast<unsigned char>(text[at]);
-  return lead >= 0xF0 ? 4 : lead >= 0xE0 ? 3 : lead >= 0xC0 ? 2 : 1;
-}
-size_t utf16_units(size_t bytes) { return bytes == 4 ? 2 : 1; }
 
-// The byte offset of a (line, UTF-16 character) position.
-size_t byte_offset(const std::string& text, size_t line, size_t character) {
-  size_t at = 0;
-  for (size_t l = 0; l < line && at < text.size(); ++at)
-    if (text[at] == '\n') ++l;
-  for (size_t units = 0; at < text.size() && text[at] != '\n' && units < character;) {
-    size_t n = bytes_at(text, at);
-    units += utf16_units(n);
-    at += n;
-  }
-  return at;
+json open_document(const std::string& uri, const std::string& language, const std::string& text, int version = 1) {
+  return notification("textDocument/didOpen", {{"textDocument", {{"uri", uri}, {"languageId", language}, {"version", version}, {"text", text}}}});
 }
+json whole_range() { return {{"start", {{"line", 0}, {"character", 0}}}, {"end", {{"line", 100000}, {"character", 0}}}}; }
 
-// Random edit sequences (seeded): after each batch the server's diagnostics for its copy of the
-// text are lint's for the text the client holds, which it built with the same edits (positions in
-// UTF-16 units, multi-byte characters and CRLF line ends among the inserted text).
-TEST(LanguageServer, RandomEditsKeepDiagnosticsEqualToAFreshLint) {
-  std::string dir = test::scratch("lsp-random");
-  std::string text = test::read(test::source_dir() + "/corpus/ue4/DeferredLightPixelShaders.usf");
-  std::string uri = "file://" + dir + "/Light.usf";
-  const std::vector<std::string> pieces = {"float3 WorldPos = View.WorldCameraOrigin;\n", " ", "\r\n", "/* \xC3\xA9 */",
-                                           "// \xF0\x9F\x8C\x8D\n", "/* \xF0\x9F\x8C\x8D */", "LightData.Position", ";", "}", "\n\n", ""};
-  std::mt19937 random(20261123);
-  std::string input = frame(initialize()) +
-                      frame(notification("textDocument/didOpen", {{"textDocument", {{"uri", uri}, {"languageId", "hlsl"}, {"version", 1}, {"text", text}}}}));
-  for (int version = 2; version <= 60; ++version) {
-    size_t lines = static_cast<size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
-    size_t l1 = random() % lines, c1 = random() % 30, l2 = l1 + random() % 2, c2 = random() % 30;
-    size_t begin = byte_offset(text, l1, c1), end = byte_offset(text, l2, c2);
-    if (end < begin) std::swap(begin, end), std::swap(l1, l2), std::swap(c1, c2);
-    // The positions as sent, clamped as the server clamps them, must name these bytes: send the
-    // ones recomputed from the bytes (a client never sends a character past a line's end).
-    auto units = [&](size_t at) {
-      size_t line_start = text.rfind('\n', at == 0 ? 0 : at - 1);
-      line_start = (line_start == std::string::npos || at == 0) ? 0 : line_start + 1;
-      size_t u = 0;
-      for (size_t i = line_start; i < at;) {
-        size_t n = bytes_at(text, i);
-        u += utf16_units(n);
-        i += n;
-      }
-      return json{{"line", std::count(text.begin(), text.begin() + static_cast<long>(at), '\n')}, {"character", u}};
-    };
-    std::string piece = pieces[random() % pieces.size()];
-    json change = {{"range", {{"start", units(begin)}, {"end", units(end)}}}, {"text", piece}};
-    text.replace(begin, end - begin, piece);
-    input += frame(notification("textDocument/didChange", {{"textDocument", {{"uri", uri}, {"version", version}}}, {"contentChanges", {change}}}));
-  }
-  Session s = serve(input + end_session());
-  std::vector<json> published = diagnostics(s);
-  ASSERT_EQ(published.size(), 60u);
-  test::write(dir + "/Light.usf", text);
-  json lint = json::parse(test::run(test::binary() + " lint " + dir + "/Light.usf --format json --fail-on none").out);
-  const json& last = published.back()["diagnostics"];
-  ASSERT_EQ(last.size(), lint["findings"].size()) << last.dump(1);
-  // lint's columns count code points; the server's, UTF-16 units.
-  auto utf16_column = [&](int line, int column) {
-    size_t at = byte_offset(text, static_cast<size_t>(line - 1), 0), units = 0;
-    for (int cp = 1; cp < column && at < text.size(); ++cp) {
-      size_t n = bytes_at(text, at);
-      units += utf16_units(n);
-      at += n;
-    }
-    return units;
+// A client that pulls diagnostics gets none pushed: textDocument/diagnostic answers with lint's
+// findings and a result id, "unchanged" for the same id, a new report after an edit; a changed
+// config makes the server ask the client to pull again (workspace/diagnostic/refresh).
+TEST(LanguageServer, PulledDiagnosticsAndRefresh) {
+  std::string path = test::source_dir() + "/corpus/glsl/forward.vert";
+  std::string uri = "file://" + path;
+  json lint = json::parse(test::run(test::binary() + " lint " + path + " --format json --fail-on none").out);
+  json pull_capable = {{"textDocument", {{"diagnostic", json::object()}}}, {"workspace", {{"diagnostics", {{"refreshSupport", true}}}}}};
+  json insert = {{"range", {{"start", {{"line", 0}, {"character", 0}}}, {"end", {{"line", 0}, {"character", 0}}}}}, {"text", "// a\n"}};
+  auto pull = [&](int id, const std::string& previous) {
+    json params = {{"textDocument", {{"uri", uri}}}};
+    if (!previous.empty()) params["previousResultId"] = previous;
+    return frame(request(id, "textDocument/diagnostic", params));
   };
-  for (size_t i = 0; i < last.size(); ++i) {
-    const json& f = lint["findings"][i];
-    EXPECT_EQ(last[i]["code"], f["rule"]);
-    EXPECT_EQ(last[i]["range"]["start"]["line"], f["start"]["line"].get<int>() - 1);
-    EXPECT_EQ(last[i]["range"]["start"]["character"], utf16_column(f["start"]["line"], f["start"]["column"]));
+  Session first = serve(frame(initialize(pull_capable)) + frame(open_document(uri, "glsl", test::read(path))) + pull(2, "") + end_session());
+  EXPECT_TRUE(diagnostics(first).empty());
+  const json* init = reply_to(first, 1);
+  ASSERT_NE(init, nullptr);
+  EXPECT_TRUE((*init)["result"]["capabilities"]["diagnosticProvider"]["interFileDependencies"].get<bool>());
+  const json* report = reply_to(first, 2);
+  ASSERT_NE(report, nullptr);
+  EXPECT_EQ((*report)["result"]["kind"], "full");
+  ASSERT_EQ((*report)["result"]["items"].size(), lint["findings"].size());
+  for (size_t i = 0; i < lint["findings"].size(); ++i) EXPECT_EQ((*report)["result"]["items"][i]["code"], lint["findings"][i]["rule"]);
+  std::string id = (*report)["result"]["resultId"];
+  Session again = serve(frame(initialize(pull_capable)) + frame(open_document(uri, "glsl", test::read(path))) + pull(2, "") + pull(3, id) +
+                        frame(notification("textDocument/didChange", {{"textDocument", {{"uri", uri}, {"version", 2}}}, {"contentChanges", {insert}}})) +
+                        pull(4, id) + frame(notification("workspace/didChangeWatchedFiles", {{"changes", json::array()}})) + end_session());
+  EXPECT_EQ((*reply_to(again, 3))["result"]["kind"], "unchanged");
+  const json& edited = (*reply_to(again, 4))["result"];
+  EXPECT_EQ(edited["kind"], "full");
+  EXPECT_NE(edited["resultId"], id);
+  EXPECT_EQ(edited["items"][0]["range"]["start"]["line"], (*report)["result"]["items"][0]["range"]["start"]["line"].get<int>() + 1);
+  int refreshes = 0;
+  for (const json& m : again.messages) refreshes += m.value("method", "") == "workspace/diagnostic/refresh" && m.contains("id");
+  EXPECT_EQ(refreshes, 1);
+}
+
+// A client that resolves code actions lazily gets them without edits, each with data; resolving
+// gives the edit the eager path gives. A resolve for a version the document no longer has is
+// refused (ContentModified). workspace/executeCommand lwcport.fixAll sends the client, as
+// workspace/applyEdit, exactly `lwcport fix`'s file.
+TEST(LanguageServer, LazyCodeActionsAndTheFixAllCommand) {
+  std::string dir = test::scratch("lsp-lazy");
+  std::string text = test::read(test::source_dir() + "/corpus/ue5.4/DoubleFloatHelpers.ush");
+  test::write(dir + "/Helpers.ush", text);
+  test::run(test::binary() + " fix " + dir + "/Helpers.ush --fail-on none > /dev/null");
+  std::string fixed = test::read(dir + "/Helpers.ush");
+  std::string uri = "file://" + dir + "/Open.ush";
+  json lazy = {{"textDocument", {{"codeAction", {{"resolveSupport", {{"properties", {"edit"}}}}}}}}};
+  auto actions = frame(request(2, "textDocument/codeAction", {{"textDocument", {{"uri", uri}}}, {"range", whole_range()}, {"context", {{"diagnostics", json::array()}}}}));
+  Session eager = serve(frame(initialize()) + frame(open_document(uri, "hlsl", text)) + actions + end_session());
+  Session first = serve(frame(initialize(lazy)) + frame(open_document(uri, "hlsl", text)) + actions + end_session());
+  const json& eager_actions = (*reply_to(eager, 2))["result"];
+  const json& lazy_actions = (*reply_to(first, 2))["result"];
+  ASSERT_EQ(lazy_actions.size(), eager_actions.size());
+  ASSERT_FALSE(lazy_actions.empty());
+  std::string resolves;
+  for (size_t i = 0; i < lazy_actions.size(); ++i) {
+    EXPECT_FALSE(lazy_actions[i].contains("edit"));
+    EXPECT_TRUE(lazy_actions[i]["data"].is_object());
+    resolves += frame(request(10 + static_cast<int>(i), "codeAction/resolve", lazy_actions[i]));
   }
+  json blank = {{"text", "\n" + text}};
+  Session resolved = serve(frame(initialize(lazy)) + frame(open_document(uri, "hlsl", text)) + resolves +
+                           frame(notification("textDocument/didChange", {{"textDocument", {{"uri", uri}, {"version", 2}}}, {"contentChanges", {blank}}})) +
+                           frame(request(50, "codeAction/resolve", lazy_actions[0])) +
+                           frame(request(51, "workspace/executeCommand", {{"command", "lwcport.fixAll"}, {"arguments", {uri}}})) + end_session());
+  for (size_t i = 0; i < lazy_actions.size(); ++i) {
+    const json* r = reply_to(resolved, 10 + static_cast<int>(i));
+    ASSERT_NE(r, nullptr);
+    EXPECT_EQ((*r)["result"]["edit"], eager_actions[i]["edit"]) << (*r).dump();
+  }
+  EXPECT_EQ((*reply_to(resolved, 50))["error"]["code"], -32801);
+  EXPECT_TRUE((*reply_to(resolved, 51))["result"].is_null());
+  const json* apply_edit = nullptr;
+  for (const json& m : resolved.messages)
+    if (m.value("method", "") == "workspace/applyEdit") apply_edit = &m;
+  ASSERT_NE(apply_edit, nullptr);
+  EXPECT_EQ(apply("\n" + text, (*apply_edit)["params"]["edit"]["changes"][uri]), "\n" + fixed);
+}
+
+// A request cancelled while it waits is answered RequestCancelled (the server is busy analysing a
+// long document when both arrive); the next request is answered. --log writes each message and
+// analysis; window/logMessage says what the server serves.
+TEST(LanguageServer, CancellationAndLogging) {
+  std::string dir = test::scratch("lsp-cancel");
+  std::string unit = test::read(test::source_dir() + "/corpus/ue4/DeferredLightPixelShaders.usf");
+  std::string big;
+  for (int i = 0; i < 60; ++i) big += unit;  // long enough to analyse for a while
+  std::string uri = "file://" + dir + "/Big.usf";
+  json hover = {{"textDocument", {{"uri", uri}}}, {"position", {{"line", 0}, {"character", 0}}}};
+  Session s = serve(frame(initialize()) + frame(open_document(uri, "hlsl", big)) + frame(request(5, "textDocument/hover", hover)) +
+                        frame(notification("$/cancelRequest", {{"id", 5}})) + frame(request(6, "textDocument/hover", hover)) + end_session(),
+                    "--log " + dir + "/server.log");
+  const json* cancelled = reply_to(s, 5);
+  ASSERT_NE(cancelled, nullptr);
+  EXPECT_EQ((*cancelled)["error"]["code"], -32800);
+  const json* answered = reply_to(s, 6);
+  ASSERT_NE(answered, nullptr);
+  EXPECT_FALSE(answered->contains("error"));
+  std::vector<json> logged = notifications(s, "window/logMessage");
+  ASSERT_FALSE(logged.empty());
+  EXPECT_NE(logged[0]["message"].get<std::string>().find("UTF-16"), std::string::npos);
+  std::string log = test::read(dir + "/server.log");
+  for (const char* line : {"<- initialize (1)", "<- textDocument/didOpen", "analysed ", "cancelled (5)", "<- exit"})
+    EXPECT_NE(log.find(line), std::string::npos) << line << "\n" << log;
+}
+
+// A document that starts with a byte-order mark: the mark is the first character of line 0, as the
+// client counts it, and the findings are where lint puts them.
+TEST(LanguageServer, ADocumentWithAByteOrderMark) {
+  std::string text = "\xEF\xBB\xBFuniform mat4 modelMatrix;\nin vec3 position;\nvoid main() { gl_Position = modelMatrix * vec4(position, 1.0); }\n";
+  std::string dir = test::scratch("lsp-bom");
+  Session s = serve(frame(initialize()) + frame(open_document("file://" + dir + "/a.vert", "glsl", text)) + end_session());
+  std::vector<json> published = diagnostics(s);
+  ASSERT_EQ(published.size(), 1u);
+  bool found = false;
+  for (const json& d : published[0]["diagnostics"])
+    if (d["code"] == "lwc-uniform-world-float") {
+      found = true;
+      EXPECT_EQ(d["range"]["start"], json({{"line", 0}, {"character", 1 + 13}}));  // the mark, then "uniform mat4 "
+    }
+  EXPECT_TRUE(found) << published[0].dump();
+}
+
+// An open include is what its includers see: editing it (here, so that its function no longer
+// returns an absolute position) analyses the open file that includes it again, with the new text,
+// before anything is saved.
+TEST(LanguageServer, AnEditedIncludeIsReadFromTheEditor) {
+  std::string dir = test::scratch("lsp-include");
+  std::string header = "float3 GetCameraPos()\n{\n\treturn View.WorldCameraOrigin;\n}\n";
+  std::string user = "#include \"A.ush\"\n\nfloat3 F(float3 Offset)\n{\n\tfloat3 P = GetCameraPos();\n\treturn P - Offset;\n}\n";
+  test::write(dir + "/A.ush", header);
+  test::write(dir + "/B.usf", user);
+  std::string a = "file://" + dir + "/A.ush", b = "file://" + dir + "/B.usf";
+  json small = {{"range", {{"start", {{"line", 2}, {"character", 8}}}, {"end", {{"line", 2}, {"character", 29}}}}}, {"text", "float3(0, 0, 0)"}};
+  Session s = serve(frame(initialize()) + frame(open_document(a, "hlsl", header)) + frame(open_document(b, "hlsl", user)) +
+                    frame(notification("textDocument/didChange", {{"textDocument", {{"uri", a}, {"version", 2}}}, {"contentChanges", {small}}})) +
+                    end_session());
+  std::vector<json> for_b;
+  for (const json& p : diagnostics(s))
+    if (p["uri"] == b) for_b.push_back(p["diagnostics"]);
+  ASSERT_EQ(for_b.size(), 2u);  // on open, and again after the include's edit
+  EXPECT_EQ(for_b[0].size(), 2u) << for_b[0].dump();
+  EXPECT_TRUE(for_b[1].empty()) << for_b[1].dump();
+  EXPECT_EQ(test::read(dir + "/A.ush"), header);  // nothing was written
+}
+
+// Hover anywhere on a value: its world-space kind and where it came from, step by step; a finding's
+// diagnostic carries the same trail as related information.
+TEST(LanguageServer, HoverShowsAValuesKindAndProvenance) {
+  std::string path = test::source_dir() + "/corpus/glsl/forward.vert";
+  std::string uri = "file://" + path;
+  // Line 17 (0-based 16): `vec4 worldPosition = modelMatrix * vec4(position, 1.0);`; line 19 uses it.
+  Session s = serve(frame(initialize()) + frame(open_document(uri, "glsl", test::read(path))) +
+                    frame(request(2, "textDocument/hover", {{"textDocument", {{"uri", uri}}}, {"position", {{"line", 17}, {"character", 20}}}})) +
+                    end_session());
+  const json* hover = reply_to(s, 2);
+  ASSERT_NE(hover, nullptr);
+  std::string value = (*hover)["result"]["contents"]["value"];
+  EXPECT_NE(value.find("`worldPosition`: an absolute world position"), std::string::npos) << value;
+  EXPECT_NE(value.find("`worldPosition` = `modelMatrix * vec4(position, 1.0)` (line 17)"), std::string::npos) << value;
+  EXPECT_NE(value.find("`mat4 modelMatrix`, a global (line 5)"), std::string::npos) << value;
+  std::vector<json> published = diagnostics(s);
+  ASSERT_EQ(published.size(), 1u);
+  const json* world_position = nullptr;
+  for (const json& d : published[0]["diagnostics"])
+    if (d["code"] == "lwc-float-world-position" && d["range"]["start"]["line"] == 16) world_position = &d;
+  ASSERT_NE(world_position, nullptr);
+  const json& related = (*world_position)["relatedInformation"];
+  ASSERT_EQ(related.size(), 2u) << related.dump();
+  EXPECT_EQ(related[1]["location"]["range"]["start"]["line"], 4);  // the uniform's declaration
+  EXPECT_EQ(related[1]["location"]["uri"], uri);
 }
 
 // Hover on a finding: the rule, its message, summary and rationale, and its page.

@@ -58,8 +58,8 @@ commands:
   parse [PATHS...]    parse only and count syntax errors (the benchmark's baseline); with
                       --verbose, each error's position and the text around it
   rules               list the rules
-  lsp                 serve editors over the Language Server Protocol (stdio): diagnostics as
-                      you type (docs/editors.md)
+  lsp [--log FILE]    serve editors over the Language Server Protocol (stdio): diagnostics as
+                      you type, quick fixes, hover (docs/editors.md); --stdio is accepted
 
 lint and fix options:
   --format text|json|sarif|github   output format (default: text)
@@ -127,6 +127,7 @@ struct Options {
   bool check_build = false;  // fix: a file whose fix would break its build is held back
   bool force = false;  // fix: replace files with other hard links too (splitting them)
   double timeout_seconds = 60;  // per kernel on the device
+  std::string log_file;  // lsp: where the server logs
 };
 
 std::set<std::string> rule_list(const std::string& value, const char* flag) {
@@ -199,6 +200,8 @@ Options parse_options(const std::vector<std::string>& args) {
     else if (a == "--verbose" || a == "-v") o.verbose = true;
     else if (a == "--check-build") o.check_build = true;
     else if (a == "--force") o.force = true;
+    else if (a == "--log") o.log_file = get();
+    else if (a == "--stdio") continue;  // editors' clients pass it; stdio is the only transport
     else if (a == "--timeout") {
       std::string n = get();
       char* end = nullptr;
@@ -1239,7 +1242,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     if (o.command == "fix") return fix(o, out, err);
     if (o.command == "parse") return parse_only(o, out, err);
     if (o.command == "verify") return verify(o, out, err);
-    if (o.command == "lsp") return run_language_server(std::cin, out);
+    if (o.command == "lsp") return run_language_server(std::cin, out, {o.log_file});
     if (o.command == "rules") {
       list_rules(out);
       return 0;

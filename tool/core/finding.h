@@ -52,6 +52,9 @@ struct Finding {
   // What the check recognised, for the other faces: lwc-missing-precise's "error-free" is the
   // transformation's operation ("sum", "fast-sum", "product", "split"), which verify judges by.
   std::map<std::string, std::string> facts;
+  // Where the world-space value it is about came from, nearest first: each place and what
+  // happens there (world/provenance.h).
+  std::vector<std::pair<Span, std::string>> related;
 };
 
 // Sorted by span, then rule id: the order every output uses.

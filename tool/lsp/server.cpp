@@ -2,13 +2,21 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
+#include <condition_variable>
+#include <deque>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
+#include <set>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "core/source.h"
@@ -23,11 +31,13 @@ namespace {
 
 using nlohmann::json;
 namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
 
 // JSON-RPC and LSP error codes.
 constexpr int kParseError = -32700, kInvalidRequest = -32600, kMethodNotFound = -32601, kInvalidParams = -32602,
-              kServerNotInitialized = -32002;
+              kInternalError = -32603, kServerNotInitialized = -32002, kRequestCancelled = -32800, kContentModified = -32801;
 constexpr size_t kMaxMessageBytes = 256u << 20;  // a bound on one message, so no client exhausts memory
+constexpr const char* kFixAllCommand = "lwcport.fixAll";
 
 // One framed message from the client. `end`: the input is over.
 struct Frame {
@@ -68,6 +78,98 @@ Frame read_frame(std::istream& in) {
   return f;
 }
 
+// A member deep in `object`, or null where the path is missing (any message may be malformed).
+json value_at(const json& object, std::initializer_list<const char*> path) {
+  const json* at = &object;
+  for (const char* key : path) {
+    if (!at->is_object() || !at->contains(key)) return json();
+    at = &(*at)[key];
+  }
+  return *at;
+}
+
+// A message from the client, or why it could not be read.
+struct Incoming {
+  json message;
+  std::string error;
+};
+
+// The client's messages, read on a thread of their own as they arrive: a request still waiting
+// can then be cancelled, and a burst of typing analysed once.
+class Inbox {
+ public:
+  // std::cin is tied to std::cout (reading flushes it): untied here, or the reading thread would
+  // flush the output while the server writes it.
+  explicit Inbox(std::istream& in) : untied_(in.tie(nullptr)), reader_([this, &in] { read(in); }) {}
+  ~Inbox() { reader_.join(); }
+
+  // The next message; none once the input is over.
+  std::optional<Incoming> next() {
+    std::unique_lock lock(mutex_);
+    arrived_.wait(lock, [&] { return !queue_.empty() || done_; });
+    if (queue_.empty()) return std::nullopt;
+    Incoming in = std::move(queue_.front());
+    queue_.pop_front();
+    return in;
+  }
+
+  // Takes a waiting `$/cancelRequest` for this id, if there is one.
+  bool take_cancel(const json& id) {
+    std::lock_guard lock(mutex_);
+    auto it = std::find_if(queue_.begin(), queue_.end(), [&](const Incoming& in) {
+      return value_at(in.message, {"method"}) == "$/cancelRequest" && value_at(in.message, {"params", "id"}) == id;
+    });
+    if (it == queue_.end()) return false;
+    queue_.erase(it);
+    return true;
+  }
+
+  // A later change of this document already waits.
+  bool change_waits(const std::string& uri) {
+    std::lock_guard lock(mutex_);
+    return std::any_of(queue_.begin(), queue_.end(), [&](const Incoming& in) {
+      return value_at(in.message, {"method"}) == "textDocument/didChange" && value_at(in.message, {"params", "textDocument", "uri"}) == uri;
+    });
+  }
+
+ private:
+  void read(std::istream& in) {
+    for (;;) {
+      Frame frame = read_frame(in);
+      if (frame.end) break;
+      Incoming incoming;
+      if (!frame.error.empty()) {
+        incoming.error = frame.error;
+      } else {
+        incoming.message = json::parse(frame.body, nullptr, false);
+        if (incoming.message.is_discarded() || !incoming.message.is_object()) {
+          incoming.message = json();
+          incoming.error = "the message is not a JSON object";
+        } else if (incoming.message.contains("params") && !incoming.message["params"].is_object() && !incoming.message["params"].is_array()) {
+          incoming.message.erase("params");  // invalid; the handler reports what is missing
+        }
+      }
+      bool exit = value_at(incoming.message, {"method"}) == "exit";
+      {
+        std::lock_guard lock(mutex_);
+        queue_.push_back(std::move(incoming));
+      }
+      arrived_.notify_one();
+      if (exit) break;  // nothing after `exit` is read: the server is gone
+    }
+    std::lock_guard lock(mutex_);
+    done_ = true;
+    arrived_.notify_one();
+  }
+
+  std::mutex mutex_;
+  std::condition_variable arrived_;
+  std::deque<Incoming> queue_;
+  bool done_ = false;
+  std::ostream* untied_;
+  std::thread reader_;  // last: starts once the rest is built
+};
+
 // Where each line starts (LSP lines end at "\n"; a "\r" before it belongs to no column).
 std::vector<size_t> line_starts(const std::string& text) {
   std::vector<size_t> starts = {0};
@@ -79,17 +181,26 @@ std::vector<size_t> line_starts(const std::string& text) {
 // Bytes of the UTF-8 sequence that starts with `lead` (1 for a byte that starts none).
 size_t sequence_length(unsigned char lead) { return lead >= 0xF0 ? 4 : lead >= 0xE0 ? 3 : lead >= 0xC0 ? 2 : 1; }
 
+
 class Server {
  public:
-  explicit Server(std::ostream& out) : out_(out) {}
+  Server(std::ostream& out, Inbox& inbox, const ServerOptions& options) : out_(out), inbox_(inbox) {
+    if (!options.log_file.empty()) log_.open(options.log_file, std::ios::app);
+    log("lwcport language server started");
+  }
 
   // Handles one message; the exit code once the client says `exit`.
   std::optional<int> handle(const json& message) {
-    if (!message.contains("method") || !message["method"].is_string()) return std::nullopt;  // a response to us: none asked
+    if (!message.contains("method") || !message["method"].is_string()) {
+      answered(message);
+      return std::nullopt;
+    }
     std::string method = message["method"];
     bool request = message.contains("id");
     json id = request ? message["id"] : json();
     const json params = message.value("params", json::object());
+    auto started = Clock::now();
+    log(fmt::format("<- {}{}", method, request ? " (" + id.dump() + ")" : ""));
     if (method == "exit") return shut_down_ ? 0 : 1;
     if (!initialized_ && method != "initialize") {
       if (request) reply_error(id, kServerNotInitialized, "the server is not initialized yet");
@@ -99,19 +210,35 @@ class Server {
       reply_error(id, kInvalidRequest, "the server is shut down");
       return std::nullopt;
     }
+    if (request && inbox_.take_cancel(id)) {
+      log(fmt::format("   cancelled ({})", id.dump()));
+      reply_error(id, kRequestCancelled, "cancelled by the client");
+      return std::nullopt;
+    }
     try {
       if (method == "initialize") reply(id, initialize(params));
+      else if (method == "initialized") register_watchers();
       else if (method == "shutdown") shut_down_ = true, reply(id, nullptr);
       else if (method == "textDocument/didOpen") open(params.at("textDocument"));
       else if (method == "textDocument/didChange") change(params.at("textDocument"), params.at("contentChanges"));
+      else if (method == "textDocument/didSave") saved(params.at("textDocument").at("uri"));
       else if (method == "textDocument/didClose") close(params.at("textDocument").at("uri"));
+      else if (method == "textDocument/diagnostic") reply(id, pulled_diagnostics(params));
       else if (method == "textDocument/codeAction") reply(id, code_actions(params));
+      else if (method == "codeAction/resolve") resolve_action(id, params);
       else if (method == "textDocument/hover") reply(id, hover(params));
-      else if (method == "workspace/didChangeWatchedFiles" || method == "workspace/didChangeConfiguration") reload();
+      else if (method == "workspace/executeCommand") execute(id, params);
+      else if (method == "workspace/didChangeConfiguration") settings(params.value("settings", json())), reload();
+      else if (method == "workspace/didChangeWatchedFiles") reload();
       else if (request) reply_error(id, kMethodNotFound, "no method " + method);
+      // Other notifications ($/setTrace, $/cancelRequest for what is answered...) need nothing.
     } catch (const json::exception& e) {
       if (request) reply_error(id, kInvalidParams, std::string("bad parameters: ") + e.what());
+    } catch (const std::exception& e) {
+      log_message(1, method + " failed: " + e.what());
+      if (request) reply_error(id, kInternalError, method + " failed: " + e.what());
     }
+    log(fmt::format("   {} done in {:.1f} ms", method, ms_since(started)));
     return std::nullopt;
   }
 
@@ -119,26 +246,75 @@ class Server {
     send({{"jsonrpc", "2.0"}, {"id", id}, {"error", {{"code", code}, {"message", message}}}});
   }
 
+  void log(const std::string& line) {
+    if (log_.is_open()) log_ << fmt::format("[{:10.1f} ms] ", ms_since(started_)) << line << std::endl;
+  }
+
  private:
   struct Document {
     fs::path path;
     std::string text;
+    std::vector<size_t> lines;  // where each line of `text` starts
     int version = 0;
     std::optional<Lang> lang;
+    bool analysed = false;          // the findings are of `text`
+    long result = 0;                // which analysis the findings come from (pull diagnostics' result id)
     AnalyzeOptions options;         // from the project, as of the last analysis
     std::vector<Finding> findings;  // of the last analysis: what code actions offer
+    std::string failure;            // the analysis could not run: why
+    std::vector<fs::path> includes;  // the files its includes reach, as of the last analysis
   };
+
+  static double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
   json initialize(const json& params) {
     initialized_ = true;
-    json offered = params.value("capabilities", json::object()).value("general", json::object()).value("positionEncodings", json::array());
-    utf8_ = std::find(offered.begin(), offered.end(), "utf-8") != offered.end();
-    return {{"capabilities",
-             {{"positionEncoding", utf8_ ? "utf-8" : "utf-16"},
-              {"textDocumentSync", {{"openClose", true}, {"change", 2}}},  // 2: incremental
-              {"codeActionProvider", {{"codeActionKinds", {"quickfix", "source.fixAll.lwcport"}}}},
-              {"hoverProvider", true}}},
-            {"serverInfo", {{"name", "lwcport"}, {"version", "0.1.0"}}}};
+    const json capabilities = params.value("capabilities", json::object());
+    json offered = value_at(capabilities, {"general", "positionEncodings"});
+    utf8_ = offered.is_array() && std::find(offered.begin(), offered.end(), "utf-8") != offered.end();
+    pull_ = value_at(capabilities, {"textDocument", "diagnostic"}).is_object();
+    refresh_ = value_at(capabilities, {"workspace", "diagnostics", "refreshSupport"}) == true;
+    json lazy = value_at(capabilities, {"textDocument", "codeAction", "resolveSupport", "properties"});
+    lazy_edits_ = lazy.is_array() && std::find(lazy.begin(), lazy.end(), "edit") != lazy.end();
+    watch_ = value_at(capabilities, {"workspace", "didChangeWatchedFiles", "dynamicRegistration"}) == true;
+    settings(params.value("initializationOptions", json()));
+    log_message(3, fmt::format("lwcport {}: {} positions, {} diagnostics", "0.1.0", utf8_ ? "UTF-8" : "UTF-16", pull_ ? "pulled" : "pushed"));
+    json provider = {{"codeActionKinds", {"quickfix", "source.fixAll.lwcport"}}, {"resolveProvider", true}};
+    json result = {{"capabilities",
+                    {{"positionEncoding", utf8_ ? "utf-8" : "utf-16"},
+                     {"textDocumentSync", {{"openClose", true}, {"change", 2}, {"save", true}}},  // 2: incremental
+                     {"codeActionProvider", provider},
+                     {"executeCommandProvider", {{"commands", {kFixAllCommand}}}},
+                     {"hoverProvider", true}}},
+                   {"serverInfo", {{"name", "lwcport"}, {"version", "0.1.0"}}}};
+    if (pull_) result["capabilities"]["diagnosticProvider"] = {{"identifier", "lwcport"}, {"interFileDependencies", true}, {"workspaceDiagnostics", false}};
+    return result;
+  }
+
+  // Client settings (initializationOptions, or `lwcport` in didChangeConfiguration's settings):
+  // `unsafeFixes` lets "fix all" apply unsafe rewrites too.
+  void settings(const json& given) {
+    if (!given.is_object()) return;
+    const json& ours = given.contains("lwcport") && given["lwcport"].is_object() ? given["lwcport"] : given;
+    if (ours.contains("unsafeFixes") && ours["unsafeFixes"].is_boolean()) unsafe_fixes_ = ours["unsafeFixes"];
+  }
+
+  // Asks the client to report changes of project settings and shader files, when it can.
+  void register_watchers() {
+    if (!watch_) return;
+    json watchers = json::array({{{"globPattern", "**/.lwcport.json"}}});
+    for (const char* ext : {"usf", "ush", "hlsl", "hlsli", "glsl", "fx", "fxh"}) watchers.push_back({{"globPattern", fmt::format("**/*.{}", ext)}, {"kind", 7}});
+    send({{"jsonrpc", "2.0"},
+          {"id", fmt::format("lwcport/{}", ++requests_)},
+          {"method", "client/registerCapability"},
+          {"params", {{"registrations", {{{"id", "lwcport-watch"}, {"method", "workspace/didChangeWatchedFiles"},
+                                          {"registerOptions", {{"watchers", watchers}}}}}}}}});
+  }
+
+  // A reply to one of our requests: a failed edit is worth a line in the log.
+  void answered(const json& message) {
+    if (message.contains("error")) log("the client refused a request: " + message["error"].dump());
+    if (value_at(message, {"result", "applied"}) == false) log_message(2, "the editor did not apply lwcport's fixes: " + message["result"].value("failureReason", std::string("no reason given")));
   }
 
   void open(const json& item) {
@@ -146,11 +322,14 @@ class Server {
     Document& d = documents_[uri];
     d.path = path_of(uri);
     d.text = item.at("text");
+    d.lines = line_starts(d.text);
     d.version = item.value("version", 0);
+    d.analysed = false;
     std::string language = item.value("languageId", "");
     if (language == "hlsl") d.lang = Lang::hlsl;
     if (language == "glsl") d.lang = Lang::glsl;
-    publish(uri, d);
+    analyse_and_publish(uri, d);
+    text_changed(uri, d, d.text);
   }
 
   void change(const json& item, const json& changes) {
@@ -163,29 +342,65 @@ class Server {
     for (const json& c : changes) {
       if (!c.contains("range")) {
         d.text = c.at("text");
+        d.lines = line_starts(d.text);
         continue;
       }
-      size_t begin = offset(d.text, c["range"].at("start")), end = offset(d.text, c["range"].at("end"));
+      size_t begin = offset(d, c["range"].at("start")), end = offset(d, c["range"].at("end"));
       if (end < begin) std::swap(begin, end);
       d.text.replace(begin, end - begin, c.at("text").get<std::string>());
+      d.lines = line_starts(d.text);
     }
     d.version = version;
-    publish(uri, d);
+    d.analysed = false;
+    // While the client is still typing (a later change already waits), the analysis waits too.
+    if (!inbox_.change_waits(uri)) analyse_and_publish(uri, d);
+    text_changed(uri, d, d.text);
+  }
+
+  void saved(const std::string& uri) {
+    auto it = documents_.find(uri);
+    if (it != documents_.end() && !it->second.analysed) analyse_and_publish(uri, it->second);
   }
 
   void close(const std::string& uri) {
-    documents_.erase(uri);
-    send({{"jsonrpc", "2.0"}, {"method", "textDocument/publishDiagnostics"}, {"params", {{"uri", uri}, {"diagnostics", json::array()}}}});
+    auto it = documents_.find(uri);
+    if (it == documents_.end()) return;
+    Document closed = std::move(it->second);
+    documents_.erase(it);
+    if (!pull_) send({{"jsonrpc", "2.0"}, {"method", "textDocument/publishDiagnostics"}, {"params", {{"uri", uri}, {"diagnostics", json::array()}}}});
+    text_changed(uri, closed, std::nullopt);
+  }
+
+  // An open document is the text its includers see: the other open documents whose includes
+  // reach it are analysed again.
+  void text_changed(const std::string& uri, const Document& d, std::optional<std::string> text) {
+    if (!d.path.is_absolute()) return;
+    fs::path file = includes_->canonical(d.path);
+    bool included = false;
+    for (auto& [other_uri, other] : documents_)
+      included |= other_uri != uri && std::find(other.includes.begin(), other.includes.end(), file) != other.includes.end();
+    if (!included) return;
+    try {
+      includes_->set_text(d.path, std::move(text), *configs_->for_dir(folder_of(d)));
+    } catch (const std::exception& e) {
+      log(std::string("include not re-read: ") + e.what());
+      return;
+    }
+    for (auto& [other_uri, other] : documents_) {
+      if (other_uri == uri || std::find(other.includes.begin(), other.includes.end(), file) == other.includes.end()) continue;
+      other.analysed = false;
+      analyse_and_publish(other_uri, other);
+    }
   }
 
   // The byte offset of an LSP position, clamped to the document (a line past the end is its end,
   // a character past a line's end is that end).
-  size_t offset(const std::string& text, const json& position) const {
-    std::vector<size_t> starts = line_starts(text);
+  size_t offset(const Document& d, const json& position) const {
+    const std::string& text = d.text;
     long line = position.at("line").get<long>(), character = position.at("character").get<long>();
     if (line < 0) return 0;
-    if (static_cast<size_t>(line) >= starts.size()) return text.size();
-    size_t at = starts[line], end = static_cast<size_t>(line) + 1 < starts.size() ? starts[line + 1] - 1 : text.size();
+    if (static_cast<size_t>(line) >= d.lines.size()) return text.size();
+    size_t at = d.lines[line], end = static_cast<size_t>(line) + 1 < d.lines.size() ? d.lines[line + 1] - 1 : text.size();
     if (end > at && text[end - 1] == '\r') --end;
     for (long units = 0; at < end && units < character;) {
       size_t n = std::min(sequence_length(static_cast<unsigned char>(text[at])), end - at);
@@ -198,16 +413,19 @@ class Server {
   // A character of `bytes` UTF-8 bytes in the negotiated units (UTF-16: two beyond the BMP).
   long units_of(size_t bytes) const { return utf8_ ? static_cast<long>(bytes) : bytes == 4 ? 2 : 1; }
 
-  json position(const std::string& text, const std::vector<size_t>& starts, size_t at) const {
-    size_t line = static_cast<size_t>(std::upper_bound(starts.begin(), starts.end(), at) - starts.begin()) - 1;
+  json position(const Document& d, size_t at) const {
+    at = std::min(at, d.text.size());
+    size_t line = static_cast<size_t>(std::upper_bound(d.lines.begin(), d.lines.end(), at) - d.lines.begin()) - 1;
     long units = 0;
-    for (size_t i = starts[line]; i < at;) {
-      size_t n = std::min(sequence_length(static_cast<unsigned char>(text[i])), at - i);
+    for (size_t i = d.lines[line]; i < at;) {
+      size_t n = std::min(sequence_length(static_cast<unsigned char>(d.text[i])), at - i);
       units += units_of(n);
       i += n;
     }
     return {{"line", line}, {"character", units}};
   }
+
+  json range(const Document& d, Span span) const { return {{"start", position(d, span.begin)}, {"end", position(d, span.end)}}; }
 
   static fs::path path_of(const std::string& uri) {
     std::string rest = uri.rfind("file://", 0) == 0 ? uri.substr(7) : uri;
@@ -224,132 +442,299 @@ class Server {
     return out;
   }
 
+  static std::string uri_of(const fs::path& path) {
+    std::string out = "file://";
+    for (unsigned char c : path.string()) {
+      if (std::isalnum(c) || std::string_view("/-_.~").find(static_cast<char>(c)) != std::string_view::npos) out += static_cast<char>(c);
+      else out += fmt::format("%{:02X}", c);
+    }
+    return out;
+  }
+
+  // The options a document is analysed with (its project's, with what its includes declare).
+  AnalyzeOptions options_for(const Document& d, std::optional<FileSummary>& summary, std::vector<fs::path>* reached = nullptr) {
+    std::shared_ptr<const ProjectConfig> config = configs_->for_dir(folder_of(d));
+    AnalyzeOptions options = analysis_options(*config);
+    if (d.lang) options.lang = d.lang;
+    if (d.text.find("include") != std::string::npos) {
+      summary = includes_->for_file(d.path, d.text, *config);
+      options.includes = &*summary;
+      if (reached && d.path.is_absolute()) *reached = includes_->included_files(d.path, d.text, *config);
+    }
+    return options;
+  }
+
   // The document's findings, as the command line's `lint` gives them for the same text.
-  void publish(const std::string& uri, Document& d) {
-    json diagnostics = json::array();
-    std::vector<size_t> starts = line_starts(d.text);
-    auto range = [&](size_t begin, size_t end) {
-      return json{{"start", position(d.text, starts, std::min(begin, d.text.size()))},
-                  {"end", position(d.text, starts, std::min(end, d.text.size()))}};
-    };
+  void analyse(Document& d) {
+    auto started = Clock::now();
+    d.findings.clear();
+    d.failure.clear();
+    d.includes.clear();
     try {
-      std::shared_ptr<const ProjectConfig> config = configs_->for_dir(folder_of(d));
-      AnalyzeOptions options = analysis_options(*config);
-      if (d.lang) options.lang = d.lang;
       std::optional<FileSummary> summary;
-      if (d.text.find("include") != std::string::npos) {
-        summary = includes_->for_file(d.path, d.text, *config);
-        options.includes = &*summary;
-      }
+      AnalyzeOptions options = options_for(d, summary, &d.includes);
       d.options = options;
       d.options.includes = nullptr;  // the summary lives for this analysis only
       d.findings = analyze(Source(d.path.string(), d.text), options);
-      for (const Finding& f : d.findings) {
-        int severity = f.severity == Severity::error ? 1 : f.severity == Severity::warning ? 2 : 3;
-        diagnostics.push_back({{"range", range(f.span.begin, f.span.end)},
-                               {"severity", severity},
-                               {"code", f.rule},
-                               {"codeDescription", {{"href", rule_doc_url(f.rule)}}},
-                               {"source", "lwcport"},
-                               {"message", f.hint.empty() ? f.message : f.message + "\n" + f.hint}});
-      }
     } catch (const std::exception& e) {
       // One document's failure is that document's diagnostic, not a dead server.
-      diagnostics = json::array({{{"range", range(0, 0)}, {"severity", 1}, {"source", "lwcport"},
-                                  {"message", std::string("internal error while analysing this document: ") + e.what()}}});
+      d.failure = e.what();
+      log_message(1, fmt::format("{}: {}", d.path.string(), d.failure));
     }
-    send({{"jsonrpc", "2.0"},
-          {"method", "textDocument/publishDiagnostics"},
-          {"params", {{"uri", uri}, {"version", d.version}, {"diagnostics", diagnostics}}}});
+    d.analysed = true;
+    d.result = ++analyses_;
+    log(fmt::format("   analysed {} (version {}): {} findings in {:.1f} ms", d.path.string(), d.version, d.findings.size(), ms_since(started)));
+  }
+
+  void ensure_analysed(const std::string& uri, Document& d) {
+    if (!d.analysed) analyse_and_publish(uri, d);
+  }
+
+  void analyse_and_publish(const std::string& uri, Document& d) {
+    analyse(d);
+    if (!pull_)
+      send({{"jsonrpc", "2.0"},
+            {"method", "textDocument/publishDiagnostics"},
+            {"params", {{"uri", uri}, {"version", d.version}, {"diagnostics", diagnostics(d)}}}});
+  }
+
+  json diagnostic(const Document& d, size_t index) const {
+    const Finding& f = d.findings[index];
+    int severity = f.severity == Severity::error ? 1 : f.severity == Severity::warning ? 2 : 3;
+    json out = {{"range", range(d, f.span)},
+                {"severity", severity},
+                {"code", f.rule},
+                {"codeDescription", {{"href", rule_doc_url(f.rule)}}},
+                {"source", "lwcport"},
+                {"message", f.hint.empty() ? f.message : f.message + "\n" + f.hint},
+                {"data", {{"version", d.version}, {"finding", index}, {"fixes", f.fixes.size()}}}};
+    json related = json::array();
+    for (const auto& [span, text] : f.related)
+      related.push_back({{"location", {{"uri", uri_of(d.path)}, {"range", range(d, span)}}}, {"message", text}});
+    if (!related.empty()) out["relatedInformation"] = related;
+    return out;
+  }
+
+  json diagnostics(const Document& d) const {
+    if (!d.failure.empty())
+      return json::array({{{"range", range(d, {0, 0})}, {"severity", 1}, {"source", "lwcport"}, {"code", std::string(kInputRule)},
+                           {"message", "lwcport could not analyse this document: " + d.failure}}});
+    json out = json::array();
+    for (size_t i = 0; i < d.findings.size(); ++i) out.push_back(diagnostic(d, i));
+    return out;
+  }
+
+  // textDocument/diagnostic: the document's findings, or "unchanged" when the client already has
+  // this analysis's.
+  json pulled_diagnostics(const json& params) {
+    std::string uri = params.at("textDocument").at("uri");
+    auto it = documents_.find(uri);
+    if (it == documents_.end()) return {{"kind", "full"}, {"items", json::array()}};
+    Document& d = it->second;
+    ensure_analysed(uri, d);
+    std::string id = std::to_string(d.result);
+    if (params.value("previousResultId", "") == id) return {{"kind", "unchanged"}, {"resultId", id}};
+    return {{"kind", "full"}, {"resultId", id}, {"items", diagnostics(d)}};
+  }
+
+  // One code action's edit, from its `data`: a finding's fix, the line's suppression, or every
+  // fix at once. None when the document moved on since the action was offered.
+  std::optional<json> action_edit(const std::string& uri, const json& data) {
+    auto it = documents_.find(uri);
+    if (it == documents_.end()) return std::nullopt;
+    Document& d = it->second;
+    ensure_analysed(uri, d);
+    if (data.value("version", -1) != d.version) return std::nullopt;
+    std::string action = data.at("action");
+    if (action == "fixAll") return fix_all_edit(uri, d, data.value("unsafe", false));
+    size_t index = data.at("finding");
+    if (index >= d.findings.size()) return std::nullopt;
+    const Finding& f = d.findings[index];
+    Source source(d.path.string(), d.text);
+    if (action == "fix") {
+      size_t k = data.at("fix");
+      if (k >= f.fixes.size()) return std::nullopt;
+      return workspace_edit(uri, d, f.fixes[k].edits, source);
+    }
+    // A line of its own above the finding's line, indented as it is.
+    Position at = source.position(f.span.begin);
+    uint32_t line_start = source.offset({at.line, 1});
+    std::string_view line = source.line_text(at.line);
+    std::string indent(line.substr(0, line.find_first_not_of(" \t")));
+    return workspace_edit(uri, d, {{{line_start, line_start}, indent + "// lwcport-ignore: " + f.rule + "\n"}}, source);
+  }
+
+  // The edits as a workspace edit; `written`: their text is in the document's line endings already.
+  json workspace_edit(const std::string& uri, const Document& d, const std::vector<Edit>& edits, const Source& source, bool written = false) const {
+    json list = json::array();
+    for (const Edit& e : edits) list.push_back({{"range", range(d, e.span)}, {"newText", written ? e.text : in_line_endings(source, e.text)}});
+    return {{"changes", {{uri, list}}}};
+  }
+
+  // Every fix `lwcport fix` would apply (safe ones, and unsafe ones when asked), as one edit; none
+  // when nothing applies or a rewrite needs lwcport's library file beside the document (`lwcport
+  // fix` writes it).
+  std::optional<json> fix_all_edit(const std::string& uri, const Document& d, bool unsafe) {
+    std::optional<FileSummary> summary;
+    AnalyzeOptions options = options_for(d, summary);
+    Source source(d.path.string(), d.text);
+    FixOutcome fixed = fix_source(source, options, unsafe);
+    if (fixed.applied == 0 || !fixed.library.empty()) return std::nullopt;
+    return workspace_edit(uri, d, {{{0, static_cast<uint32_t>(d.text.size())}, fixed.text}}, source, true);
   }
 
   // Quick fixes (each finding's rewrite; a safe one preferred, an unsafe one titled so), "ignore
-  // <rule> for this line", and every safe fix at once (source.fixAll.lwcport), for the findings the
+  // <rule> for this line", and every fix at once (source.fixAll.lwcport), for the findings the
   // range touches. A rewrite that needs lwcport's library file written beside the document is left
-  // to `lwcport fix`, which writes it.
+  // to `lwcport fix`, which writes it. With a client that resolves lazily the edits come on
+  // codeAction/resolve.
   json code_actions(const json& params) {
     std::string uri = params.at("textDocument").at("uri");
     json actions = json::array();
     auto it = documents_.find(uri);
     if (it == documents_.end()) return actions;
-    const Document& d = it->second;
-    size_t from = offset(d.text, params.at("range").at("start")), to = offset(d.text, params.at("range").at("end"));
-    std::vector<size_t> starts = line_starts(d.text);
-    Source source(d.path.string(), d.text);
-    // The edits as a workspace edit; `written`: their text is in the document's line endings already.
-    auto edit_of = [&](const std::vector<Edit>& edits, bool written = false) {
-      json list = json::array();
-      for (const Edit& e : edits)
-        list.push_back({{"range", {{"start", position(d.text, starts, e.span.begin)}, {"end", position(d.text, starts, e.span.end)}}},
-                        {"newText", written ? e.text : in_line_endings(source, e.text)}});
-      return json{{"changes", {{uri, list}}}};
+    Document& d = it->second;
+    ensure_analysed(uri, d);
+    size_t from = offset(d, params.at("range").at("start")), to = offset(d, params.at("range").at("end"));
+    json only = value_at(params, {"context", "only"});
+    auto wanted = [&](const std::string& kind) {
+      if (!only.is_array()) return true;
+      return std::any_of(only.begin(), only.end(), [&](const json& k) {
+        std::string prefix = k.is_string() ? k.get<std::string>() : "";
+        return kind == prefix || kind.rfind(prefix + ".", 0) == 0;
+      });
     };
-    for (const Finding& f : d.findings) {
-      if (f.span.end < from || f.span.begin > to) continue;
-      for (const Fix& fix : f.fixes) {
-        if (!fix.library.empty()) continue;
-        bool safe = fix.applicability == Applicability::safe;
-        actions.push_back({{"title", safe ? fix.title : fix.title + " (unsafe: " + fix.reason + ")"},
-                           {"kind", "quickfix"}, {"isPreferred", safe}, {"edit", edit_of(fix.edits)}});
+    Source source(d.path.string(), d.text);
+    auto add = [&](const std::string& title, const std::string& kind, std::optional<size_t> finding, json data) {
+      data["uri"] = uri;
+      data["version"] = d.version;
+      json action = {{"title", title}, {"kind", kind}};
+      if (finding) action["diagnostics"] = json::array({diagnostic(d, *finding)});
+      if (lazy_edits_) {
+        action["data"] = data;
+      } else {
+        std::optional<json> edit = action_edit(uri, data);
+        if (!edit) return;
+        action["edit"] = *edit;
       }
-      if (f.rule != "lwc-input") {
-        // A line of its own above the finding's line, indented as it is.
+      return actions.push_back(action);
+    };
+    if (wanted("quickfix")) {
+      for (size_t i = 0; i < d.findings.size(); ++i) {
+        const Finding& f = d.findings[i];
+        if (f.span.end < from || f.span.begin > to) continue;
+        for (size_t k = 0; k < f.fixes.size(); ++k) {
+          const Fix& fix = f.fixes[k];
+          if (!fix.library.empty()) continue;
+          bool safe = fix.applicability == Applicability::safe;
+          add(safe ? fix.title : fix.title + " (unsafe: " + fix.reason + ")", "quickfix", i, {{"action", "fix"}, {"finding", i}, {"fix", k}});
+          if (safe) actions.back()["isPreferred"] = true;
+        }
         Position at = source.position(f.span.begin);
-        uint32_t line_start = source.offset({at.line, 1});
-        std::string_view line = source.line_text(at.line);
-        std::string indent(line.substr(0, line.find_first_not_of(" \t")));
-        bool continued = line.ends_with('\\') || (at.line > 1 && source.line_text(at.line - 1).ends_with('\\'));
-        if (!continued)
-          actions.push_back({{"title", "ignore " + f.rule + " for this line"}, {"kind", "quickfix"},
-                             {"edit", edit_of({{{line_start, line_start}, indent + "// lwcport-ignore: " + f.rule + "\n"}})}});
+        bool continued = source.line_text(at.line).ends_with('\\') || (at.line > 1 && source.line_text(at.line - 1).ends_with('\\'));
+        if (f.rule != kInputRule && !continued)
+          add("ignore " + f.rule + " for this line", "quickfix", i, {{"action", "ignore"}, {"finding", i}});
       }
     }
-    bool any_safe = std::any_of(d.findings.begin(), d.findings.end(), [](const Finding& f) {
-      return std::any_of(f.fixes.begin(), f.fixes.end(), [](const Fix& x) { return x.applicability == Applicability::safe; });
+    bool any_fix = std::any_of(d.findings.begin(), d.findings.end(), [&](const Finding& f) {
+      return std::any_of(f.fixes.begin(), f.fixes.end(), [&](const Fix& x) { return unsafe_fixes_ || x.applicability == Applicability::safe; });
     });
-    if (any_safe) {
-      AnalyzeOptions options = d.options;
-      std::optional<FileSummary> summary;
-      if (d.text.find("include") != std::string::npos) {
-        summary = includes_->for_file(d.path, d.text, *configs_->for_dir(folder_of(d)));
-        options.includes = &*summary;
-      }
-      FixOutcome fixed = fix_source(source, options, false);
-      if (fixed.applied > 0 && fixed.library.empty())
-        actions.push_back({{"title", "lwcport: apply every safe fix"}, {"kind", "source.fixAll.lwcport"},
-                           {"edit", edit_of({{{0, static_cast<uint32_t>(d.text.size())}, fixed.text}}, true)}});
-    }
+    if (any_fix && wanted("source.fixAll.lwcport"))
+      add(unsafe_fixes_ ? "lwcport: apply every fix (unsafe ones too)" : "lwcport: apply every safe fix", "source.fixAll.lwcport", std::nullopt,
+          {{"action", "fixAll"}, {"unsafe", unsafe_fixes_}});
     return actions;
   }
 
+  void resolve_action(const json& id, const json& action) {
+    json data = action.value("data", json());
+    if (!data.is_object()) return reply(id, action);
+    std::optional<json> edit = action_edit(data.value("uri", ""), data);
+    if (!edit) return reply_error(id, kContentModified, "the document changed since this action was offered; ask again");
+    json resolved = action;
+    resolved["edit"] = *edit;
+    reply(id, resolved);
+  }
+
+  // workspace/executeCommand `lwcport.fixAll` [uri] or [{uri, unsafe}]: every fix in the file,
+  // sent to the client as workspace/applyEdit.
+  void execute(const json& id, const json& params) {
+    std::string command = params.at("command");
+    if (command != kFixAllCommand) return reply_error(id, kInvalidParams, "no command " + command);
+    const json& arguments = params.at("arguments");
+    if (!arguments.is_array() || arguments.empty()) return reply_error(id, kInvalidParams, std::string(kFixAllCommand) + " needs the document's URI");
+    const json& first = arguments[0];
+    std::string uri = first.is_object() ? first.at("uri").get<std::string>() : first.get<std::string>();
+    bool unsafe = first.is_object() ? first.value("unsafe", unsafe_fixes_) : unsafe_fixes_;
+    auto it = documents_.find(uri);
+    if (it == documents_.end()) return reply_error(id, kInvalidParams, "the document is not open: " + uri);
+    Document& d = it->second;
+    ensure_analysed(uri, d);
+    std::optional<json> edit = fix_all_edit(uri, d, unsafe);
+    reply(id, nullptr);
+    if (!edit) return log_message(3, "lwcport: nothing to fix in " + d.path.filename().string());
+    send({{"jsonrpc", "2.0"}, {"id", fmt::format("lwcport/{}", ++requests_)}, {"method", "workspace/applyEdit"},
+          {"params", {{"label", "lwcport: fix all"}, {"edit", *edit}}}});
+  }
+
   // A `.lwcport.json` (or an include) changed: every project setting and include summary is read
-  // again, and every open document analysed again.
+  // again, and every open document analysed again (or, when the client pulls, it is asked to).
   void reload() {
     configs_ = std::make_unique<ConfigFinder>();
     includes_ = std::make_unique<IncludeSummaries>();
-    for (auto& [uri, d] : documents_) publish(uri, d);
+    for (auto& [uri, d] : documents_)
+      if (d.path.is_absolute()) try {
+          includes_->set_text(d.path, d.text, *configs_->for_dir(folder_of(d)));
+        } catch (const std::exception&) {
+        }
+    for (auto& [uri, d] : documents_) {
+      d.analysed = false;
+      if (!pull_) analyse_and_publish(uri, d);
+    }
+    if (pull_ && refresh_) send({{"jsonrpc", "2.0"}, {"id", fmt::format("lwcport/{}", ++requests_)}, {"method", "workspace/diagnostic/refresh"}});
   }
 
-  // On a finding: its message, its rule's summary and rationale, and the rule's page.
+  // On a finding: its message, its rule's summary and rationale, and the rule's page. Elsewhere:
+  // the world-space kind of the value under the cursor and where it came from.
   json hover(const json& params) {
-    auto it = documents_.find(params.at("textDocument").at("uri"));
+    std::string uri = params.at("textDocument").at("uri");
+    auto it = documents_.find(uri);
     if (it == documents_.end()) return nullptr;
-    const Document& d = it->second;
-    size_t at = offset(d.text, params.at("position"));
-    std::vector<size_t> starts = line_starts(d.text);
+    Document& d = it->second;
+    ensure_analysed(uri, d);
+    size_t at = offset(d, params.at("position"));
+    std::string text;
+    std::optional<Span> covered;
     for (const Finding& f : d.findings) {
       if (at < f.span.begin || at > f.span.end) continue;
       auto rule = std::find_if(all_rules().begin(), all_rules().end(), [&](const RuleInfo& r) { return r.id == f.rule; });
-      std::string text = "**" + f.rule + "**: " + f.message;
+      text = "**" + f.rule + "**: " + f.message;
       if (rule != all_rules().end()) text += "\n\n" + rule->summary + ". " + rule->rationale + "\n\n[" + f.rule + "](" + rule_doc_url(f.rule) + ")";
-      return {{"contents", {{"kind", "markdown"}, {"value", text}}},
-              {"range", {{"start", position(d.text, starts, f.span.begin)}, {"end", position(d.text, starts, f.span.end)}}}};
+      covered = f.span;
+      break;
     }
-    return nullptr;
+    try {
+      std::optional<FileSummary> summary;
+      AnalyzeOptions options = options_for(d, summary);
+      Source source(d.path.string(), d.text);
+      if (std::optional<ValueDescription> value = describe_value(source, options, static_cast<uint32_t>(at))) {
+        text = value->markdown + (text.empty() ? "" : "\n\n---\n\n" + text);
+        if (!covered) covered = value->span;
+      }
+    } catch (const std::exception& e) {
+      log(std::string("hover: ") + e.what());
+    }
+    if (text.empty()) return nullptr;
+    return {{"contents", {{"kind", "markdown"}, {"value", text}}}, {"range", range(d, *covered)}};
   }
 
   static fs::path folder_of(const Document& d) {
     return d.path.has_parent_path() && d.path.is_absolute() ? d.path.parent_path() : fs::current_path();
+  }
+
+  // window/logMessage (1 error, 2 warning, 3 info), and the log file.
+  void log_message(int type, const std::string& text) {
+    log(text);
+    send({{"jsonrpc", "2.0"}, {"method", "window/logMessage"}, {"params", {{"type", type}, {"message", text}}}});
   }
 
   void reply(const json& id, const json& result) { send({{"jsonrpc", "2.0"}, {"id", id}, {"result", result}}); }
@@ -362,7 +747,13 @@ class Server {
   }
 
   std::ostream& out_;
-  bool initialized_ = false, shut_down_ = false, utf8_ = false;
+  Inbox& inbox_;
+  std::ofstream log_;
+  Clock::time_point started_ = Clock::now();
+  bool initialized_ = false, shut_down_ = false;
+  // What the client can do (from initialize) and wants (settings).
+  bool utf8_ = false, pull_ = false, refresh_ = false, lazy_edits_ = false, watch_ = false, unsafe_fixes_ = false;
+  long analyses_ = 0, requests_ = 0;
   std::map<std::string, Document> documents_;
   std::unique_ptr<ConfigFinder> configs_ = std::make_unique<ConfigFinder>();
   std::unique_ptr<IncludeSummaries> includes_ = std::make_unique<IncludeSummaries>();
@@ -370,22 +761,19 @@ class Server {
 
 }  // namespace
 
-int run_language_server(std::istream& in, std::ostream& out) {
-  Server server(out);
-  for (;;) {
-    Frame frame = read_frame(in);
-    if (frame.end) return 1;  // the input ended without `exit`
-    if (!frame.error.empty()) {
-      server.reply_error(nullptr, kParseError, frame.error);
+int run_language_server(std::istream& in, std::ostream& out, const ServerOptions& options) {
+  Inbox inbox(in);
+  Server server(out, inbox, options);
+  while (std::optional<Incoming> incoming = inbox.next()) {
+    if (!incoming->error.empty()) {
+      server.log("unreadable message: " + incoming->error);
+      server.reply_error(nullptr, kParseError, incoming->error);
       continue;
     }
-    json message = json::parse(frame.body, nullptr, false);
-    if (message.is_discarded() || !message.is_object()) {
-      server.reply_error(nullptr, kParseError, "the message is not a JSON object");
-      continue;
-    }
-    if (std::optional<int> code = server.handle(message)) return *code;
+    if (std::optional<int> code = server.handle(incoming->message)) return *code;
   }
+  server.log("the input ended without `exit`");
+  return 1;
 }
 
 }  // namespace lwc

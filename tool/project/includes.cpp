@@ -74,6 +74,28 @@ std::vector<fs::path> IncludeSummaries::resolve_all(const std::vector<std::strin
   return out;
 }
 
+ReadResult IncludeSummaries::content(const fs::path& file, const ProjectConfig& config) {
+  {
+    std::lock_guard lock(mutex_);
+    if (auto it = overlays_.find(file); it != overlays_.end()) return {it->second, "", it->second.size(), false};
+  }
+  return read_file(file, config.max_file_bytes);
+}
+
+void IncludeSummaries::scan(Entry& e, const ReadResult& r) {
+  e.includes.clear();
+  e.macros.clear();
+  e.own.reset();
+  if (r.error.empty() && !r.too_large && !find_binary_marker(r.text)) {
+    e.lang = lang_from_path(e.file.string()).value_or(Lang::hlsl);
+    e.includes = include_paths(r.text);
+    learn_macros(r.text, known_macros(*e.lang), e.macros);
+  } else {
+    e.lang.reset();
+    e.own = std::make_shared<FileSummary>();
+  }
+}
+
 const IncludeSummaries::Entry& IncludeSummaries::scanned(const fs::path& file, const ProjectConfig& config) {
   {
     std::lock_guard lock(mutex_);
@@ -82,14 +104,7 @@ const IncludeSummaries::Entry& IncludeSummaries::scanned(const fs::path& file, c
   // Read outside the lock; a file two workers scan together is kept once.
   auto made = std::make_unique<Entry>();
   made->file = file;
-  ReadResult r = read_file(file, config.max_file_bytes);
-  if (r.error.empty() && !r.too_large && !find_binary_marker(r.text)) {
-    made->lang = lang_from_path(file.string()).value_or(Lang::hlsl);
-    made->includes = include_paths(r.text);
-    learn_macros(r.text, known_macros(*made->lang), made->macros);
-  } else {
-    made->own = std::make_shared<FileSummary>();
-  }
+  scan(*made, content(file, config));
   std::lock_guard lock(mutex_);
   return *entries_.emplace(file, std::move(made)).first->second;
 }
@@ -104,7 +119,7 @@ const FileSummary& IncludeSummaries::summarised(const Entry& e, const ProjectCon
   for (const Entry* inc : closure_of(e.file, e.includes, config)) included.insert(inc->macros.begin(), inc->macros.end());
   MacroTable macros = macro_table(*e.lang, &included, config.macros);
   auto summary = std::make_shared<FileSummary>();
-  ReadResult r = read_file(e.file, config.max_file_bytes);
+  ReadResult r = content(e.file, config);
   if (r.error.empty() && !r.too_large) {
     Source src(e.file.string(), r.text);
     *summary = include_summary(src, parse(src, *e.lang, {&macros, 0, config.max_parse_seconds}), config.world_sources,
@@ -169,6 +184,45 @@ FileSummary IncludeSummaries::for_file(const fs::path& path, std::string_view te
   FileSummary out;
   for (const Entry* inc : closure_of(canonical(path), include_paths(text), config)) out.merge(summarised(*inc, config));
   return out;
+}
+
+std::vector<fs::path> IncludeSummaries::included_files(const fs::path& path, std::string_view text, const ProjectConfig& config) {
+  std::vector<fs::path> out;
+  for (const Entry* inc : closure_of(canonical(path), include_paths(text), config)) out.push_back(inc->file);
+  return out;
+}
+
+void IncludeSummaries::set_text(const fs::path& path, std::optional<std::string> text, const ProjectConfig& config) {
+  fs::path file = canonical(path);
+  Entry* changed = nullptr;
+  {
+    std::lock_guard lock(mutex_);
+    if (text) overlays_[file] = std::move(*text);
+    else overlays_.erase(file);
+    if (auto it = entries_.find(file); it != entries_.end()) changed = it->second.get();
+  }
+  if (!changed) return;  // nothing read it yet
+  // Scanned again in place, so every includer's pointer to it stays valid; what depends on its
+  // text (its own summary, and the summary of each file whose includes reach it, read with its
+  // macros) is summarised again on demand.
+  std::vector<std::string> before = changed->includes;
+  scan(*changed, content(file, config));
+  if (changed->includes != before) {
+    std::lock_guard lock(mutex_);
+    closures_.clear();
+  }
+  std::vector<Entry*> all;
+  {
+    std::lock_guard lock(mutex_);
+    for (auto& [f, e] : entries_) all.push_back(e.get());
+  }
+  for (Entry* e : all) {
+    if (e == changed || e->own == nullptr || !e->lang) continue;
+    std::vector<const Entry*> reach = closure_of(e->file, e->includes, config);
+    if (std::find(reach.begin(), reach.end(), changed) == reach.end()) continue;
+    std::lock_guard lock(mutex_);
+    e->own.reset();
+  }
 }
 
 }  // namespace lwc

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "project/config.h"
+#include "project/files.h"
 #include "world/model.h"
 
 namespace lwc {
@@ -33,6 +34,12 @@ class IncludeSummaries {
   // target and an include is parsed once. Both ways read it with the same macros, so the
   // summary does not depend on which came first.
   void offer(const std::filesystem::path& path, Lang lang, const ProjectConfig& config, FileSummary summary);
+  // The files everything `text` (the file at `path`) includes lead to, transitively (canonical).
+  std::vector<std::filesystem::path> included_files(const std::filesystem::path& path, std::string_view text,
+                                                    const ProjectConfig& config);
+  // The text an editor holds for a file (none: the file on disk again). Whatever was learnt
+  // from the file, and from every file whose includes reach it, is learnt again on demand.
+  void set_text(const std::filesystem::path& path, std::optional<std::string> text, const ProjectConfig& config);
   // The path with links and dots resolved (cached: lint asks for each file many times).
   std::filesystem::path canonical(const std::filesystem::path& p);
 
@@ -46,6 +53,10 @@ class IncludeSummaries {
     MacroTable macros;                  // what its #defines teach
     mutable std::shared_ptr<const FileSummary> own;  // null until summarised; set once, under the mutex
   };
+  // A file's text: the editor's when it holds the file, else the disk's.
+  ReadResult content(const std::filesystem::path& file, const ProjectConfig& config);
+  // Reads a file's #include lines and #defines into `e` (and forgets its summary).
+  static void scan(Entry& e, const ReadResult& r);
   const Entry& scanned(const std::filesystem::path& canonical, const ProjectConfig& config);
   const FileSummary& summarised(const Entry& e, const ProjectConfig& config);
   // Everything `e` includes, transitively, in include order (`active`: the includes being
@@ -63,6 +74,7 @@ class IncludeSummaries {
   std::map<const Entry*, std::vector<const Entry*>> closures_;
   std::map<std::tuple<const ProjectConfig*, std::filesystem::path, std::string>, std::optional<std::filesystem::path>> resolved_;
   std::map<std::filesystem::path, std::filesystem::path> canonical_;
+  std::map<std::filesystem::path, std::string> overlays_;  // canonical file -> the editor's text
 };
 
 }  // namespace lwc

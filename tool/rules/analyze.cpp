@@ -12,6 +12,7 @@
 #include "lang/macros.h"
 #include "rules/rule.h"
 #include "shaderlib/shaderlib.h"
+#include "world/provenance.h"
 
 namespace lwc {
 
@@ -463,6 +464,10 @@ void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, co
     for (const auto& [rule, check] : checks()) {
       if (rule->applies_to(lang) && options.enabled(rule->id)) check->run(CheckContext{tree, world, *rule, found, unreal});
     }
+    ProvenanceTracer tracer(world);
+    for (Finding& f : found)
+      for (ProvenanceStep& step : tracer.trace(value_node_for(world, f.span)))
+        if (!(step.span == f.span)) f.related.emplace_back(step.span, std::move(step.text));
     drop_what_errors_touch(tree, found);
     if (!options.lint_library) drop_library_findings(library_definitions(tree, data), data, found);
     if (!world.too_deep().empty()) {
@@ -578,6 +583,22 @@ std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options
     analyze_unit(shader.views[i], *lang, shader.literals[i], with_siblings, findings);
   }
   return finish();
+}
+
+std::optional<ValueDescription> describe_value(const Source& source, const AnalyzeOptions& options, uint32_t offset) {
+  std::optional<FileFormat> format = format_for(source, options);
+  if (!format || format->container != Container::shader || source.text().size() > options.max_bytes) return std::nullopt;
+  MacroTable macros = macro_table(format->lang, options);
+  SyntaxTree tree = parse(source, format->lang, {&macros, 0, options.max_parse_seconds});
+  if (tree.timed_out) return std::nullopt;
+  WorldModel world(tree, world_data(format->lang, options.world_sources), model_context(source, format->lang, options.includes));
+  int node = value_node_at(world, offset);
+  if (node < 0) return std::nullopt;
+  Kind kind = value_kind(world, node);
+  std::string text = fmt::format("`{}`: {}", tree.text(node).substr(0, 60), kind_words(kind));
+  std::vector<ProvenanceStep> steps = ProvenanceTracer(world).trace(node);
+  for (size_t i = 0; i < steps.size(); ++i) text += (i == 0 ? "\n\nfrom " : "\n\n← ") + steps[i].text;
+  return ValueDescription{tree.span(node), kind, text};
 }
 
 }  // namespace lwc

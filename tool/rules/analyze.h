@@ -88,6 +88,16 @@ FileSummary include_summary(const Source& source, const SyntaxTree& tree, const 
 // The paths a file #includes, in order, as written (a scan of its directive lines).
 std::vector<std::string> include_paths(std::string_view text);
 
+// The value at a byte offset, as the world model reads it: its span, its kind, and a Markdown
+// description (the kind in words, then where it came from, step by step). None where the model
+// classified nothing (a keyword, a comment, a value of unknown space).
+struct ValueDescription {
+  Span span;
+  Kind kind;
+  std::string markdown;
+};
+std::optional<ValueDescription> describe_value(const Source& source, const AnalyzeOptions& options, uint32_t offset);
+
 // An lwc-input finding: a problem with the file itself rather than its code.
 Finding input_finding(Severity severity, uint32_t offset, std::string message, std::string hint);
 Finding too_large_finding(size_t bytes, size_t limit);

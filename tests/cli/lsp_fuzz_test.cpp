@@ -1,0 +1,110 @@
+// The language server under random editing: 10,000 seeded edit sequences on corpus files, each
+// ending at a checkpoint (a request on the document), keep every diagnostic the server publishes
+// equal to a fresh analysis of the text the client holds at that version, as `lint` runs it.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <random>
+
+#include "cli/lsp_client.h"
+#include "project/config.h"
+#include "project/includes.h"
+#include "rules/analyze.h"
+
+namespace lwc {
+namespace {
+
+using namespace lsp_client;
+
+// What `lint` finds in `text` at `path`: its project's options and its includes, as the command
+// line reads them.
+std::vector<Finding> fresh_lint(const std::string& path, const std::string& text) {
+  ConfigFinder configs;
+  IncludeSummaries includes;
+  std::shared_ptr<const ProjectConfig> config = configs.for_dir(std::filesystem::path(path).parent_path());
+  AnalyzeOptions options = analysis_options(*config);
+  FileSummary summary = includes.for_file(path, text, *config);
+  options.includes = &summary;
+  return analyze(Source(path, text), options);
+}
+
+// The diagnostic a client should see for a finding of `text`.
+json expected_diagnostic(const std::string& text, const Finding& f) {
+  return {{"code", f.rule},
+          {"severity", f.severity == Severity::error ? 1 : f.severity == Severity::warning ? 2 : 3},
+          {"message", f.hint.empty() ? f.message : f.message + "\n" + f.hint},
+          {"range", {{"start", position_of(text, f.span.begin)}, {"end", position_of(text, f.span.end)}}}};
+}
+
+TEST(LanguageServerFuzz, TenThousandEditSequencesKeepDiagnosticsEqualToAFreshLint) {
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {"corpus/glsl/forward.vert", "glsl"}, {"corpus/ue4/DeferredLightPixelShaders.usf", "hlsl"}, {"corpus/d3d/Terrain.hlsl", "hlsl"},
+      {"corpus/ue5.4/DoubleFloatHelpers.ush", "hlsl"}, {"corpus/glsl/SunAndFog.frag", "glsl"}};
+  const std::vector<std::string> pieces = {"float3 WorldPos = View.WorldCameraOrigin;\n", " ", "\r\n", "/* \xC3\xA9 */", "// \xF0\x9F\x8C\x8D\n",
+                                           "/* \xF0\x9F\x8C\x8D */", "LightData.Position", ";", "}", "{", "(", "\n\n", "#if A\n", "#endif\n",
+                                           "uniform mat4 modelMatrix;\n", "precise ", "// lwcport-ignore: lwc-float-world-position\n", ""};
+  std::mt19937 random(20261123);
+  const int kSessions = 20, kSequences = 500;
+  int checkpoints = 0, compared = 0;
+  for (int session = 0; session < kSessions; ++session) {
+    const auto& [file, language] = files[session % files.size()];
+    std::string original = test::read(test::source_dir() + "/" + file);
+    std::string dir = test::scratch("lsp-fuzz-" + std::to_string(session));
+    std::string path = dir + "/" + std::filesystem::path(file).filename().string();
+    std::string uri = "file://" + path;
+    std::string text = original;
+    std::map<int, std::string> texts = {{1, text}};  // version -> the client's text
+    std::vector<int> checkpoint_versions;
+    std::string input = frame(initialize()) +
+                        frame(notification("textDocument/didOpen", {{"textDocument", {{"uri", uri}, {"languageId", language}, {"version", 1}, {"text", text}}}}));
+    int version = 1;
+    for (int sequence = 0; sequence < kSequences; ++sequence) {
+      int edits = 1 + static_cast<int>(random() % 4);
+      for (int e = 0; e < edits; ++e) {
+        json change;
+        if (random() % 200 == 0) {  // now and then the whole text, as a client without ranges sends it
+          text = original;
+          change = {{"text", text}};
+        } else {
+          size_t lines = static_cast<size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
+          size_t l1 = random() % lines, c1 = random() % 40, l2 = l1 + random() % 2, c2 = random() % 40;
+          size_t begin = byte_offset(text, l1, c1), end = byte_offset(text, l2, c2);
+          if (end < begin) std::swap(begin, end);
+          std::string piece = pieces[random() % pieces.size()];
+          change = {{"range", {{"start", position_of(text, begin)}, {"end", position_of(text, end)}}}, {"text", piece}};
+          text.replace(begin, end - begin, piece);
+        }
+        texts[++version] = text;
+        input += frame(notification("textDocument/didChange", {{"textDocument", {{"uri", uri}, {"version", version}}}, {"contentChanges", {change}}}));
+      }
+      // The checkpoint: a request on the document, which it answers from an analysis of this version.
+      json range = {{"start", {{"line", 0}, {"character", 0}}}, {"end", {{"line", 0}, {"character", 0}}}};
+      input += frame(request(1000 + sequence, "textDocument/codeAction",
+                             {{"textDocument", {{"uri", uri}}}, {"range", range}, {"context", {{"diagnostics", json::array()}, {"only", {"quickfix"}}}}}));
+      checkpoint_versions.push_back(version);
+    }
+    Session s = serve_here(input + end_session());
+    ASSERT_EQ(s.exit_code, 0);
+    std::set<int> published_versions;
+    for (const json& published : diagnostics(s)) {
+      int v = published["version"];
+      published_versions.insert(v);
+      const std::string& at = texts.at(v);
+      std::vector<Finding> findings = fresh_lint(path, at);
+      const json& got = published["diagnostics"];
+      ASSERT_EQ(got.size(), findings.size()) << file << " version " << v << ":\n" << at;
+      for (size_t i = 0; i < findings.size(); ++i) {
+        json want = expected_diagnostic(at, findings[i]);
+        for (const char* key : {"code", "severity", "message", "range"}) ASSERT_EQ(got[i][key], want[key]) << file << " version " << v << ", " << key;
+      }
+      ++compared;
+    }
+    for (int v : checkpoint_versions) EXPECT_TRUE(published_versions.count(v)) << file << ": no diagnostics for checkpoint version " << v;
+    checkpoints += static_cast<int>(checkpoint_versions.size());
+  }
+  EXPECT_EQ(checkpoints, kSessions * kSequences);
+  EXPECT_GE(compared, checkpoints);
+}
+
+}  // namespace
+}  // namespace lwc

@@ -1,0 +1,250 @@
+#include "world/provenance.h"
+
+#include <fmt/format.h>
+
+#include <set>
+
+#include "core/source.h"
+
+namespace lwc {
+
+std::string kind_words(Kind kind) {
+  switch (kind) {
+    case Kind::unknown: return "of unknown space";
+    case Kind::local: return "small (local, clip or a scalar)";
+    case Kind::direction: return "a direction (no position)";
+    case Kind::translated: return "a translated-world (camera-relative) position";
+    case Kind::absolute: return "an absolute world position";
+    case Kind::camera_offset: return "the pre-view translation (minus the camera's absolute position)";
+    case Kind::world_matrix: return "a matrix to absolute world (its translation is an absolute position)";
+    case Kind::translated_world_matrix: return "a matrix to translated world";
+    case Kind::from_world_matrix: return "a matrix from absolute world (its translation is absolute)";
+    case Kind::from_translated_matrix: return "a matrix from translated world";
+    case Kind::rotation_matrix: return "a rotation (a 3x3 matrix: directions only)";
+    case Kind::local_matrix: return "a matrix between small spaces";
+  }
+  return "of unknown space";
+}
+
+namespace {
+
+bool worth_tracing(Kind k) { return k != Kind::unknown && k != Kind::local && k != Kind::direction; }
+
+// The kinds' order of concern: what makes a value most absolute is what explains it.
+int concern(Kind k) { return holds_absolute(k) ? 3 : worth_tracing(k) ? 2 : k == Kind::unknown ? 0 : 1; }
+
+// The deepest node whose span holds [begin, end], descending from the root.
+int deepest_covering(const SyntaxTree& t, uint32_t begin, uint32_t end) {
+  if (t.nodes.empty()) return -1;
+  int node = 0;
+  for (bool deeper = true; deeper;) {
+    deeper = false;
+    for (int c = t.at(node).first_child; c >= 0; c = t.at(c).next_sibling) {
+      if (t.at(c).begin <= begin && end <= t.at(c).end && t.at(c).end > t.at(c).begin) {
+        node = c;
+        deeper = true;
+        break;
+      }
+    }
+  }
+  return node;
+}
+
+bool ends_a_value(const SyntaxTree& t, int node) {
+  for (const char* type : {"expression_statement", "compound_statement", "function_definition", "declaration", "translation_unit",
+                           "field_declaration", "parameter_declaration", "return_statement", "struct_specifier"})
+    if (t.is(node, type)) return true;
+  return false;
+}
+
+// Why lwcport reads a name or path as world-space data.
+std::string data_words(const WorldData::Source& s) {
+  if (s.by_name) return fmt::format("read as {} by its name (a naming convention in lwcport's world-space data)", kind_words(s.kind));
+  if (s.pattern.text().size() > 48) return fmt::format("{} in lwcport's world-space data", kind_words(s.kind));
+  return fmt::format("{} in lwcport's world-space data (`{}`)", kind_words(s.kind), s.pattern.text());
+}
+
+}  // namespace
+
+Kind value_kind(const WorldModel& model, int node) {
+  Kind k = model.kind(node);
+  if (k != Kind::unknown || !model.tree().is(node, "identifier")) return k;
+  int var = model.variable_declared_at(node);
+  if (var < 0) var = model.variable_at(node);
+  return var >= 0 ? model.variables()[var].kind : k;
+}
+
+ProvenanceTracer::ProvenanceTracer(const WorldModel& model) : m_(model), t_(model.tree()) {
+  for (int id = 0; id < static_cast<int>(t_.nodes.size()); ++id) {
+    if (!t_.is(id, "function_definition")) continue;
+    int name = t_.declarator_name(t_.child_by_field(id, "declarator"));
+    if (name >= 0) functions_.emplace(std::string(t_.text(name)), id);
+  }
+}
+
+std::vector<ProvenanceStep> ProvenanceTracer::trace(int node) {
+  steps_.clear();
+  seen_.clear();
+  if (node < 0 || !worth_tracing(value_kind(m_, node))) return {};
+  for (int hops = 0; node >= 0 && steps_.size() < 8 && hops < 64 && seen_.insert(node).second; ++hops) node = step(node);
+  return std::move(steps_);
+}
+
+int ProvenanceTracer::line(int node) const { return t_.source->position(t_.at(node).begin).line; }
+
+// A node's text on one line, shortened.
+std::string ProvenanceTracer::code(int node) const {
+  std::string out;
+  for (char c : t_.text(node)) {
+    bool blank = c == ' ' || c == '\t' || c == '\r' || c == '\n';
+    if (blank && (out.empty() || out.back() == ' ')) continue;
+    out += blank ? ' ' : c;
+  }
+  if (out.size() > 48) out = out.substr(0, 45) + "...";
+  return "`" + out + "`";
+}
+
+void ProvenanceTracer::add(int node, std::string text) { steps_.push_back({t_.span(node), std::move(text)}); }
+
+// The named child the value most likely came from: the most absolute one.
+int ProvenanceTracer::strongest_child(int node) const {
+  int best = -1;
+  for (int c : t_.named_children(node))
+    if (worth_tracing(value_kind(m_, c)) && (best < 0 || concern(value_kind(m_, c)) > concern(value_kind(m_, best)))) best = c;
+  return best;
+}
+
+const WorldData::Source* ProvenanceTracer::source_for(const Path& path) const {
+  for (const WorldData::Source& s : m_.data().sources)
+    if (s.pattern.matches(path)) return &s;
+  return nullptr;
+}
+
+
+// Where a local variable got the value it has at `use`: the last assignment before it that
+// carries a traced kind, else its initialiser, else its first such assignment.
+int ProvenanceTracer::defining(int var, int use) const {
+  const Variable& v = m_.variables()[var];
+  int before = -1, any = -1;
+  for (int u : m_.uses(var)) {
+    int parent = t_.at(u).parent;
+    if (parent < 0 || !t_.is(parent, "assignment_expression") || t_.child_by_field(parent, "left") != u) continue;
+    int right = t_.child_by_field(parent, "right");
+    if (right < 0 || !worth_tracing(value_kind(m_, right))) continue;
+    if (any < 0) any = parent;
+    if (t_.at(parent).begin < t_.at(use).begin) before = parent;
+  }
+  if (before >= 0) return before;
+  if (v.init >= 0 && worth_tracing(value_kind(m_, v.init))) return v.init;
+  return any;
+}
+
+int ProvenanceTracer::returned_value(int function) const {
+  int best = -1;
+  for (int id = function + 1; id < static_cast<int>(t_.nodes.size()) && t_.at(id).begin < t_.at(function).end; ++id) {
+    if (!t_.is(id, "return_statement")) continue;
+    int value = t_.named_child(id);
+    if (value >= 0 && worth_tracing(value_kind(m_, value)) && (best < 0 || concern(value_kind(m_, value)) > concern(value_kind(m_, best))))
+      best = value;
+  }
+  return best;
+}
+
+// Says what happens at `node` (when there is something to say) and returns where its value
+// came from, or -1 where the trail ends.
+int ProvenanceTracer::step(int node) {
+  std::string_view type = t_.at(node).type;
+  if (type == "identifier") return step_identifier(node);
+  if (type == "field_expression") {
+    if (auto path = m_.path(node))
+      if (const WorldData::Source* s = source_for(*path)) return add(node, fmt::format("{}: {}", code(node), data_words(*s))), -1;
+    int base = t_.child_by_field(node, "argument");
+    if (base >= 0 && worth_tracing(value_kind(m_, base))) return base;
+    add(node, fmt::format("{} (line {}): {} by lwcport's engine data or what the file assigns to the field", code(node), line(node),
+                          kind_words(value_kind(m_, node))));
+    return -1;
+  }
+  if (type == "call_expression") {
+    int fn = t_.child_by_field(node, "function");
+    std::string name = fn >= 0 ? std::string(t_.text(fn)) : "";
+    if (auto path = m_.path(node))
+      if (const WorldData::Source* s = source_for(*path)) return add(node, fmt::format("{}: {}", code(node), data_words(*s))), -1;
+    auto found = fn >= 0 && t_.is(fn, "identifier") ? functions_.find(name) : functions_.end();
+    int defined = found != functions_.end() ? found->second : -1;
+    if (defined >= 0) {
+      add(node, fmt::format("returned by `{}` (line {}, defined at line {})", name, line(node), line(defined)));
+      return returned_value(defined);
+    }
+    int from = t_.child_by_field(node, "arguments");
+    int arg = from >= 0 ? strongest_child(from) : -1;
+    add(node, arg >= 0 ? fmt::format("through `{}` (line {})", name, line(node))
+                       : fmt::format("`{}` (line {}) returns {}", name, line(node), kind_words(value_kind(m_, node))));
+    return arg;
+  }
+  if (type == "assignment_expression") return t_.child_by_field(node, "right");
+  return strongest_child(node);
+}
+
+int ProvenanceTracer::step_identifier(int node) {
+  std::string name(t_.text(node));
+  int var = m_.variable_at(node);
+  if (var < 0) var = m_.variable_declared_at(node);
+  if (var < 0) {
+    if (const WorldData::Source* s = source_for(Path{{name, false}})) add(node, fmt::format("`{}`: {}", name, data_words(*s)));
+    return -1;
+  }
+  const Variable& v = m_.variables()[var];
+  int where = v.declaration >= 0 ? v.declaration : node;
+  switch (v.role) {
+    case Variable::Role::global: {
+      // A global the file writes (a varying, a static) got its value where it was written.
+      if (!v.uniform) {
+        int from = defining(var, node);
+        if (from >= 0 && from != v.init) {
+          add(from, fmt::format("{} (line {})", code(from), line(from)));
+          return t_.child_by_field(from, "right");
+        }
+        if (from >= 0) {
+          add(where, fmt::format("`{}`, a global initialised at line {}", name, line(where)));
+          return v.init;
+        }
+      }
+      const WorldData::Source* s = source_for(Path{{name, false}});
+      add(where, s ? fmt::format("`{} {}`, a global (line {}): {}", v.type, name, line(where), data_words(*s))
+                   : fmt::format("`{} {}`, a global (line {}): {}", v.type, name, line(where), kind_words(v.kind)));
+      return -1;
+    }
+    case Variable::Role::parameter:
+      add(where, fmt::format("parameter `{}` (line {}): {} where the file calls its function", name, line(where), kind_words(v.kind)));
+      return -1;
+    case Variable::Role::field:
+      add(where, fmt::format("field `{}.{}` (line {}): {} by what the file assigns to it", v.owner, name, line(where), kind_words(v.kind)));
+      return -1;
+    case Variable::Role::local: break;
+  }
+  int from = defining(var, node);
+  if (from < 0) return -1;
+  if (from == v.init) {
+    add(where, fmt::format("`{}` = {} (line {})", name, code(from), line(from)));
+    return from;
+  }
+  int right = t_.child_by_field(from, "right");
+  add(from, fmt::format("{} (line {})", code(from), line(from)));
+  return right;
+}
+
+int value_node_at(const WorldModel& model, uint32_t offset) {
+  const SyntaxTree& t = model.tree();
+  for (int node = deepest_covering(t, offset, offset); node >= 0 && !ends_a_value(t, node); node = t.at(node).parent)
+    if (value_kind(model, node) != Kind::unknown) return node;
+  return -1;
+}
+
+int value_node_for(const WorldModel& model, Span span) {
+  const SyntaxTree& t = model.tree();
+  for (int node = deepest_covering(t, span.begin, span.end); node >= 0 && t.span(node) == span; node = t.at(node).parent)
+    if (worth_tracing(value_kind(model, node))) return node;
+  return -1;
+}
+
+}  // namespace lwc
