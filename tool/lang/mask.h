@@ -21,11 +21,14 @@ enum class Lang;
 // where it was; `cbuffer Name` becomes `extern"C"` (a block that needs no trailing semicolon);
 // Niagara `{Placeholder}`s become identifiers and `%{placeholder}`s spaces. GLSL: `precision`
 // statements and interface defaults (`layout(local_size_x = 64) in;`) become spaces.
+class ParseReuse;
+
 struct MaskOptions {
   const MacroTable* macros = nullptr;  // the macros known (default: known_macros); the file's own #defines are added
   int variant = 0;
   // The parser's budget (parse()): its error recovery on some broken input has no bound.
   double max_parse_seconds = 30;
+  ParseReuse* reuse = nullptr;  // the last parse of this document, edited rather than parsed again (lang/syntax.h)
 };
 
 struct MaskResult {

@@ -150,7 +150,35 @@ void flatten(TSTree* tree, SyntaxTree& out) {
   }
 }
 
+// The row and byte column of an offset, as tree-sitter counts them.
+TSPoint point_at(std::string_view text, size_t at) {
+  size_t line_start = at == 0 ? std::string_view::npos : text.rfind('\n', at - 1);
+  uint32_t row = static_cast<uint32_t>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+  return {row, static_cast<uint32_t>(line_start == std::string_view::npos ? at : at - line_start - 1)};
+}
+
+// The one edit that turns `before` into `after`: what lies between their common start and end.
+TSInputEdit edit_between(std::string_view before, std::string_view after) {
+  size_t start = 0, shorter = std::min(before.size(), after.size());
+  while (start < shorter && before[start] == after[start]) ++start;
+  size_t tail = 0;
+  while (tail < shorter - start && before[before.size() - 1 - tail] == after[after.size() - 1 - tail]) ++tail;
+  TSInputEdit e;
+  e.start_byte = static_cast<uint32_t>(start);
+  e.old_end_byte = static_cast<uint32_t>(before.size() - tail);
+  e.new_end_byte = static_cast<uint32_t>(after.size() - tail);
+  e.start_point = point_at(before, e.start_byte);
+  e.old_end_point = point_at(before, e.old_end_byte);
+  e.new_end_point = point_at(after, e.new_end_byte);
+  return e;
+}
+
 }  // namespace
+
+ParseReuse::~ParseReuse() {
+  for (auto& [key, last] : last_)
+    if (last.tree) ts_tree_delete(last.tree);
+}
 
 SyntaxTree parse(const Source& source, Lang lang, const MaskOptions& options) {
   SyntaxTree out;
@@ -162,14 +190,27 @@ SyntaxTree parse(const Source& source, Lang lang, const MaskOptions& options) {
   out.resolved_conditionals = std::move(masked.resolved_conditionals);
   TSParser* parser = thread_parser(lang);
   ts_parser_set_timeout_micros(parser, static_cast<uint64_t>(std::max(1e-6, options.max_parse_seconds) * 1e6));
+  ParseReuse::Last* last = options.reuse ? &options.reuse->last_[{lang, options.variant}] : nullptr;
+  if (last && last->tree) {
+    TSInputEdit edit = edit_between(last->masked, masked.text);
+    ts_tree_edit(last->tree, &edit);
+  }
   std::unique_ptr<TSTree, TreeDeleter> tree(
-      ts_parser_parse_string(parser, nullptr, masked.text.data(), static_cast<uint32_t>(masked.text.size())));
+      ts_parser_parse_string(parser, last ? last->tree : nullptr, masked.text.data(), static_cast<uint32_t>(masked.text.size())));
+  if (last && last->tree) {
+    ts_tree_delete(last->tree);  // edited: good for nothing but this parse
+    last->tree = nullptr;
+  }
   if (!tree) {  // out of budget: the parser keeps its state for a resume that will not come
     ts_parser_reset(parser);
     out.timed_out = true;
     return out;
   }
   flatten(tree.get(), out);
+  if (last) {
+    last->tree = tree.release();
+    last->masked = std::move(masked.text);
+  }
   return out;
 }
 

@@ -1,12 +1,16 @@
 #pragma once
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/source.h"
 #include "lang/mask.h"
+
+struct TSTree;
 
 namespace lwc {
 
@@ -62,6 +66,26 @@ class SyntaxTree {
   int declarator_name(int declarator) const;
   // The index expression of a subscript (`M[3]`: the `3`), in both grammars, or -1.
   int subscript_index(int subscript) const;
+};
+
+// The tree-sitter trees of one document's last parse (per language and variant), kept so that the
+// next parse of its edited text is tree-sitter's incremental one: the old tree is edited where the
+// text changed and only what the edit touches is parsed again. For an editor's open documents;
+// the result is the tree a fresh parse gives.
+class ParseReuse {
+ public:
+  ParseReuse() = default;
+  ParseReuse(const ParseReuse&) = delete;
+  ParseReuse& operator=(const ParseReuse&) = delete;
+  ~ParseReuse();
+
+ private:
+  friend SyntaxTree parse(const Source& source, Lang lang, const MaskOptions& options);
+  struct Last {
+    std::string masked;   // the text the tree was parsed from
+    TSTree* tree = nullptr;
+  };
+  std::map<std::pair<Lang, int>, Last> last_;
 };
 
 // Parses one variant of a source in the given language, after masking (lang/mask.h): HLSL with

@@ -447,7 +447,7 @@ void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, co
   std::optional<uint32_t> first_error, first_too_deep;
   std::optional<SyntaxTree> first;  // variant 0, kept for the suppressions' own fixes
   for (int variant = 0, variants = 1; variant < variants; ++variant) {
-    SyntaxTree tree = parse(code, lang, {&macros, variant, options.max_parse_seconds});
+    SyntaxTree tree = parse(code, lang, {&macros, variant, options.max_parse_seconds, literal ? nullptr : options.reuse});
     if (tree.timed_out) {
       findings.push_back(input_finding(
           Severity::error, 0, fmt::format("the parser gave up after {:g} s (its error recovery on this file found no end); not analysed", options.max_parse_seconds),
@@ -589,7 +589,7 @@ std::optional<ValueDescription> describe_value(const Source& source, const Analy
   std::optional<FileFormat> format = format_for(source, options);
   if (!format || format->container != Container::shader || source.text().size() > options.max_bytes) return std::nullopt;
   MacroTable macros = macro_table(format->lang, options);
-  SyntaxTree tree = parse(source, format->lang, {&macros, 0, options.max_parse_seconds});
+  SyntaxTree tree = parse(source, format->lang, {&macros, 0, options.max_parse_seconds, options.reuse});
   if (tree.timed_out) return std::nullopt;
   WorldModel world(tree, world_data(format->lang, options.world_sources), model_context(source, format->lang, options.includes));
   int node = value_node_at(world, offset);

@@ -125,18 +125,36 @@ const WorldData::Source* ProvenanceTracer::source_for(const Path& path) const {
 // carries a traced kind, else its initialiser, else its first such assignment.
 int ProvenanceTracer::defining(int var, int use) const {
   const Variable& v = m_.variables()[var];
-  int before = -1, any = -1;
+  // The kind to explain: what the use holds, or, at the declaration, the most absolute it holds.
+  Kind wanted = m_.variable_declared_at(use) == var ? v.kind : value_kind(m_, use);
+  struct Candidate {
+    int node;   // the initialiser or the assignment
+    Kind kind;  // what it stores
+  };
+  std::vector<Candidate> candidates;
+  if (v.init >= 0) candidates.push_back({v.init, value_kind(m_, v.init)});
   for (int u : m_.uses(var)) {
-    int parent = t_.at(u).parent;
-    if (parent < 0 || !t_.is(parent, "assignment_expression") || t_.child_by_field(parent, "left") != u) continue;
-    int right = t_.child_by_field(parent, "right");
-    if (right < 0 || !worth_tracing(value_kind(m_, right))) continue;
-    if (any < 0) any = parent;
-    if (t_.at(parent).begin < t_.at(use).begin) before = parent;
+    // The store may be to a part of it: `P.xyz -= ..`, `M[3] = ..`.
+    int left = u;
+    while (t_.at(left).parent >= 0 && (t_.is(t_.at(left).parent, "field_expression") || t_.is(t_.at(left).parent, "subscript_expression")) &&
+           t_.child_by_field(t_.at(left).parent, "argument") == left)
+      left = t_.at(left).parent;
+    int parent = t_.at(left).parent;
+    if (parent < 0 || !t_.is(parent, "assignment_expression") || t_.child_by_field(parent, "left") != left) continue;
+    candidates.push_back({parent, value_kind(m_, parent)});
   }
-  if (before >= 0) return before;
-  if (v.init >= 0 && worth_tracing(value_kind(m_, v.init))) return v.init;
-  return any;
+  // The last store before the use that gave it this kind; else the last one before it worth
+  // tracing; else (a declaration, or a loop) the first store anywhere that gave this kind.
+  int same_before = -1, traced_before = -1, same_anywhere = -1;
+  for (const Candidate& c : candidates) {
+    bool before = t_.at(c.node).begin < t_.at(use).begin;
+    if (c.kind == wanted && before) same_before = c.node;
+    if (worth_tracing(c.kind) && before) traced_before = c.node;
+    if (c.kind == wanted && same_anywhere < 0) same_anywhere = c.node;
+  }
+  if (same_before >= 0) return same_before;
+  if (m_.variable_declared_at(use) != var && traced_before >= 0) return traced_before;
+  return same_anywhere;
 }
 
 int ProvenanceTracer::returned_value(int function) const {
