@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 #include <random>
 
 #include <nlohmann/json.hpp>
 
 #include "cli/lsp_client.h"
+#include "shaderlib/shaderlib.h"
 #include "support.h"
 
 namespace lwc {
@@ -321,6 +323,59 @@ TEST(LanguageServer, HoverShowsAValuesKindAndProvenance) {
   ASSERT_EQ(related.size(), 2u) << related.dump();
   EXPECT_EQ(related[1]["location"]["range"]["start"]["line"], 4);  // the uniform's declaration
   EXPECT_EQ(related[1]["location"]["uri"], uri);
+}
+
+// A rewrite that calls lwcport's DoubleFloat library, for a client that can create files: the
+// quick fix creates the library beside the document with what the rewrite calls, and "fix all"
+// (unsafe fixes on, through workspace/applyEdit) gives the document and library `lwcport fix
+// --unsafe-fixes` writes. A client that cannot create files is not offered the rewrite.
+TEST(LanguageServer, ARewriteThatNeedsTheLibraryCreatesIt) {
+  std::string dir = test::scratch("lsp-library");
+  std::string text = test::read(test::source_dir() + "/corpus/glsl/forward.vert");
+  test::write(dir + "/cli/forward.vert", text);
+  test::run(test::binary() + " fix " + dir + "/cli/forward.vert --unsafe-fixes --fail-on none > /dev/null");
+  std::string fixed = test::read(dir + "/cli/forward.vert"), library = test::read(dir + "/cli/lwc_doublefloat.glsl");
+  std::string uri = "file://" + dir + "/editor/forward.vert", library_uri = "file://" + dir + "/editor/lwc_doublefloat.glsl";
+  json creates = {{"workspace", {{"workspaceEdit", {{"documentChanges", true}, {"resourceOperations", {"create"}}}}}}};
+  // Line 17 (0-based 16): `vec4 worldPosition = modelMatrix * vec4(position, 1.0);`
+  json on_it = {{"start", {{"line", 16}, {"character", 0}}}, {"end", {{"line", 16}, {"character", 10}}}};
+  auto actions = frame(request(2, "textDocument/codeAction", {{"textDocument", {{"uri", uri}}}, {"range", on_it}, {"context", {{"diagnostics", json::array()}}}}));
+  auto init = [&](const json& capabilities) {
+    return frame(request(1, "initialize", {{"capabilities", capabilities}, {"initializationOptions", {{"unsafeFixes", true}}}}));
+  };
+  Session s = serve(init(creates) + frame(open_document(uri, "glsl", text)) + actions +
+                    frame(request(3, "workspace/executeCommand", {{"command", "lwcport.fixAll"}, {"arguments", {uri}}})) + end_session());
+  Session without = serve(init(json::object()) + frame(open_document(uri, "glsl", text)) + actions + end_session());
+  const json* with_library = nullptr;
+  for (const json& a : (*reply_to(s, 2))["result"])
+    if (a["edit"].contains("documentChanges")) with_library = &a;
+  ASSERT_NE(with_library, nullptr) << reply_to(s, 2)->dump(1);
+  for (const json& a : (*reply_to(without, 2))["result"]) EXPECT_NE(a["title"], (*with_library)["title"]) << "offered without create: " << a.dump();
+  // Applies document changes to the texts by URI (a created file starts empty).
+  auto apply_changes = [&](const json& changes) {
+    std::map<std::string, std::string> files = {{uri, text}};
+    for (const json& c : changes) {
+      if (c.value("kind", "") == "create") {
+        files[c["uri"]] = "";
+        continue;
+      }
+      std::string target = c["textDocument"]["uri"];
+      files[target] = apply(files.at(target), c["edits"]);
+    }
+    return files;
+  };
+  const json& changes = (*with_library)["edit"]["documentChanges"];
+  EXPECT_EQ(changes[0]["kind"], "create");
+  std::map<std::string, std::string> quick = apply_changes(changes);
+  EXPECT_TRUE(is_written_library(quick.at(library_uri)));
+  EXPECT_NE(quick.at(uri).find("#include \"lwc_doublefloat.glsl\""), std::string::npos);
+  const json* apply_edit = nullptr;
+  for (const json& m : s.messages)
+    if (m.value("method", "") == "workspace/applyEdit") apply_edit = &m;
+  ASSERT_NE(apply_edit, nullptr);
+  std::map<std::string, std::string> all = apply_changes((*apply_edit)["params"]["edit"]["documentChanges"]);
+  EXPECT_EQ(all.at(uri), fixed);
+  EXPECT_EQ(all.at(library_uri), library);
 }
 
 // Hover on a finding: the rule, its message, summary and rationale, and its page.

@@ -23,9 +23,11 @@
 #include "core/source.h"
 #include "fix/apply.h"
 #include "project/config.h"
+#include "project/files.h"
 #include "project/includes.h"
 #include "rules/analyze.h"
 #include "rules/rule.h"
+#include "shaderlib/shaderlib.h"
 
 namespace lwc {
 namespace {
@@ -284,6 +286,9 @@ class Server {
     json lazy = value_at(capabilities, {"textDocument", "codeAction", "resolveSupport", "properties"});
     lazy_edits_ = lazy.is_array() && std::find(lazy.begin(), lazy.end(), "edit") != lazy.end();
     watch_ = value_at(capabilities, {"workspace", "didChangeWatchedFiles", "dynamicRegistration"}) == true;
+    json operations = value_at(capabilities, {"workspace", "workspaceEdit", "resourceOperations"});
+    create_files_ = value_at(capabilities, {"workspace", "workspaceEdit", "documentChanges"}) == true && operations.is_array() &&
+                    std::find(operations.begin(), operations.end(), "create") != operations.end();
     settings(params.value("initializationOptions", json()));
     log_message(3, fmt::format("lwcport {}: {} positions, {} diagnostics", "0.1.0", utf8_ ? "UTF-8" : "UTF-16", pull_ ? "pulled" : "pushed"));
     json provider = {{"codeActionKinds", {"quickfix", "source.fixAll.lwcport"}}, {"resolveProvider", true}};
@@ -562,7 +567,8 @@ class Server {
     if (action == "fix") {
       size_t k = data.at("fix");
       if (k >= f.fixes.size()) return std::nullopt;
-      return workspace_edit(uri, d, f.fixes[k].edits, source);
+      const Fix& fix = f.fixes[k];
+      return workspace_edit(uri, d, fix.edits, source, false, {fix.library.begin(), fix.library.end()});
     }
     // A line of its own above the finding's line, indented as it is.
     Position at = source.position(f.span.begin);
@@ -573,29 +579,64 @@ class Server {
   }
 
   // The edits as a workspace edit; `written`: their text is in the document's line endings already.
-  json workspace_edit(const std::string& uri, const Document& d, const std::vector<Edit>& edits, const Source& source, bool written = false) const {
+  // With `library` (the DoubleFloat functions the new code calls), lwcport's library file beside
+  // the document gets them too (created when missing); none when the client cannot create files or
+  // a file of that name exists that lwcport did not write.
+  std::optional<json> workspace_edit(const std::string& uri, const Document& d, const std::vector<Edit>& edits, const Source& source,
+                                     bool written = false, const std::set<std::string>& library = {}) const {
     json list = json::array();
     for (const Edit& e : edits) list.push_back({{"range", range(d, e.span)}, {"newText", written ? e.text : in_line_endings(source, e.text)}});
-    return {{"changes", {{uri, list}}}};
+    if (library.empty()) return json{{"changes", {{uri, list}}}};
+    std::optional<json> changes = library_changes(d, library);
+    if (!changes) return std::nullopt;
+    changes->push_back({{"textDocument", {{"uri", uri}, {"version", d.version}}}, {"edits", list}});
+    return json{{"documentChanges", *changes}};
   }
 
-  // Every fix `lwcport fix` would apply (safe ones, and unsafe ones when asked), as one edit; none
-  // when nothing applies or a rewrite needs lwcport's library file beside the document (`lwcport
-  // fix` writes it).
+  // The library file beside a document with `names` added to what it holds (what `lwcport fix`
+  // writes there), as document changes: the file created when missing, then its whole text.
+  std::optional<json> library_changes(const Document& d, const std::set<std::string>& names) const {
+    std::optional<Lang> lang = d.lang ? d.lang : lang_from_path(d.path.string());
+    if (!create_files_ || !lang || !d.path.is_absolute()) return std::nullopt;
+    fs::path file = d.path.parent_path() / library_file_name(*lang);
+    std::string uri = uri_of(file);
+    std::optional<std::string> before;
+    if (auto open = documents_.find(uri); open != documents_.end()) before = open->second.text;
+    else if (std::error_code ec; fs::exists(file, ec)) {
+      ReadResult r = read_file(file, SIZE_MAX);
+      if (!r.error.empty()) return std::nullopt;
+      before = std::move(r.text);
+    }
+    if (before && !is_written_library(*before)) return std::nullopt;
+    std::set<std::string> all = names;
+    if (before) all.merge(library_names_used(*lang, *before));
+    json changes = json::array();
+    if (!before) changes.push_back({{"kind", "create"}, {"uri", uri}, {"options", {{"ignoreIfExists", true}}}});
+    std::string old = before.value_or("");
+    size_t last_line = static_cast<size_t>(std::count(old.begin(), old.end(), '\n'));
+    size_t tail = old.size() - (old.rfind('\n') == std::string::npos ? 0 : old.rfind('\n') + 1);
+    json end = {{"line", last_line}, {"character", tail}};  // the library is ASCII: bytes are characters
+    changes.push_back({{"textDocument", {{"uri", uri}, {"version", nullptr}}},
+                       {"edits", {{{"range", {{"start", {{"line", 0}, {"character", 0}}}, {"end", end}}}, {"newText", library_text(*lang, all)}}}}});
+    return changes;
+  }
+
+  // Every fix `lwcport fix` would apply (safe ones, and unsafe ones when asked), as one edit (with
+  // lwcport's library file beside the document when a rewrite calls it); none when nothing applies.
   std::optional<json> fix_all_edit(const std::string& uri, const Document& d, bool unsafe) {
     std::optional<FileSummary> summary;
     AnalyzeOptions options = options_for(d, summary);
     Source source(d.path.string(), d.text);
     FixOutcome fixed = fix_source(source, options, unsafe);
-    if (fixed.applied == 0 || !fixed.library.empty()) return std::nullopt;
-    return workspace_edit(uri, d, {{{0, static_cast<uint32_t>(d.text.size())}, fixed.text}}, source, true);
+    if (fixed.applied == 0) return std::nullopt;
+    return workspace_edit(uri, d, {{{0, static_cast<uint32_t>(d.text.size())}, fixed.text}}, source, true, fixed.library);
   }
 
   // Quick fixes (each finding's rewrite; a safe one preferred, an unsafe one titled so), "ignore
   // <rule> for this line", and every fix at once (source.fixAll.lwcport), for the findings the
-  // range touches. A rewrite that needs lwcport's library file written beside the document is left
-  // to `lwcport fix`, which writes it. With a client that resolves lazily the edits come on
-  // codeAction/resolve.
+  // range touches. A rewrite that needs lwcport's library file beside the document is offered when
+  // the client can create files (else `lwcport fix` writes it). With a client that resolves lazily
+  // the edits come on codeAction/resolve.
   json code_actions(const json& params) {
     std::string uri = params.at("textDocument").at("uri");
     json actions = json::array();
@@ -633,7 +674,7 @@ class Server {
         if (f.span.end < from || f.span.begin > to) continue;
         for (size_t k = 0; k < f.fixes.size(); ++k) {
           const Fix& fix = f.fixes[k];
-          if (!fix.library.empty()) continue;
+          if (!fix.library.empty() && !create_files_) continue;
           bool safe = fix.applicability == Applicability::safe;
           add(safe ? fix.title : fix.title + " (unsafe: " + fix.reason + ")", "quickfix", i, {{"action", "fix"}, {"finding", i}, {"fix", k}});
           if (safe) actions.back()["isPreferred"] = true;
@@ -760,7 +801,7 @@ class Server {
   Clock::time_point started_ = Clock::now();
   bool initialized_ = false, shut_down_ = false;
   // What the client can do (from initialize) and wants (settings).
-  bool utf8_ = false, pull_ = false, refresh_ = false, lazy_edits_ = false, watch_ = false, unsafe_fixes_ = false;
+  bool utf8_ = false, pull_ = false, refresh_ = false, lazy_edits_ = false, watch_ = false, unsafe_fixes_ = false, create_files_ = false;
   long analyses_ = 0, requests_ = 0;
   std::map<std::string, Document> documents_;
   std::unique_ptr<ConfigFinder> configs_ = std::make_unique<ConfigFinder>();
