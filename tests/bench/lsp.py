@@ -8,7 +8,8 @@ Latency is end to end (didChange sent to publishDiagnostics read) and the server
 per analysis (from its --log); the baselines are CPU time (user + system), interleaved with the
 edits so that load on the shared machine falls on both. Prints Markdown for RESULTS.md.
 
-  usage: tests/bench/lsp.py [--edits N] [--tree DIR]   (--tree: open 200 files of DIR too)
+  usage: tests/bench/lsp.py [--edits N] [--file PATH] [--tree DIR]
+         --file: edit this file instead of the generated one; --tree: open 200 files of DIR too
 """
 import argparse
 import glob
@@ -127,11 +128,12 @@ def analysis_cpu(log, path):
     return out
 
 
-def rediagnose(edits, seed=20261123):
+def rediagnose(edits, given=None, seed=20261123):
     os.makedirs(WORK, exist_ok=True)
-    path = os.path.join(WORK, "Big.usf")
-    big_file(path)
-    text = open(path).read()
+    path = os.path.abspath(given) if given else os.path.join(WORK, "Big.usf")
+    if not given:
+        big_file(path)
+    text = open(path, encoding="utf-8", errors="replace").read()
     lines = text.split("\n")
     uri = "file://" + path
     log = os.path.join(WORK, "server.log")
@@ -195,11 +197,13 @@ def open_many(files, count=200):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--edits", type=int, default=150)
+    parser.add_argument("--file", help="a file to edit instead of the generated one (not changed on disk)")
     parser.add_argument("--tree", help="a shader tree to open 200 documents of")
     args = parser.parse_args()
-    r = rediagnose(args.edits)
+    r = rediagnose(args.edits, args.file)
     ms = lambda v: f"{v:.1f}"
-    print(f"Re-diagnose after a one-character edit inside a function, {r['lines']}-line HLSL file, {r['findings']} findings, "
+    print(f"Re-diagnose after a one-character edit inside a function, {r['lines']}-line HLSL file"
+          f"{' (' + os.path.basename(args.file) + ')' if args.file else ''}, {r['findings']} findings, "
           f"{len(r['latency'])} edits:\n")
     print("| measure | p50 ms | p90 ms | p99 ms | max ms |")
     print("|---|---|---|---|---|")

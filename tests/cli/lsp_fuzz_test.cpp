@@ -3,7 +3,9 @@
 // equal to a fresh analysis of the text the client holds at that version, as `lint` runs it.
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <map>
+#include <set>
 #include <random>
 
 #include "cli/lsp_client.h"
@@ -104,6 +106,67 @@ TEST(LanguageServerFuzz, TenThousandEditSequencesKeepDiagnosticsEqualToAFreshLin
   }
   EXPECT_EQ(checkpoints, kSessions * kSequences);
   EXPECT_GE(compared, checkpoints);
+}
+
+// Random messages: known methods with parameters of the wrong shape (missing members, wrong types,
+// negative and huge positions, unknown documents), random ids, bytes that are not JSON and headers
+// that lie. The server never stops early, and answers every request it reads exactly once.
+TEST(LanguageServerFuzz, RandomMessagesAreAnsweredAndNeverStopTheServer) {
+  const std::vector<std::string> methods = {"textDocument/didOpen", "textDocument/didChange", "textDocument/didClose", "textDocument/didSave",
+                                            "textDocument/codeAction", "codeAction/resolve", "textDocument/hover", "textDocument/diagnostic",
+                                            "workspace/executeCommand", "workspace/didChangeConfiguration", "$/cancelRequest", "no/such"};
+  std::string uri = "file://" + test::scratch("lsp-messages") + "/a.usf";
+  std::string text = test::read(test::source_dir() + "/corpus/ue4/HeightFogCommon.ush");
+  std::mt19937 random(7);
+  auto any_value = [&](int depth) {
+    std::function<json(int)> make = [&](int d) -> json {
+      switch (random() % (d > 2 ? 6 : 9)) {
+        case 0: return nullptr;
+        case 1: return static_cast<int>(random() % 5) - 2;
+        case 2: return 1e300;
+        case 3: return std::string(random() % 3, 'x');
+        case 4: return uri;
+        case 5: return random() % 2 == 0;
+        case 6: return json::array({make(d + 1), make(d + 1)});
+        case 7: return {{"line", make(d + 1)}, {"character", make(d + 1)}};
+        default: return {{"uri", uri}, {"start", make(d + 1)}, {"range", make(d + 1)}, {"text", make(d + 1)}, {"version", make(d + 1)}};
+      }
+    };
+    return make(depth);
+  };
+  std::string input = frame(initialize()) +
+                      frame(notification("textDocument/didOpen", {{"textDocument", {{"uri", uri}, {"languageId", "hlsl"}, {"version", 1}, {"text", text}}}}));
+  std::set<int> asked;
+  std::map<int, std::string> requests;
+  for (int i = 0; i < 3000; ++i) {
+    switch (random() % 10) {
+      case 0: input += "Content-Length: 7\r\n\r\n{\"a\":[}"; continue;
+      case 1: input += "X-Nothing: 1\r\n\r\n"; continue;
+      default: break;
+    }
+    std::string method = methods[random() % methods.size()];
+    json params = {{"textDocument", random() % 4 ? json{{"uri", uri}, {"version", static_cast<int>(random() % 50)}} : any_value(0)},
+                   {"position", any_value(1)}, {"range", random() % 2 ? json{{"start", any_value(1)}, {"end", any_value(1)}} : any_value(0)},
+                   {"contentChanges", random() % 2 ? json::array({any_value(0)}) : any_value(0)}, {"context", any_value(0)},
+                   {"data", any_value(0)}, {"command", random() % 2 ? json("lwcport.fixAll") : any_value(0)},
+                   {"arguments", json::array({any_value(0)})}, {"id", any_value(0)}};
+    if (random() % 3 == 0) params = any_value(0);
+    bool is_request = random() % 2 == 0;
+    if (is_request) {
+      asked.insert(1000 + i);
+      requests[1000 + i] = request(1000 + i, method, params).dump();
+      input += frame(request(1000 + i, method, params));
+    } else {
+      input += frame(notification(method, params));
+    }
+  }
+  Session s = serve_here(input + end_session());
+  EXPECT_EQ(s.exit_code, 0);
+  std::map<int, int> answers;
+  for (const json& m : s.messages)
+    if (m.contains("id") && m["id"].is_number_integer() && !m.contains("method")) ++answers[m["id"].get<int>()];
+  for (int id : asked) EXPECT_EQ(answers[id], 1) << "request " << id << ": " << requests[id];
+  EXPECT_EQ(answers[99], 1);  // the shutdown at the end: the server was still there
 }
 
 }  // namespace

@@ -195,7 +195,7 @@ class Server {
   // Handles one message; the exit code once the client says `exit`.
   std::optional<int> handle(const json& message) {
     if (!message.contains("method") || !message["method"].is_string()) {
-      answered(message);
+      response_received(message);
       return std::nullopt;
     }
     std::string method = message["method"];
@@ -203,6 +203,7 @@ class Server {
     json id = request ? message["id"] : json();
     const json params = message.value("params", json::object());
     auto started = Clock::now();
+    replied_ = false;
     log(fmt::format("<- {}{}", method, request ? " (" + id.dump() + ")" : ""));
     if (method == "exit") return shut_down_ ? 0 : 1;
     if (!initialized_ && method != "initialize") {
@@ -241,11 +242,14 @@ class Server {
       log_message(1, method + " failed: " + e.what());
       if (request) reply_error(id, kInternalError, method + " failed: " + e.what());
     }
+    // A notification sent with an id is still a request: JSON-RPC owes it one answer.
+    if (request && !replied_) reply_error(id, kInvalidRequest, method + " is a notification, not a request");
     log(fmt::format("   {} done in {:.1f} ms", method, ms_since(started)));
     return std::nullopt;
   }
 
   void reply_error(const json& id, int code, const std::string& message) {
+    replied_ = true;
     send({{"jsonrpc", "2.0"}, {"id", id}, {"error", {{"code", code}, {"message", message}}}});
   }
 
@@ -257,7 +261,7 @@ class Server {
   struct Document {
     fs::path path;
     std::string text;
-    std::vector<size_t> lines;  // where each line of `text` starts
+    std::vector<size_t> lines = {0};  // where each line of `text` starts
     int version = 0;
     std::optional<Lang> lang;
     bool analysed = false;          // the findings are of `text`
@@ -324,24 +328,25 @@ class Server {
   }
 
   // A reply to one of our requests: a failed edit is worth a line in the log.
-  void answered(const json& message) {
+  void response_received(const json& message) {
     if (message.contains("error")) log("the client refused a request: " + message["error"].dump());
     if (value_at(message, {"result", "applied"}) == false) log_message(2, "the editor did not apply lwcport's fixes: " + message["result"].value("failureReason", std::string("no reason given")));
   }
 
   void open(const json& item) {
     std::string uri = item.at("uri");
-    Document& d = documents_[uri];
+    // Read in full before it replaces anything: a malformed open leaves no half-made document.
+    Document d;
     d.path = path_of(uri);
     d.text = item.at("text");
     d.lines = line_starts(d.text);
     d.version = item.value("version", 0);
-    d.analysed = false;
     std::string language = item.value("languageId", "");
     if (language == "hlsl") d.lang = Lang::hlsl;
     if (language == "glsl") d.lang = Lang::glsl;
-    analyse_and_publish(uri, d);
-    text_changed(uri, d, d.text);
+    Document& opened = documents_[uri] = std::move(d);
+    analyse_and_publish(uri, opened);
+    text_changed(uri, opened, opened.text);
   }
 
   void change(const json& item, const json& changes) {
@@ -351,17 +356,23 @@ class Server {
     Document& d = it->second;
     int version = item.value("version", d.version + 1);
     if (version <= d.version) return;  // stale: an edit the document already has
+    // Applied to a copy: a malformed change leaves the document as it was.
+    Document edited;
+    edited.text = d.text;
+    edited.lines = d.lines;
     for (const json& c : changes) {
       if (!c.contains("range")) {
-        d.text = c.at("text");
-        d.lines = line_starts(d.text);
+        edited.text = c.at("text");
+        edited.lines = line_starts(edited.text);
         continue;
       }
-      size_t begin = offset(d, c["range"].at("start")), end = offset(d, c["range"].at("end"));
+      size_t begin = offset(edited, c["range"].at("start")), end = offset(edited, c["range"].at("end"));
       if (end < begin) std::swap(begin, end);
-      d.text.replace(begin, end - begin, c.at("text").get<std::string>());
-      d.lines = line_starts(d.text);
+      edited.text.replace(begin, end - begin, c.at("text").get<std::string>());
+      edited.lines = line_starts(edited.text);
     }
+    d.text = std::move(edited.text);
+    d.lines = std::move(edited.lines);
     d.version = version;
     d.analysed = false;
     // While the client is still typing (a later change already waits), the analysis waits too.
@@ -786,7 +797,10 @@ class Server {
     send({{"jsonrpc", "2.0"}, {"method", "window/logMessage"}, {"params", {{"type", type}, {"message", text}}}});
   }
 
-  void reply(const json& id, const json& result) { send({{"jsonrpc", "2.0"}, {"id", id}, {"result", result}}); }
+  void reply(const json& id, const json& result) {
+    replied_ = true;
+    send({{"jsonrpc", "2.0"}, {"id", id}, {"result", result}});
+  }
 
   void send(const json& message) {
     // Text from the user's files may not be UTF-8: replaced, never a thrown dump.
@@ -803,6 +817,7 @@ class Server {
   // What the client can do (from initialize) and wants (settings).
   bool utf8_ = false, pull_ = false, refresh_ = false, lazy_edits_ = false, watch_ = false, unsafe_fixes_ = false, create_files_ = false;
   long analyses_ = 0, requests_ = 0;
+  bool replied_ = false;  // the message being handled has had its answer
   std::map<std::string, Document> documents_;
   std::unique_ptr<ConfigFinder> configs_ = std::make_unique<ConfigFinder>();
   std::unique_ptr<IncludeSummaries> includes_ = std::make_unique<IncludeSummaries>();
