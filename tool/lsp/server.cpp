@@ -270,6 +270,10 @@ class Server {
     std::string failure;            // the analysis could not run: why
     std::vector<fs::path> includes;  // the files its includes reach, as of the last analysis
     std::shared_ptr<ParseReuse> parses = std::make_shared<ParseReuse>();  // its last parse, which the next one edits
+    // What its includes declare (options_for), for these include lines and include generation.
+    std::shared_ptr<const FileSummary> summary;
+    std::vector<std::string> summary_includes;
+    long summary_generation = -1;
   };
 
   static double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
@@ -388,6 +392,7 @@ class Server {
   void close(const std::string& uri) {
     auto it = documents_.find(uri);
     if (it == documents_.end()) return;
+    std::erase(summarised_, &it->second);
     Document closed = std::move(it->second);
     documents_.erase(it);
     if (!pull_) send({{"jsonrpc", "2.0"}, {"method", "textDocument/publishDiagnostics"}, {"params", {{"uri", uri}, {"diagnostics", json::array()}}}});
@@ -399,12 +404,8 @@ class Server {
   void text_changed(const std::string& uri, const Document& d, std::optional<std::string> text) {
     if (!d.path.is_absolute()) return;
     fs::path file = includes_->canonical(d.path);
-    bool included = false;
-    for (auto& [other_uri, other] : documents_)
-      included |= other_uri != uri && std::find(other.includes.begin(), other.includes.end(), file) != other.includes.end();
-    if (!included) return;
     try {
-      includes_->set_text(d.path, std::move(text), *configs_->for_dir(folder_of(d)));
+      if (includes_->set_text(d.path, std::move(text), *configs_->for_dir(folder_of(d)))) ++include_generation_;
     } catch (const std::exception& e) {
       log(std::string("include not re-read: ") + e.what());
       return;
@@ -474,17 +475,33 @@ class Server {
     return out;
   }
 
-  // The options a document is analysed with (its project's, with what its includes declare).
-  AnalyzeOptions options_for(const Document& d, std::optional<FileSummary>& summary, std::vector<fs::path>* reached = nullptr) {
+  // The options a document is analysed with (its project's, with what its includes declare). What
+  // its includes declare is kept for the last few documents analysed (typing re-analyses one
+  // document many times; a summary of Unreal's includes is large), until its include lines or an
+  // include change.
+  AnalyzeOptions options_for(Document& d) {
     std::shared_ptr<const ProjectConfig> config = configs_->for_dir(folder_of(d));
     AnalyzeOptions options = analysis_options(*config);
     if (d.lang) options.lang = d.lang;
     options.reuse = d.parses.get();
-    if (d.text.find("include") != std::string::npos) {
-      summary = includes_->for_file(d.path, d.text, *config);
-      options.includes = &*summary;
-      if (reached && d.path.is_absolute()) *reached = includes_->included_files(d.path, d.text, *config);
+    if (d.text.find("include") == std::string::npos) {
+      d.includes.clear();
+      return options;
     }
+    std::vector<std::string> wanted = include_paths(d.text);
+    if (!d.summary || d.summary_includes != wanted || d.summary_generation != include_generation_) {
+      d.summary = std::make_shared<FileSummary>(includes_->for_file(d.path, d.text, *config));
+      d.summary_includes = std::move(wanted);
+      d.summary_generation = include_generation_;
+      d.includes = d.path.is_absolute() ? includes_->included_files(d.path, d.text, *config) : std::vector<fs::path>{};
+      std::erase(summarised_, &d);
+      summarised_.push_back(&d);
+      if (summarised_.size() > 4) {
+        summarised_.front()->summary.reset();
+        summarised_.pop_front();
+      }
+    }
+    options.includes = d.summary.get();
     return options;
   }
 
@@ -494,10 +511,8 @@ class Server {
     double cpu = cpu_ms();
     d.findings.clear();
     d.failure.clear();
-    d.includes.clear();
     try {
-      std::optional<FileSummary> summary;
-      AnalyzeOptions options = options_for(d, summary, &d.includes);
+      AnalyzeOptions options = options_for(d);
       d.findings = analyze(Source(d.path.string(), d.text), options);
     } catch (const std::exception& e) {
       // One document's failure is that document's diagnostic, not a dead server.
@@ -634,9 +649,8 @@ class Server {
 
   // Every fix `lwcport fix` would apply (safe ones, and unsafe ones when asked), as one edit (with
   // lwcport's library file beside the document when a rewrite calls it); none when nothing applies.
-  std::optional<json> fix_all_edit(const std::string& uri, const Document& d, bool unsafe) {
-    std::optional<FileSummary> summary;
-    AnalyzeOptions options = options_for(d, summary);
+  std::optional<json> fix_all_edit(const std::string& uri, Document& d, bool unsafe) {
+    AnalyzeOptions options = options_for(d);
     Source source(d.path.string(), d.text);
     FixOutcome fixed = fix_source(source, options, unsafe);
     if (fixed.applied == 0) return std::nullopt;
@@ -741,6 +755,7 @@ class Server {
   void reload() {
     configs_ = std::make_unique<ConfigFinder>();
     includes_ = std::make_unique<IncludeSummaries>();
+    ++include_generation_;
     for (auto& [uri, d] : documents_)
       if (d.path.is_absolute()) try {
           includes_->set_text(d.path, d.text, *configs_->for_dir(folder_of(d)));
@@ -773,8 +788,7 @@ class Server {
       break;
     }
     try {
-      std::optional<FileSummary> summary;
-      AnalyzeOptions options = options_for(d, summary);
+      AnalyzeOptions options = options_for(d);
       Source source(d.path.string(), d.text);
       if (std::optional<ValueDescription> value = describe_value(source, options, static_cast<uint32_t>(at))) {
         text = value->markdown + (text.empty() ? "" : "\n\n---\n\n" + text);
@@ -817,6 +831,8 @@ class Server {
   // What the client can do (from initialize) and wants (settings).
   bool utf8_ = false, pull_ = false, refresh_ = false, lazy_edits_ = false, watch_ = false, unsafe_fixes_ = false, create_files_ = false;
   long analyses_ = 0, requests_ = 0;
+  long include_generation_ = 0;  // raised whenever what includes declare may have changed
+  std::deque<Document*> summarised_;  // the documents that keep their includes' summary, oldest first
   bool replied_ = false;  // the message being handled has had its answer
   std::map<std::string, Document> documents_;
   std::unique_ptr<ConfigFinder> configs_ = std::make_unique<ConfigFinder>();

@@ -192,7 +192,7 @@ std::vector<fs::path> IncludeSummaries::included_files(const fs::path& path, std
   return out;
 }
 
-void IncludeSummaries::set_text(const fs::path& path, std::optional<std::string> text, const ProjectConfig& config) {
+bool IncludeSummaries::set_text(const fs::path& path, std::optional<std::string> text, const ProjectConfig& config) {
   fs::path file = canonical(path);
   Entry* changed = nullptr;
   {
@@ -201,7 +201,7 @@ void IncludeSummaries::set_text(const fs::path& path, std::optional<std::string>
     else overlays_.erase(file);
     if (auto it = entries_.find(file); it != entries_.end()) changed = it->second.get();
   }
-  if (!changed) return;  // nothing read it yet
+  if (!changed) return false;  // nothing read it yet
   // Scanned again in place, so every includer's pointer to it stays valid; what depends on its
   // text (its own summary, and the summary of each file whose includes reach it, read with its
   // macros) is summarised again on demand.
@@ -223,6 +223,7 @@ void IncludeSummaries::set_text(const fs::path& path, std::optional<std::string>
     std::lock_guard lock(mutex_);
     e->own.reset();
   }
+  return true;
 }
 
 }  // namespace lwc

@@ -38,8 +38,9 @@ class IncludeSummaries {
   std::vector<std::filesystem::path> included_files(const std::filesystem::path& path, std::string_view text,
                                                     const ProjectConfig& config);
   // The text an editor holds for a file (none: the file on disk again). Whatever was learnt
-  // from the file, and from every file whose includes reach it, is learnt again on demand.
-  void set_text(const std::filesystem::path& path, std::optional<std::string> text, const ProjectConfig& config);
+  // from the file, and from every file whose includes reach it, is learnt again on demand; true
+  // when something had been learnt from it.
+  bool set_text(const std::filesystem::path& path, std::optional<std::string> text, const ProjectConfig& config);
   // The path with links and dots resolved (cached: lint asks for each file many times).
   std::filesystem::path canonical(const std::filesystem::path& p);
 

@@ -785,13 +785,29 @@ class Analyzer {
       if (const auto* e = d_.engine_member(owner, name)) return e->types[era_column()];
     if (!inc_) return {};
     if (!owner.empty()) return {};
-    std::string found;
-    for (auto it = inc_->field_types.lower_bound(""); it != inc_->field_types.end(); ++it) {
-      if (!it->first.ends_with("." + name)) continue;
-      if (!found.empty() && found != it->second) return {};
-      found = it->second;
+    // A field name only one type of field in the includes has: indexed on first use (a UE file's
+    // includes declare thousands of fields, and this is asked for every unknown owner). Read in
+    // key order, a type that differs from the one found so far makes the name ambiguous.
+    if (!include_field_by_name_) {
+      include_field_by_name_.emplace();
+      std::set<std::string> ambiguous;
+      for (const auto& [key, type] : inc_->field_types) {
+        size_t dot = key.rfind('.');
+        if (dot == std::string::npos) continue;
+        std::string field = key.substr(dot + 1);
+        if (ambiguous.count(field)) continue;
+        auto [it, added] = include_field_by_name_->emplace(field, type);
+        if (added) continue;
+        if (!it->second.empty() && it->second != type) {
+          ambiguous.insert(field);
+          it->second.clear();
+        } else {
+          it->second = type;
+        }
+      }
     }
-    return found;
+    auto it = include_field_by_name_->find(name);
+    return it != include_field_by_name_->end() ? it->second : std::string();
   }
 
   Kind eval_subscript(int id, int depth) {
@@ -1109,6 +1125,8 @@ class Analyzer {
   std::set<int> active_;
   std::set<int> reported_;
   std::unordered_map<std::string, std::optional<Kind>> source_cache_;
+  // Included fields by name -> their one type ("" when types differ), built on first use.
+  mutable std::optional<std::unordered_map<std::string, std::string>> include_field_by_name_;
 };
 
 WorldModel::WorldModel(const SyntaxTree& tree, const WorldData& data, const ModelContext& context)
