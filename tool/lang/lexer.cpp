@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <string>
 
 namespace lwc {
 
@@ -93,8 +94,15 @@ struct Lexer {
 }  // namespace
 
 LexResult lex(std::string_view text) {
+  // A file is lexed by the masker and twice by era inference: the last text's tokens are kept
+  // (per thread) and given again for the same text.
+  thread_local std::string last_text;
+  thread_local LexResult last;
+  if (text.size() == last_text.size() && text == last_text) return last;
   Lexer lexer{text, {}};
   lexer.run();
+  last_text.assign(text);
+  last = lexer.out;
   return std::move(lexer.out);
 }
 
