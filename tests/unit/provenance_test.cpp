@@ -53,5 +53,37 @@ TEST(Provenance, AValueAtAnOffsetIsDescribed) {
   EXPECT_FALSE(describe_value(source, options, static_cast<uint32_t>(text.find("position;"))));
 }
 
+// A parameter is traced to the argument a call gives it (a store that the use is part of does not
+// count as before it), and a function's return value to what it returns.
+TEST(Provenance, ParametersAndReturnValuesAreTracedThroughTheirCalls) {
+  const std::string code =
+      "float4x4 World;\n"
+      "float SampleHeight(float2 WorldXZ) { return WorldXZ.x * 0.5; }\n"
+      "float4 VS(float3 P : POSITION) : SV_Position {\n"
+      "  float4 worldPos = mul(float4(P, 1), World);\n"
+      "  worldPos.y += SampleHeight(worldPos.xz);\n"
+      "  return worldPos;\n"
+      "}\n";
+  std::vector<Finding> found = test::lint_text(code, Lang::hlsl, "lwc-float-world-position");
+  const Finding *parameter = nullptr, *returned = nullptr;
+  for (const Finding& f : found) {
+    std::string_view at = std::string_view(code).substr(f.span.begin, f.span.end - f.span.begin);
+    if (at == "WorldXZ") parameter = &f;
+    if (at == "SampleHeight") returned = &f;
+  }
+  ASSERT_NE(parameter, nullptr);
+  ASSERT_NE(returned, nullptr);
+  std::vector<std::string> steps;
+  for (const auto& [span, text] : parameter->related) steps.push_back(text);
+  ASSERT_EQ(steps.size(), 4u);
+  EXPECT_EQ(steps[0], "parameter `WorldXZ` (line 2), given `worldPos.xz` at line 5");
+  EXPECT_EQ(steps[1], "`worldPos` = `mul(float4(P, 1), World)` (line 4)");
+  EXPECT_EQ(steps[2], "through `mul` (line 4)");
+  EXPECT_NE(steps[3].find("`float4x4 World`, a global (line 1)"), std::string::npos);
+  ASSERT_FALSE(returned->related.empty());
+  EXPECT_EQ(returned->related[0].second, "returns `WorldXZ.x * 0.5` (line 2)");
+  EXPECT_EQ(returned->related[1].second, steps[0]);
+}
+
 }  // namespace
 }  // namespace lwc

@@ -58,6 +58,13 @@ bool ends_a_value(const SyntaxTree& t, int node) {
 }
 
 // Why lwcport reads a name or path as world-space data.
+// The function definition whose name `node` is, or -1.
+int function_named_by(const SyntaxTree& t, int node) {
+  if (node < 0 || !t.is(node, "identifier")) return -1;
+  int function = t.ancestor(node, "function_definition");
+  return function >= 0 && t.declarator_name(t.child_by_field(function, "declarator")) == node ? function : -1;
+}
+
 std::string data_words(const WorldData::Source& s) {
   if (s.by_name) return fmt::format("read as {} by its name (a naming convention in lwcport's world-space data)", kind_words(s.kind));
   if (s.pattern.text().size() > 48) return fmt::format("{} in lwcport's world-space data", kind_words(s.kind));
@@ -85,6 +92,11 @@ ProvenanceTracer::ProvenanceTracer(const WorldModel& model) : m_(model), t_(mode
 std::vector<ProvenanceStep> ProvenanceTracer::trace(int node) {
   steps_.clear();
   seen_.clear();
+  // A function's name (a finding on what it returns): from what it returns.
+  if (int function = function_named_by(t_, node); function >= 0) {
+    node = returned_value(function);
+    if (node >= 0) add(node, fmt::format("returns {} (line {})", code(node), line(node)));
+  }
   if (node < 0 || !worth_tracing(value_kind(m_, node))) return {};
   for (int hops = 0; node >= 0 && steps_.size() < 8 && hops < 64 && seen_.insert(node).second; ++hops) node = step(node);
   return std::move(steps_);
@@ -147,7 +159,7 @@ int ProvenanceTracer::defining(int var, int use) const {
   // tracing; else (a declaration, or a loop) the first store anywhere that gave this kind.
   int same_before = -1, traced_before = -1, same_anywhere = -1;
   for (const Candidate& c : candidates) {
-    bool before = t_.at(c.node).begin < t_.at(use).begin;
+    bool before = t_.at(c.node).end <= t_.at(use).begin;  // the store is complete before the use
     if (c.kind == wanted && before) same_before = c.node;
     if (worth_tracing(c.kind) && before) traced_before = c.node;
     if (c.kind == wanted && same_anywhere < 0) same_anywhere = c.node;
@@ -155,6 +167,33 @@ int ProvenanceTracer::defining(int var, int use) const {
   if (same_before >= 0) return same_before;
   if (m_.variable_declared_at(use) != var && traced_before >= 0) return traced_before;
   return same_anywhere;
+}
+
+int ProvenanceTracer::argument_for(int var) {
+  const Variable& v = m_.variables()[var];
+  if (v.function < 0) return -1;
+  int name_node = t_.declarator_name(t_.child_by_field(v.function, "declarator"));
+  if (name_node < 0) return -1;
+  size_t index = 0;
+  for (int other = 0; other < var; ++other) {
+    const Variable& o = m_.variables()[other];
+    index += o.role == Variable::Role::parameter && o.function == v.function;
+  }
+  if (!calls_) {  // every call of a function by name, built on first use
+    calls_.emplace();
+    for (int id = 0; id < static_cast<int>(t_.nodes.size()); ++id) {
+      int fn = t_.is(id, "call_expression") ? t_.child_by_field(id, "function") : -1;
+      if (fn >= 0 && t_.is(fn, "identifier")) (*calls_)[std::string(t_.text(fn))].push_back(id);
+    }
+  }
+  auto calls = calls_->find(t_.text(name_node));
+  if (calls == calls_->end()) return -1;
+  for (int call : calls->second) {
+    int list = t_.child_by_field(call, "arguments");
+    std::vector<int> arguments = list >= 0 ? t_.named_children(list) : std::vector<int>{};
+    if (index < arguments.size() && value_kind(m_, arguments[index]) == v.kind) return arguments[index];
+  }
+  return -1;
 }
 
 int ProvenanceTracer::returned_value(int function) const {
@@ -232,9 +271,15 @@ int ProvenanceTracer::step_identifier(int node) {
                    : fmt::format("`{} {}`, a global (line {}): {}", v.type, name, line(where), kind_words(v.kind)));
       return -1;
     }
-    case Variable::Role::parameter:
-      add(where, fmt::format("parameter `{}` (line {}): {} where the file calls its function", name, line(where), kind_words(v.kind)));
-      return -1;
+    case Variable::Role::parameter: {
+      int argument = argument_for(var);
+      if (argument < 0) {
+        add(where, fmt::format("parameter `{}` (line {}): {} where the file calls its function", name, line(where), kind_words(v.kind)));
+        return -1;
+      }
+      add(where, fmt::format("parameter `{}` (line {}), given {} at line {}", name, line(where), code(argument), line(argument)));
+      return argument;
+    }
     case Variable::Role::field:
       add(where, fmt::format("field `{}.{}` (line {}): {} by what the file assigns to it", v.owner, name, line(where), kind_words(v.kind)));
       return -1;
@@ -261,7 +306,7 @@ int value_node_at(const WorldModel& model, uint32_t offset) {
 int value_node_for(const WorldModel& model, Span span) {
   const SyntaxTree& t = model.tree();
   for (int node = deepest_covering(t, span.begin, span.end); node >= 0 && t.span(node) == span; node = t.at(node).parent)
-    if (worth_tracing(value_kind(model, node))) return node;
+    if (worth_tracing(value_kind(model, node)) || function_named_by(t, node) >= 0) return node;
   return -1;
 }
 

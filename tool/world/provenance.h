@@ -4,6 +4,7 @@
 // named as a world matrix, a call of `mul`, an assignment). For the editor's hover and a
 // finding's related locations.
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -34,6 +35,8 @@ class ProvenanceTracer {
   int step_identifier(int node);
   int defining(int var, int use) const;
   int returned_value(int function) const;
+  // An argument a call in the file gives this parameter, of the kind the parameter holds, or -1.
+  int argument_for(int var);
   int strongest_child(int node) const;
   const WorldData::Source* source_for(const Path& path) const;
   std::string code(int node) const;
@@ -43,6 +46,7 @@ class ProvenanceTracer {
   const WorldModel& m_;
   const SyntaxTree& t_;
   std::map<std::string, int, std::less<>> functions_;  // name -> its first definition
+  std::optional<std::map<std::string, std::vector<int>, std::less<>>> calls_;  // name -> its calls, built on first use
   std::vector<ProvenanceStep> steps_;
   std::set<int> seen_;
 };
@@ -51,8 +55,8 @@ class ProvenanceTracer {
 // name), or -1.
 int value_node_at(const WorldModel& model, uint32_t offset);
 
-// The node a finding at `span` is about: the classified expression or declared name with exactly
-// that span, else the innermost classified value inside it; -1 when none.
+// The node a finding at `span` is about: the classified expression, declared name or function name
+// (what it returns) with exactly that span; -1 when none.
 int value_node_for(const WorldModel& model, Span span);
 
 // The kind of a value node from value_node_at: its recorded kind, or a declared variable's.
