@@ -196,6 +196,10 @@ class WorldModel {
   // The declared return type of a function of this file, or "".
   std::string function_return_type(const std::string& name) const;
   const SyntaxTree& tree() const { return tree_; }
+  const FileSummary* includes() const { return includes_; }
+  // How the model read naming conventions in this file (ModelContext).
+  bool names_as_evidence() const { return names_as_evidence_; }
+  bool plain_names() const { return plain_names_; }
   const WorldData& data() const { return data_; }
 
  private:

@@ -57,7 +57,6 @@ bool ends_a_value(const SyntaxTree& t, int node) {
   return false;
 }
 
-// Why lwcport reads a name or path as world-space data.
 // The function definition whose name `node` is, or -1.
 int function_named_by(const SyntaxTree& t, int node) {
   if (node < 0 || !t.is(node, "identifier")) return -1;
@@ -65,10 +64,11 @@ int function_named_by(const SyntaxTree& t, int node) {
   return function >= 0 && t.declarator_name(t.child_by_field(function, "declarator")) == node ? function : -1;
 }
 
+// Why lwcport reads a name or path as world-space data.
 std::string data_words(const WorldData::Source& s) {
-  if (s.by_name) return fmt::format("read as {} by its name (a naming convention in lwcport's world-space data)", kind_words(s.kind));
-  if (s.pattern.text().size() > 48) return fmt::format("{} in lwcport's world-space data", kind_words(s.kind));
-  return fmt::format("{} in lwcport's world-space data (`{}`)", kind_words(s.kind), s.pattern.text());
+  if (s.by_name) return fmt::format("read as {} by its name (a naming convention lwcport knows)", kind_words(s.kind));
+  if (s.pattern.text().size() > 48) return fmt::format("{}, a value lwcport knows", kind_words(s.kind));
+  return fmt::format("{}, a value lwcport knows (`{}`)", kind_words(s.kind), s.pattern.text());
 }
 
 }  // namespace
@@ -126,9 +126,12 @@ int ProvenanceTracer::strongest_child(int node) const {
   return best;
 }
 
-const WorldData::Source* ProvenanceTracer::source_for(const Path& path) const {
+const WorldData::Source* ProvenanceTracer::source_for(const Path& path, bool declared_global) const {
+  // As the model reads sources: a naming convention counts for a global the file declares, and
+  // elsewhere only where names are evidence (plain and UE4-era code).
+  bool names = declared_global || m_.names_as_evidence();
   for (const WorldData::Source& s : m_.data().sources)
-    if (s.pattern.matches(path)) return &s;
+    if ((!s.by_name || (names && (!s.plain_only || m_.plain_names()))) && s.pattern.matches(path)) return &s;
   return nullptr;
 }
 
@@ -167,6 +170,22 @@ int ProvenanceTracer::defining(int var, int use) const {
   if (same_before >= 0) return same_before;
   if (m_.variable_declared_at(use) != var && traced_before >= 0) return traced_before;
   return same_anywhere;
+}
+
+int ProvenanceTracer::strongest_inside(int node) const {
+  int best = -1;
+  for (int id = node + 1; id < static_cast<int>(t_.nodes.size()) && t_.at(id).begin < t_.at(node).end; ++id) {
+    Kind k = value_kind(m_, id);
+    if (worth_tracing(k) && (best < 0 || concern(k) > concern(value_kind(m_, best)))) best = id;
+  }
+  return best;
+}
+
+std::string ProvenanceTracer::return_basis(const std::string& name) const {
+  const FileSummary* included = m_.includes();
+  if (included && included->function_returns.count(name)) return " (as its definition in an included file does)";
+  if (m_.data().engine_functions.count(name)) return " (as Unreal's function of that name does, in lwcport's engine tables)";
+  return "";
 }
 
 int ProvenanceTracer::argument_for(int var) {
@@ -217,8 +236,21 @@ int ProvenanceTracer::step(int node) {
       if (const WorldData::Source* s = source_for(*path)) return add(node, fmt::format("{}: {}", code(node), data_words(*s))), -1;
     int base = t_.child_by_field(node, "argument");
     if (base >= 0 && worth_tracing(value_kind(m_, base))) return base;
-    add(node, fmt::format("{} (line {}): {} by lwcport's engine data or what the file assigns to the field", code(node), line(node),
-                          kind_words(value_kind(m_, node))));
+    int field = t_.child_by_field(node, "field");
+    std::string name = field >= 0 ? std::string(t_.text(field)) : "";
+    if (const WorldData::Source* s = source_for(Path{{name, false}})) return add(node, fmt::format("{}: {}", code(node), data_words(*s))), -1;
+    // A field of a struct the file declares: what the file stores in it (the model joins every
+    // store into a field of that name).
+    for (int var = 0; var < static_cast<int>(m_.variables().size()); ++var) {
+      const Variable& v = m_.variables()[var];
+      if (v.role != Variable::Role::field || v.name != name) continue;
+      add(v.declaration >= 0 ? v.declaration : node,
+          fmt::format("field `{}.{}` (line {}): {} where the file stores into it", v.owner, name, line(v.declaration >= 0 ? v.declaration : node),
+                      kind_words(v.kind)));
+      return -1;
+    }
+    add(node, fmt::format("{} (line {}): {} in Unreal's struct tables or by what the file stores into `{}`", code(node), line(node),
+                          kind_words(value_kind(m_, node)), name));
     return -1;
   }
   if (type == "call_expression") {
@@ -234,9 +266,15 @@ int ProvenanceTracer::step(int node) {
     }
     int from = t_.child_by_field(node, "arguments");
     int arg = from >= 0 ? strongest_child(from) : -1;
-    add(node, arg >= 0 ? fmt::format("through `{}` (line {})", name, line(node))
-                       : fmt::format("`{}` (line {}) returns {}", name, line(node), kind_words(value_kind(m_, node))));
-    return arg;
+    // A helper that converts or wraps (`DFHackToFloat`, `MakeLWCVector3`) whose direct argument the
+    // model left unclassified: the value inside it that is.
+    if (arg < 0 && from >= 0) arg = strongest_inside(from);
+    if (arg >= 0) {
+      add(node, fmt::format("through `{}` (line {})", name, line(node)));
+      return arg;
+    }
+    add(node, fmt::format("`{}` (line {}) returns {}{}", name, line(node), kind_words(value_kind(m_, node)), return_basis(name)));
+    return -1;
   }
   if (type == "assignment_expression") return t_.child_by_field(node, "right");
   return strongest_child(node);
@@ -266,7 +304,7 @@ int ProvenanceTracer::step_identifier(int node) {
           return v.init;
         }
       }
-      const WorldData::Source* s = source_for(Path{{name, false}});
+      const WorldData::Source* s = source_for(Path{{name, false}}, true);
       add(where, s ? fmt::format("`{} {}`, a global (line {}): {}", v.type, name, line(where), data_words(*s))
                    : fmt::format("`{} {}`, a global (line {}): {}", v.type, name, line(where), kind_words(v.kind)));
       return -1;

@@ -38,7 +38,11 @@ class ProvenanceTracer {
   // An argument a call in the file gives this parameter, of the kind the parameter holds, or -1.
   int argument_for(int var);
   int strongest_child(int node) const;
-  const WorldData::Source* source_for(const Path& path) const;
+  // The classified value of most concern anywhere inside `node`, or -1.
+  int strongest_inside(int node) const;
+  // Why an unknown function returns what it does, in words ("" when the model does not say).
+  std::string return_basis(const std::string& name) const;
+  const WorldData::Source* source_for(const Path& path, bool declared_global = false) const;
   std::string code(int node) const;
   int line(int node) const;
   void add(int node, std::string text);
