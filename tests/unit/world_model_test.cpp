@@ -137,3 +137,28 @@ TEST(WorldModel, EveryPreprocessorBranchIsAnalysed) {
 
 }  // namespace
 }  // namespace lwc
+
+namespace lwc {
+namespace {
+
+// A GLSL stage output named as a world position is one, unless everything the shader stores into
+// it is classified as something else: a constant says the name is wrong. A store the model cannot
+// classify (a high/low sum it does not know) leaves the name as the evidence.
+TEST(WorldModel, AStageOutputsStoresCanOverruleItsName) {
+  auto flagged = [](const std::string& code) {
+    for (const Finding& f : test::lint_text(code, Lang::glsl, "lwc-float-world-position"))
+      if (f.message.find("`cameraPosition`") != std::string::npos) return true;
+    return false;
+  };
+  EXPECT_FALSE(flagged("#version 300 es\nout vec3 cameraPosition;\nvoid main() { cameraPosition = vec3(1.0); gl_Position = vec4(0.0); }\n"));
+  EXPECT_TRUE(flagged("#version 300 es\nuniform vec3 eyeHigh;\nuniform vec3 eyeLow;\nout vec3 cameraPosition;\n"
+                      "void main() { cameraPosition = eyeHigh + eyeLow; gl_Position = vec4(0.0); }\n"));
+  EXPECT_TRUE(flagged("#version 300 es\nuniform mat4 modelMatrix;\nin vec3 position;\nout vec3 cameraPosition;\n"
+                      "void main() { cameraPosition = (modelMatrix * vec4(position, 1.0)).xyz; gl_Position = vec4(0.0); }\n"));
+  // An input has no store in this shader: its name is the evidence.
+  EXPECT_TRUE(flagged("#version 300 es\nprecision highp float;\nin vec3 cameraPosition;\nout vec4 color;\n"
+                      "void main() { color = vec4(cameraPosition, 1.0); }\n"));
+}
+
+}  // namespace
+}  // namespace lwc

@@ -339,6 +339,15 @@ class Analyzer {
   void run() {
     collect();
     for (int fn : function_order_) analyze_function(fn, {});
+    // A stage output named as world-space data holds what the file stores into it when every
+    // store is classified and none is absolute (`cameraPosition = vec3(1.0)`): the name was wrong.
+    for (const auto& [var, output] : named_outputs_) {
+      if (!output.stored || output.unclassified || holds_absolute(output.stored_kind)) continue;
+      Variable& v = m_.variables_[var];
+      v.kind = output.stored_kind;
+      std::erase_if(m_.holders_, [&](const AbsoluteHolder& h) { return h.site == v.decl; });
+      reported_.erase(v.decl);
+    }
     // A holder whose every use keeps only what float32 holds well is no hazard.
     std::erase_if(m_.holders_, [&](const AbsoluteHolder& h) {
       auto it = decl_var_.find(h.site);
@@ -453,7 +462,9 @@ class Analyzer {
       if (!t_.at(c).field || std::string_view(t_.at(c).field) != "declarator") continue;
       int n = declarator_name(c);
       if (n < 0 || t_.is(c, "function_declarator")) continue;
-      int var = add_global(id, n, type, block, uniform, has_word(words, "precise"));
+      // A GLSL stage output: what this shader stores into it can overrule its name.
+      bool output = t_.lang == Lang::glsl && has_word(words, "out") && !has_word(words, "in");
+      int var = add_global(id, n, type, block, uniform, has_word(words, "precise"), output);
       if (t_.is(c, "init_declarator")) m_.variables_[var].init = t_.child_by_field(c, "value");
       m_.variables_[var].private_global = !uniform && block < 0 && private_storage(words);
       // A GLSL stage input that another shader of the program writes (a sibling literal of a
@@ -470,7 +481,7 @@ class Analyzer {
     return true;
   }
 
-  int add_global(int declaration, int name, std::string type, int block, bool uniform, bool precise) {
+  int add_global(int declaration, int name, std::string type, int block, bool uniform, bool precise, bool output = false) {
     Variable v = make_variable(std::string(t_.text(name)), std::move(type), Variable::Role::global, name, declaration);
     v.block = block;
     v.uniform = uniform;
@@ -480,6 +491,7 @@ class Analyzer {
     globals_[m_.variables_[var].name] = var;
     // A GLSL varying named as a world position (`in vec3 vWorldPosition`) holds one.
     if (!uniform) hold(var, m_.variables_[var].kind, -1);
+    if (output && m_.variables_[var].kind != Kind::unknown) named_outputs_[var] = {};
     return var;
   }
 
@@ -603,6 +615,11 @@ class Analyzer {
 
   // `var` now holds `k`: remember it, and report a float-typed holder of absolute data.
   void hold(int var, Kind k, int site) {
+    if (auto it = named_outputs_.find(var); it != named_outputs_.end()) {
+      it->second.stored = true;
+      it->second.unclassified |= k == Kind::unknown;
+      it->second.stored_kind = join(it->second.stored_kind, k);
+    }
     Variable& v = m_.variables_[var];
     k = v.clip ? Kind::local : d_.named_kind(v.name, k);
     if (frame_ && v.role != Variable::Role::global && v.role != Variable::Role::field) frame_->current[var] = k;
@@ -1125,6 +1142,12 @@ class Analyzer {
   std::set<int> active_;
   std::set<int> reported_;
   std::unordered_map<std::string, std::optional<Kind>> source_cache_;
+  // GLSL stage outputs named as world-space data, and what the file stores into them.
+  struct NamedOutput {
+    bool stored = false, unclassified = false;
+    Kind stored_kind = Kind::unknown;  // joined over the stores
+  };
+  std::map<int, NamedOutput> named_outputs_;
   // Included fields by name -> their one type ("" when types differ), built on first use.
   mutable std::optional<std::unordered_map<std::string, std::string>> include_field_by_name_;
 };
