@@ -91,12 +91,12 @@ inline size_t utf16_units(size_t bytes) { return bytes == 4 ? 2 : 1; }
 
 // The byte offset of a (line, UTF-16 character) position.
 inline size_t byte_offset(const std::string& text, size_t line, size_t character) {
+  // Lines end at "\n", "\r\n" or a lone "\r"; a position never falls inside a line's end.
+  auto ends_line = [&](size_t i) { return text[i] == '\n' || text[i] == '\r'; };
   size_t at = 0;
   for (size_t l = 0; l < line && at < text.size(); ++at)
-    if (text[at] == '\n') ++l;
-  // A position never falls inside a line ending: "\r\n" ends a line as "\n" does.
-  auto line_end = [&](size_t i) { return text[i] == '\n' || (text[i] == '\r' && i + 1 < text.size() && text[i + 1] == '\n'); };
-  for (size_t units = 0; at < text.size() && !line_end(at) && units < character;) {
+    if (ends_line(at) && !(text[at] == '\r' && at + 1 < text.size() && text[at + 1] == '\n')) ++l;
+  for (size_t units = 0; at < text.size() && !ends_line(at) && units < character;) {
     size_t n = bytes_at(text, at);
     units += utf16_units(n);
     at += n;
@@ -118,15 +118,16 @@ inline std::string apply(std::string text, const json& edits) {
 
 // The LSP position (UTF-16 units) of a byte offset, as a client computes it.
 inline json position_of(const std::string& text, size_t at) {
-  size_t line_start = at == 0 ? std::string::npos : text.rfind('\n', at - 1);
-  line_start = line_start == std::string::npos ? 0 : line_start + 1;
+  size_t line = 0, line_start = 0;
+  for (size_t i = 0; i < at; ++i)
+    if (text[i] == '\n' || (text[i] == '\r' && (i + 1 == text.size() || text[i + 1] != '\n'))) ++line, line_start = i + 1;
   size_t units = 0;
   for (size_t i = line_start; i < at;) {
     size_t n = bytes_at(text, i);
     units += utf16_units(n);
     i += n;
   }
-  return {{"line", std::count(text.begin(), text.begin() + static_cast<long>(at), '\n')}, {"character", units}};
+  return {{"line", line}, {"character", units}};
 }
 
 }  // namespace lwc::lsp_client

@@ -378,6 +378,30 @@ TEST(LanguageServer, ARewriteThatNeedsTheLibraryCreatesIt) {
   EXPECT_EQ(all.at(library_uri), library);
 }
 
+// A lone "\r" ends a line as LSP counts lines (as "\n" and "\r\n" do): positions after it, and edits
+// given in them, land where the client means.
+TEST(LanguageServer, ALoneCarriageReturnEndsALine) {
+  std::string text = "/* old Mac line end */\runiform mat4 modelMatrix;\nin vec3 position;\n"
+                     "void main() { gl_Position = modelMatrix * vec4(position, 1.0); }\n";
+  std::string uri = "file://" + test::scratch("lsp-cr") + "/a.vert";
+  json indent = {{"range", {{"start", {{"line", 1}, {"character", 0}}}, {"end", {{"line", 1}, {"character", 0}}}}}, {"text", "  "}};
+  json at_end = {{"range", {{"start", {{"line", 0}, {"character", 22}}}, {"end", {{"line", 0}, {"character", 99}}}}}, {"text", " /**/"}};
+  Session s = serve(frame(initialize()) + frame(open_document(uri, "glsl", text)) +
+                    frame(notification("textDocument/didChange", {{"textDocument", {{"uri", uri}, {"version", 2}}}, {"contentChanges", {indent, at_end}}})) +
+                    end_session());
+  std::vector<json> published = diagnostics(s);
+  ASSERT_EQ(published.size(), 2u);
+  auto start_of = [](const json& p) {
+    for (const json& d : p["diagnostics"])
+      if (d["code"] == "lwc-uniform-world-float") return d["range"]["start"];
+    return json();
+  };
+  EXPECT_EQ(start_of(published[0]), json({{"line", 1}, {"character", 13}}));
+  // The indent moved it by two; the comment went before the lone "\r" (the range's end past the
+  // line is the line's end), so the line did not grow by five.
+  EXPECT_EQ(start_of(published[1]), json({{"line", 1}, {"character", 15}}));
+}
+
 // Hover on a finding: the rule, its message, summary and rationale, and its page.
 TEST(LanguageServer, HoverOnAFindingExplainsTheRule) {
   std::string path = test::source_dir() + "/corpus/glsl/forward.vert";

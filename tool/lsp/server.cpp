@@ -173,11 +173,12 @@ class Inbox {
   std::thread reader_;  // last: starts once the rest is built
 };
 
-// Where each line starts (LSP lines end at "\n"; a "\r" before it belongs to no column).
+// Where each line starts: LSP lines end at "\n", "\r\n" or a lone "\r", and a line's end
+// belongs to no column.
 std::vector<size_t> line_starts(const std::string& text) {
   std::vector<size_t> starts = {0};
   for (size_t i = 0; i < text.size(); ++i)
-    if (text[i] == '\n') starts.push_back(i + 1);
+    if (text[i] == '\n' || (text[i] == '\r' && (i + 1 == text.size() || text[i + 1] != '\n'))) starts.push_back(i + 1);
   return starts;
 }
 
@@ -424,7 +425,8 @@ class Server {
     long line = position.at("line").get<long>(), character = position.at("character").get<long>();
     if (line < 0) return 0;
     if (static_cast<size_t>(line) >= d.lines.size()) return text.size();
-    size_t at = d.lines[line], end = static_cast<size_t>(line) + 1 < d.lines.size() ? d.lines[line + 1] - 1 : text.size();
+    size_t at = d.lines[line], end = static_cast<size_t>(line) + 1 < d.lines.size() ? d.lines[line + 1] : text.size();
+    if (end > at && text[end - 1] == '\n') --end;
     if (end > at && text[end - 1] == '\r') --end;
     for (long units = 0; at < end && units < character;) {
       size_t n = std::min(sequence_length(static_cast<unsigned char>(text[at])), end - at);
