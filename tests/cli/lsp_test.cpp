@@ -402,6 +402,38 @@ TEST(LanguageServer, ALoneCarriageReturnEndsALine) {
   EXPECT_EQ(start_of(published[1]), json({{"line", 1}, {"character", 15}}));
 }
 
+// A CRLF document: the quick fixes and fix-all keep its line ends (fix-all gives exactly what
+// `lwcport fix` writes for the CRLF file), and "ignore for this line" inserts a CRLF line.
+TEST(LanguageServer, ACrlfDocumentKeepsItsLineEnds) {
+  std::string dir = test::scratch("lsp-crlf");
+  std::string lf = test::read(test::source_dir() + "/corpus/ue5.4/DoubleFloatHelpers.ush"), text;
+  for (char c : lf) text += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  test::write(dir + "/cli/Helpers.ush", text);
+  test::run(test::binary() + " fix " + dir + "/cli/Helpers.ush --fail-on none > /dev/null");
+  std::string fixed = test::read(dir + "/cli/Helpers.ush");
+  ASSERT_NE(fixed, text);
+  std::string uri = "file://" + dir + "/editor/Helpers.ush";
+  Session s = serve(frame(initialize()) + frame(open_document(uri, "hlsl", text)) +
+                    frame(request(2, "textDocument/codeAction", {{"textDocument", {{"uri", uri}}}, {"range", whole_range()}, {"context", {{"diagnostics", json::array()}}}})) +
+                    end_session());
+  const json* actions = reply_to(s, 2);
+  ASSERT_NE(actions, nullptr);
+  bool fix_all = false, ignore = false;
+  for (const json& a : (*actions)["result"]) {
+    std::string applied = lsp_client::apply(text, a["edit"]["changes"][uri]);
+    EXPECT_EQ(applied.find("\n"), applied.find("\r\n") + 1) << a["title"];  // no bare LF came in
+    size_t lf_count = std::count(applied.begin(), applied.end(), '\n'), cr_count = std::count(applied.begin(), applied.end(), '\r');
+    EXPECT_EQ(lf_count, cr_count) << a["title"];
+    if (a["kind"] == "source.fixAll.lwcport") {
+      fix_all = true;
+      EXPECT_EQ(applied, fixed);
+    }
+    if (a["title"].get<std::string>().starts_with("ignore ")) ignore = true;
+  }
+  EXPECT_TRUE(fix_all);
+  EXPECT_TRUE(ignore);
+}
+
 // Hover on a finding: the rule, its message, summary and rationale, and its page.
 TEST(LanguageServer, HoverOnAFindingExplainsTheRule) {
   std::string path = test::source_dir() + "/corpus/glsl/forward.vert";
