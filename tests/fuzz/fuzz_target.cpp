@@ -1,8 +1,11 @@
 // libFuzzer target: any bytes as a shader file (the first byte picks the extension, so every
 // language and container is reached) through analyze, fix_source with unsafe fixes, and every
 // output format, and the verifier's text stage (the harness kernel of the first function with a
-// finding, as written and promoted to double). Built with ASan and UBSan (tests/fuzz/build.sh); a crash, an uncaught exception,
-// invalid JSON output, a finding outside the file or a hang is a bug.
+// finding, as written and promoted to double). A first byte of 0xF0 or more instead opens the rest
+// in the language server and edits, hovers and asks for code actions at positions the bytes pick
+// (the server's position and edit arithmetic on any text). Built with ASan and UBSan
+// (tests/fuzz/build.sh); a crash, an uncaught exception, invalid JSON output, a finding outside the
+// file or a hang is a bug.
 #include <cstdint>
 #include <cstdlib>
 #include <sstream>
@@ -12,6 +15,7 @@
 
 #include "cli/report.h"
 #include "fix/apply.h"
+#include "lsp/server.h"
 #include "rules/analyze.h"
 #include "verify/kernel_builder.h"
 
@@ -23,10 +27,53 @@ void check(bool ok) {
   if (!ok) std::abort();
 }
 
+std::string frame(const nlohmann::json& message) {
+  std::string body = message.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  return "Content-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body;
+}
+
+// The text opened in the language server, then, per byte pair of its first 64 bytes, an edit, a
+// hover or a code action at a position they pick (lines and characters past the ends too).
+void serve(const uint8_t* data, size_t size) {
+  using nlohmann::json;
+  std::string text(reinterpret_cast<const char*>(data), size);
+  std::string uri = std::string("file:///fuzz/fuzz.") + (size % 2 ? "usf" : "vert");
+  std::string input = frame({{"jsonrpc", "2.0"}, {"id", 1}, {"method", "initialize"}, {"params", {{"capabilities", json::object()}}}}) +
+                      frame({{"jsonrpc", "2.0"}, {"method", "textDocument/didOpen"},
+                             {"params", {{"textDocument", {{"uri", uri}, {"languageId", ""}, {"version", 1}, {"text", text}}}}}});
+  int version = 1;
+  for (size_t i = 0; i + 1 < std::min<size_t>(size, 64); i += 2) {
+    json position = {{"line", data[i] % 16}, {"character", data[i + 1] % 48}};
+    json range = {{"start", position}, {"end", {{"line", data[i] % 16 + data[i + 1] % 2}, {"character", data[i] % 8}}}};
+    json document = {{"uri", uri}};
+    switch (data[i] % 4) {
+      case 0:
+        input += frame({{"jsonrpc", "2.0"}, {"method", "textDocument/didChange"},
+                        {"params", {{"textDocument", {{"uri", uri}, {"version", ++version}}},
+                                    {"contentChanges", {{{"range", range}, {"text", std::string(1, static_cast<char>(data[i + 1]))}}}}}}});
+        break;
+      case 1:
+        input += frame({{"jsonrpc", "2.0"}, {"id", 100 + i}, {"method", "textDocument/hover"}, {"params", {{"textDocument", document}, {"position", position}}}});
+        break;
+      default:
+        input += frame({{"jsonrpc", "2.0"}, {"id", 100 + i}, {"method", "textDocument/codeAction"},
+                        {"params", {{"textDocument", document}, {"range", range}, {"context", {{"diagnostics", json::array()}}}}}});
+    }
+  }
+  input += frame({{"jsonrpc", "2.0"}, {"id", 2}, {"method", "shutdown"}}) + frame({{"jsonrpc", "2.0"}, {"method", "exit"}});
+  std::istringstream in(input);
+  std::ostringstream out;
+  check(lwc::run_language_server(in, out) == 0);
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size == 0) return 0;
+  if (data[0] >= 0xF0) {
+    serve(data + 1, size - 1);
+    return 0;
+  }
   std::string path = kPaths[data[0] % (sizeof kPaths / sizeof kPaths[0])];
   lwc::Source source(path, std::string(reinterpret_cast<const char*>(data) + 1, size - 1));
   lwc::AnalyzeOptions options;

@@ -34,5 +34,9 @@ while IFS= read -r f; do
     fi
   done
 done < <(find corpus -type f | sort)
+# ... and a few behind 0xF0, which opens them in the language server.
+for f in corpus/glsl/forward.vert corpus/ue4/HeightFogCommon.ush corpus/ue5.4/DoubleFloatHelpers.ush; do
+  { printf '\360'; cat "$f"; } > "$seeds/lsp-$(basename "$f")"
+done
 "$fuzz" "$work" "$seeds" -dict=tests/fuzz/shader.dict -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
   -max_len=16384 -print_final_stats=1 -artifact_prefix=build-fuzz/artifacts/ "$@" 2>&1 | tail -25
