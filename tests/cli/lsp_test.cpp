@@ -434,6 +434,23 @@ TEST(LanguageServer, ACrlfDocumentKeepsItsLineEnds) {
   EXPECT_TRUE(ignore);
 }
 
+// Hover on an #include line says where it resolves, or where lwcport looked when it does not.
+TEST(LanguageServer, HoverOnAnIncludeSaysWhereItResolves) {
+  std::string dir = test::scratch("lsp-include-hover");
+  test::write(dir + "/A.ush", "float3 F() { return float3(0, 0, 0); }\n");
+  std::string text = "#include \"A.ush\"\n#include \"/Engine/Private/Common.ush\"\nfloat3 G() { return F(); }\n";
+  std::string uri = "file://" + dir + "/B.usf";
+  auto hover_at = [&](int id, int line) {
+    return frame(request(id, "textDocument/hover", {{"textDocument", {{"uri", uri}}}, {"position", {{"line", line}, {"character", 3}}}}));
+  };
+  Session s = serve(frame(initialize()) + frame(open_document(uri, "hlsl", text)) + hover_at(2, 0) + hover_at(3, 1) + end_session());
+  std::string found = (*reply_to(s, 2))["result"]["contents"]["value"], missing = (*reply_to(s, 3))["result"]["contents"]["value"];
+  EXPECT_EQ(found, "`A.ush` resolves to `" + dir + "/A.ush`");
+  EXPECT_NE(missing.find("`/Engine/Private/Common.ush` is not found: lwcport looked beside the file"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("\"virtual-roots\""), std::string::npos) << missing;
+  EXPECT_EQ((*reply_to(s, 3))["result"]["range"]["end"], json({{"line", 1}, {"character", 37}}));  // the whole directive
+}
+
 // Hover on a finding: the rule, its message, summary and rationale, and its page.
 TEST(LanguageServer, HoverOnAFindingExplainsTheRule) {
   std::string path = test::source_dir() + "/corpus/glsl/forward.vert";

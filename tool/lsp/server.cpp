@@ -779,6 +779,7 @@ class Server {
     Document& d = it->second;
     ensure_analysed(uri, d);
     size_t at = offset(d, params.at("position"));
+    if (std::optional<json> include = include_hover(d, at)) return *include;
     std::string text;
     std::optional<Span> covered;
     for (const Finding& f : d.findings) {
@@ -801,6 +802,31 @@ class Server {
     }
     if (text.empty()) return nullptr;
     return {{"contents", {{"kind", "markdown"}, {"value", text}}}, {"range", range(d, *covered)}};
+  }
+
+  // On an #include line: where the include resolves (virtual roots, the including folder, include
+  // dirs), or where lwcport looked, as `lint` resolves it.
+  std::optional<json> include_hover(const Document& d, size_t at) {
+    size_t line = static_cast<size_t>(std::upper_bound(d.lines.begin(), d.lines.end(), at) - d.lines.begin()) - 1;
+    size_t begin = d.lines[line], end = line + 1 < d.lines.size() ? d.lines[line + 1] : d.text.size();
+    std::vector<std::string> written = include_paths(std::string_view(d.text).substr(begin, end - begin));
+    if (written.size() != 1) return std::nullopt;
+    std::shared_ptr<const ProjectConfig> config = configs_->for_dir(folder_of(d));
+    std::optional<fs::path> found = d.path.is_absolute() ? includes_->resolve(written[0], d.path, *config) : std::nullopt;
+    std::string text;
+    if (found) {
+      text = fmt::format("`{}` resolves to `{}`", written[0], found->string());
+    } else {
+      std::string roots, dirs;
+      for (const auto& [prefix, folder] : config->virtual_roots) roots += fmt::format("{}`{}` -> `{}`", roots.empty() ? "" : ", ", prefix, folder.string());
+      for (const fs::path& dir : config->include_dirs) dirs += fmt::format("{}`{}`", dirs.empty() ? "" : ", ", dir.string());
+      text = fmt::format("`{}` is not found: lwcport looked {}beside the file{}{}. What it declares is unknown to the analysis; map "
+                         "its root in .lwcport.json (\"virtual-roots\", \"include-dirs\")",
+                         written[0], roots.empty() ? "" : "under the virtual roots (" + roots + "), ", dirs.empty() ? "" : ", in the include dirs (", dirs.empty() ? "" : dirs + ")");
+      if (written[0].rfind("/Engine/", 0) == 0 || written[0].rfind("/Plugin/", 0) == 0) text += ", or open the file inside a `Shaders` folder";
+    }
+    while (end > begin && (d.text[end - 1] == '\n' || d.text[end - 1] == '\r')) --end;
+    return json{{"contents", {{"kind", "markdown"}, {"value", text}}}, {"range", range(d, {static_cast<uint32_t>(begin), static_cast<uint32_t>(end)})}};
   }
 
   static fs::path folder_of(const Document& d) {
