@@ -155,6 +155,20 @@ TEST(WorldModel, AStageOutputsStoresCanOverruleItsName) {
                       "void main() { cameraPosition = eyeHigh + eyeLow; gl_Position = vec4(0.0); }\n"));
   EXPECT_TRUE(flagged("#version 300 es\nuniform mat4 modelMatrix;\nin vec3 position;\nout vec3 cameraPosition;\n"
                       "void main() { cameraPosition = (modelMatrix * vec4(position, 1.0)).xyz; gl_Position = vec4(0.0); }\n"));
+  // An input another stage of the program writes (a sibling template literal of a script) holds
+  // what that stage stores: a constant there overrules its name here.
+  auto flagged_in_script = [](const std::string& stored) {
+    std::string code = "const vs = glsl`#version 300 es\nout vec3 cameraPosition;\nuniform mat4 modelMatrix;\nin vec3 position;\n"
+                       "void main() { cameraPosition = " + stored + "; gl_Position = vec4(0.0); }`;\n"
+                       "const fs = glsl`#version 300 es\nprecision highp float;\nin vec3 cameraPosition;\nout vec4 color;\n"
+                       "void main() { color = vec4(cameraPosition, 1.0); }`;\n";
+    int count = 0;
+    for (const Finding& f : analyze(Source("program.js", code), AnalyzeOptions{}))
+      count += f.rule == "lwc-float-world-position" && f.message.find("`cameraPosition`") != std::string::npos;
+    return count;
+  };
+  EXPECT_EQ(flagged_in_script("vec3(1.0)"), 0);
+  EXPECT_EQ(flagged_in_script("(modelMatrix * vec4(position, 1.0)).xyz"), 2);
   // An input has no store in this shader: its name is the evidence.
   EXPECT_TRUE(flagged("#version 300 es\nprecision highp float;\nin vec3 cameraPosition;\nout vec4 color;\n"
                       "void main() { color = vec4(cameraPosition, 1.0); }\n"));

@@ -464,13 +464,17 @@ class Analyzer {
       if (n < 0 || t_.is(c, "function_declarator")) continue;
       // A GLSL stage output: what this shader stores into it can overrule its name.
       bool output = t_.lang == Lang::glsl && has_word(words, "out") && !has_word(words, "in");
-      int var = add_global(id, n, type, block, uniform, has_word(words, "precise"), output);
+      // A GLSL stage input that another shader of the program writes (a sibling literal of a
+      // script): it holds what that stage's output holds, which overrules its name when classified
+      // and not absolute.
+      std::optional<Kind> written;
+      if (inc_ && t_.lang == Lang::glsl && (has_word(words, "in") || has_word(words, "varying")) && !has_word(words, "out"))
+        if (auto it = inc_->globals.find(std::string(t_.text(n))); it != inc_->globals.end()) written = it->second;
+      bool name_counts = !written || *written == Kind::unknown || holds_absolute(*written);
+      int var = add_global(id, n, type, block, uniform, has_word(words, "precise"), output, name_counts);
       if (t_.is(c, "init_declarator")) m_.variables_[var].init = t_.child_by_field(c, "value");
       m_.variables_[var].private_global = !uniform && block < 0 && private_storage(words);
-      // A GLSL stage input that another shader of the program writes (a sibling literal of a
-      // script): it holds what that stage's output holds.
-      if (inc_ && t_.lang == Lang::glsl && (has_word(words, "in") || has_word(words, "varying")) && !has_word(words, "out"))
-        if (auto it = inc_->globals.find(m_.variables_[var].name); it != inc_->globals.end()) hold(var, it->second, -1);
+      if (written) hold(var, *written, -1);
     }
   }
 
@@ -481,12 +485,14 @@ class Analyzer {
     return true;
   }
 
-  int add_global(int declaration, int name, std::string type, int block, bool uniform, bool precise, bool output = false) {
+  // `name_counts`: a naming convention may say what it holds.
+  int add_global(int declaration, int name, std::string type, int block, bool uniform, bool precise, bool output = false,
+                 bool name_counts = true) {
     Variable v = make_variable(std::string(t_.text(name)), std::move(type), Variable::Role::global, name, declaration);
     v.block = block;
     v.uniform = uniform;
     v.precise = precise;
-    v.kind = source_kind(Path{{v.name, false}}, true).value_or(Kind::unknown);
+    if (name_counts) v.kind = source_kind(Path{{v.name, false}}, true).value_or(Kind::unknown);
     int var = new_variable(std::move(v));
     globals_[m_.variables_[var].name] = var;
     // A GLSL varying named as a world position (`in vec3 vWorldPosition`) holds one.
