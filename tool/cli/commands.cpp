@@ -886,8 +886,7 @@ FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& in
 // call, plus what an earlier run's file already holds (files fixed then still include it).
 // False (with the reason printed) when the library could not be written.
 bool write_library(const LibraryFile& lib, const Options& o, std::ostream& out, std::ostream& err) {
-  std::set<std::string> names = lib.names;
-  std::string before;
+  std::optional<std::string> existing;
   bool exists = std::filesystem::exists(lib.path);
   if (exists) {
     ReadResult r = read_file(lib.path, SIZE_MAX);
@@ -895,16 +894,15 @@ bool write_library(const LibraryFile& lib, const Options& o, std::ostream& out, 
       err << fmt::format("{}: cannot read: {}; the fixed files need it\n", lib.display, r.error);
       return false;
     }
-    if (!is_written_library(r.text)) {
-      err << fmt::format("{}: exists and was not written by lwcport; not changed (the fixed files need: {})\n", lib.display,
-                         fmt::join(lib.names, ", "));
-      return false;
-    }
-    before = std::move(r.text);
-    std::set<std::string> kept = library_names_used(lib.lang, before);
-    names.insert(kept.begin(), kept.end());
+    existing = std::move(r.text);
   }
-  std::string after = library_text(lib.lang, names);
+  std::optional<std::string> written = library_file_text(lib.lang, lib.names, existing);
+  if (!written) {
+    err << fmt::format("{}: exists and was not written by lwcport; not changed (the fixed files need: {})\n", lib.display,
+                       fmt::join(lib.names, ", "));
+    return false;
+  }
+  std::string before = existing.value_or(""), after = std::move(*written);
   if (after == before) return true;
   if (o.diff) {
     std::string diff = unified_diff(lib.display, before, after);
@@ -917,6 +915,8 @@ bool write_library(const LibraryFile& lib, const Options& o, std::ostream& out, 
     err << fmt::format("{}: cannot write the shader library: {}; the files that need it were not changed\n", lib.display, why);
     return false;
   }
+  std::set<std::string> names = lib.names;  // what the fixed files call and what the file kept
+  if (existing) names.merge(library_names_used(lib.lang, *existing));
   err << fmt::format("Wrote {} ({} name(s) and what they use).\n", lib.display, names.size());
   return true;
 }

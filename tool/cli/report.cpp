@@ -5,6 +5,7 @@
 #include <map>
 
 #include "fix/apply.h"
+#include "project/files.h"
 #include "rules/rule.h"
 
 namespace lwc {
@@ -128,16 +129,6 @@ std::string sarif_level(Severity s) { return s == Severity::error ? "error" : s 
 std::string sentence(std::string s) {
   if (!s.empty() && s.back() != '.') s += '.';
   return s;
-}
-
-// Percent-encodes what may not appear in a relative URI reference.
-std::string uri_encode(std::string_view path) {
-  std::string out;
-  for (unsigned char c : path) {
-    if (std::isalnum(c) || std::string_view("-._~/").find(static_cast<char>(c)) != std::string_view::npos) out += static_cast<char>(c);
-    else out += fmt::format("%{:02X}", c);
-  }
-  return out;
 }
 
 // Relative paths resolve against SRCROOT (the working folder); absolute ones are file: URIs.

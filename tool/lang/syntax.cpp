@@ -150,11 +150,12 @@ void flatten(TSTree* tree, SyntaxTree& out) {
   }
 }
 
-// The row and byte column of an offset, as tree-sitter counts them.
-TSPoint point_at(std::string_view text, size_t at) {
-  size_t line_start = at == 0 ? std::string_view::npos : text.rfind('\n', at - 1);
-  uint32_t row = static_cast<uint32_t>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
-  return {row, static_cast<uint32_t>(line_start == std::string_view::npos ? at : at - line_start - 1)};
+// The row and byte column `to` is at in `text`, counting on from `from` at `p`.
+TSPoint advance(std::string_view text, size_t from, TSPoint p, size_t to) {
+  std::string_view part = text.substr(from, to - from);
+  size_t last_line = part.rfind('\n');
+  if (last_line == std::string_view::npos) return {p.row, p.column + static_cast<uint32_t>(part.size())};
+  return {p.row + static_cast<uint32_t>(std::count(part.begin(), part.end(), '\n')), static_cast<uint32_t>(part.size() - last_line - 1)};
 }
 
 // The one edit that turns `before` into `after`: what lies between their common start and end.
@@ -167,9 +168,9 @@ TSInputEdit edit_between(std::string_view before, std::string_view after) {
   e.start_byte = static_cast<uint32_t>(start);
   e.old_end_byte = static_cast<uint32_t>(before.size() - tail);
   e.new_end_byte = static_cast<uint32_t>(after.size() - tail);
-  e.start_point = point_at(before, e.start_byte);
-  e.old_end_point = point_at(before, e.old_end_byte);
-  e.new_end_point = point_at(after, e.new_end_byte);
+  e.start_point = advance(before, 0, {0, 0}, start);  // the texts agree up to `start`
+  e.old_end_point = advance(before, start, e.start_point, e.old_end_byte);
+  e.new_end_point = advance(after, start, e.start_point, e.new_end_byte);
   return e;
 }
 

@@ -22,6 +22,7 @@
 
 #include "core/source.h"
 #include "fix/apply.h"
+#include "lang/formats.h"
 #include "project/config.h"
 #include "project/files.h"
 #include "project/includes.h"
@@ -90,6 +91,9 @@ json value_at(const json& object, std::initializer_list<const char*> path) {
   }
   return *at;
 }
+
+// `array` is a JSON array holding `value`.
+bool holds(const json& array, const char* value) { return array.is_array() && std::find(array.begin(), array.end(), value) != array.end(); }
 
 // A message from the client, or why it could not be read.
 struct Incoming {
@@ -260,6 +264,7 @@ class Server {
 
  private:
   struct Document {
+    std::string uri;  // as the client names it
     fs::path path;
     std::string text;
     std::vector<size_t> lines = {0};  // where each line of `text` starts
@@ -275,6 +280,9 @@ class Server {
     std::shared_ptr<const FileSummary> summary;
     std::vector<std::string> summary_includes;
     long summary_generation = -1;
+    // The last "fix all" edit, for (analysis, unsafe): editors ask for code actions at every move.
+    std::optional<std::pair<long, bool>> fix_all_for;
+    std::optional<json> fix_all;
   };
 
   static double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
@@ -288,18 +296,15 @@ class Server {
   json initialize(const json& params) {
     initialized_ = true;
     const json capabilities = params.value("capabilities", json::object());
-    json offered = value_at(capabilities, {"general", "positionEncodings"});
-    utf8_ = offered.is_array() && std::find(offered.begin(), offered.end(), "utf-8") != offered.end();
+    utf8_ = holds(value_at(capabilities, {"general", "positionEncodings"}), "utf-8");
     pull_ = value_at(capabilities, {"textDocument", "diagnostic"}).is_object();
     refresh_ = value_at(capabilities, {"workspace", "diagnostics", "refreshSupport"}) == true;
-    json lazy = value_at(capabilities, {"textDocument", "codeAction", "resolveSupport", "properties"});
-    lazy_edits_ = lazy.is_array() && std::find(lazy.begin(), lazy.end(), "edit") != lazy.end();
+    lazy_edits_ = holds(value_at(capabilities, {"textDocument", "codeAction", "resolveSupport", "properties"}), "edit");
     watch_ = value_at(capabilities, {"workspace", "didChangeWatchedFiles", "dynamicRegistration"}) == true;
-    json operations = value_at(capabilities, {"workspace", "workspaceEdit", "resourceOperations"});
-    create_files_ = value_at(capabilities, {"workspace", "workspaceEdit", "documentChanges"}) == true && operations.is_array() &&
-                    std::find(operations.begin(), operations.end(), "create") != operations.end();
+    create_files_ = value_at(capabilities, {"workspace", "workspaceEdit", "documentChanges"}) == true &&
+                    holds(value_at(capabilities, {"workspace", "workspaceEdit", "resourceOperations"}), "create");
     settings(params.value("initializationOptions", json()));
-    log_message(3, fmt::format("lwcport {}: {} positions, {} diagnostics", "0.1.0", utf8_ ? "UTF-8" : "UTF-16", pull_ ? "pulled" : "pushed"));
+    log_message(3, fmt::format("lwcport {}: {} positions, {} diagnostics", LWCPORT_VERSION, utf8_ ? "UTF-8" : "UTF-16", pull_ ? "pulled" : "pushed"));
     json provider = {{"codeActionKinds", {"quickfix", "source.fixAll.lwcport"}}, {"resolveProvider", true}};
     json result = {{"capabilities",
                     {{"positionEncoding", utf8_ ? "utf-8" : "utf-16"},
@@ -307,7 +312,7 @@ class Server {
                      {"codeActionProvider", provider},
                      {"executeCommandProvider", {{"commands", {kFixAllCommand}}}},
                      {"hoverProvider", true}}},
-                   {"serverInfo", {{"name", "lwcport"}, {"version", "0.1.0"}}}};
+                   {"serverInfo", {{"name", "lwcport"}, {"version", LWCPORT_VERSION}}}};
     if (pull_) result["capabilities"]["diagnosticProvider"] = {{"identifier", "lwcport"}, {"interFileDependencies", true}, {"workspaceDiagnostics", false}};
     return result;
   }
@@ -323,8 +328,10 @@ class Server {
   // Asks the client to report changes of project settings and shader files, when it can.
   void register_watchers() {
     if (!watch_) return;
-    json watchers = json::array({{{"globPattern", "**/.lwcport.json"}}});
-    for (const char* ext : {"usf", "ush", "hlsl", "hlsli", "glsl", "fx", "fxh"}) watchers.push_back({{"globPattern", fmt::format("**/*.{}", ext)}, {"kind", 7}});
+    // Every shader extension lwcport reads by default: "**/*{.usf,.ush,...}".
+    std::string extensions = FormatTable::defaults().extensions();
+    extensions.erase(std::remove(extensions.begin(), extensions.end(), ' '), extensions.end());
+    json watchers = json::array({{{"globPattern", "**/.lwcport.json"}}, {{"globPattern", "**/*{" + extensions + "}"}, {"kind", 7}}});
     send({{"jsonrpc", "2.0"},
           {"id", fmt::format("lwcport/{}", ++requests_)},
           {"method", "client/registerCapability"},
@@ -342,13 +349,12 @@ class Server {
     std::string uri = item.at("uri");
     // Read in full before it replaces anything: a malformed open leaves no half-made document.
     Document d;
-    d.path = path_of(uri);
+    d.uri = uri;
+    d.path = path_of_uri(uri);
     d.text = item.at("text");
     d.lines = line_starts(d.text);
     d.version = item.value("version", 0);
-    std::string language = item.value("languageId", "");
-    if (language == "hlsl") d.lang = Lang::hlsl;
-    if (language == "glsl") d.lang = Lang::glsl;
+    d.lang = parse_lang(item.value("languageId", ""));
     Document& opened = documents_[uri] = std::move(d);
     analyse_and_publish(uri, opened);
     text_changed(uri, opened, opened.text);
@@ -453,30 +459,6 @@ class Server {
 
   json range(const Document& d, Span span) const { return {{"start", position(d, span.begin)}, {"end", position(d, span.end)}}; }
 
-  static fs::path path_of(const std::string& uri) {
-    std::string rest = uri.rfind("file://", 0) == 0 ? uri.substr(7) : uri;
-    std::string out;
-    for (size_t i = 0; i < rest.size(); ++i) {
-      if (rest[i] == '%' && i + 2 < rest.size() && std::isxdigit(static_cast<unsigned char>(rest[i + 1])) &&
-          std::isxdigit(static_cast<unsigned char>(rest[i + 2]))) {
-        out += static_cast<char>(std::stoi(rest.substr(i + 1, 2), nullptr, 16));
-        i += 2;
-      } else {
-        out += rest[i];
-      }
-    }
-    return out;
-  }
-
-  static std::string uri_of(const fs::path& path) {
-    std::string out = "file://";
-    for (unsigned char c : path.string()) {
-      if (std::isalnum(c) || std::string_view("/-_.~").find(static_cast<char>(c)) != std::string_view::npos) out += static_cast<char>(c);
-      else out += fmt::format("%{:02X}", c);
-    }
-    return out;
-  }
-
   // The options a document is analysed with (its project's, with what its includes declare). What
   // its includes declare is kept for the last few documents analysed (typing re-analyses one
   // document many times; a summary of Unreal's includes is large), until its include lines or an
@@ -551,7 +533,7 @@ class Server {
                 {"data", {{"version", d.version}, {"finding", index}, {"fixes", f.fixes.size()}}}};
     json related = json::array();
     for (const auto& [span, text] : f.related)
-      related.push_back({{"location", {{"uri", uri_of(d.path)}, {"range", range(d, span)}}}, {"message", text}});
+      related.push_back({{"location", {{"uri", d.uri}, {"range", range(d, span)}}}, {"message", text}});
     if (!related.empty()) out["relatedInformation"] = related;
     return out;
   }
@@ -627,7 +609,7 @@ class Server {
     std::optional<Lang> lang = d.lang ? d.lang : lang_from_path(d.path.string());
     if (!create_files_ || !lang || !d.path.is_absolute()) return std::nullopt;
     fs::path file = d.path.parent_path() / library_file_name(*lang);
-    std::string uri = uri_of(file);
+    std::string uri = "file://" + uri_encode(file.string());
     std::optional<std::string> before;
     if (auto open = documents_.find(uri); open != documents_.end()) before = open->second.text;
     else if (std::error_code ec; fs::exists(file, ec)) {
@@ -635,9 +617,8 @@ class Server {
       if (!r.error.empty()) return std::nullopt;
       before = std::move(r.text);
     }
-    if (before && !is_written_library(*before)) return std::nullopt;
-    std::set<std::string> all = names;
-    if (before) all.merge(library_names_used(*lang, *before));
+    std::optional<std::string> text = library_file_text(*lang, names, before);
+    if (!text) return std::nullopt;
     json changes = json::array();
     if (!before) changes.push_back({{"kind", "create"}, {"uri", uri}, {"options", {{"ignoreIfExists", true}}}});
     std::string old = before.value_or("");
@@ -645,18 +626,21 @@ class Server {
     size_t tail = old.size() - (old.rfind('\n') == std::string::npos ? 0 : old.rfind('\n') + 1);
     json end = {{"line", last_line}, {"character", tail}};  // the library is ASCII: bytes are characters
     changes.push_back({{"textDocument", {{"uri", uri}, {"version", nullptr}}},
-                       {"edits", {{{"range", {{"start", {{"line", 0}, {"character", 0}}}, {"end", end}}}, {"newText", library_text(*lang, all)}}}}});
+                       {"edits", {{{"range", {{"start", {{"line", 0}, {"character", 0}}}, {"end", end}}}, {"newText", *text}}}}});
     return changes;
   }
 
   // Every fix `lwcport fix` would apply (safe ones, and unsafe ones when asked), as one edit (with
   // lwcport's library file beside the document when a rewrite calls it); none when nothing applies.
   std::optional<json> fix_all_edit(const std::string& uri, Document& d, bool unsafe) {
+    if (d.fix_all_for == std::pair{d.result, unsafe}) return d.fix_all;
     AnalyzeOptions options = options_for(d);
     Source source(d.path.string(), d.text);
     FixOutcome fixed = fix_source(source, options, unsafe);
-    if (fixed.applied == 0) return std::nullopt;
-    return workspace_edit(uri, d, {{{0, static_cast<uint32_t>(d.text.size())}, fixed.text}}, source, true, fixed.library);
+    d.fix_all_for = {d.result, unsafe};
+    d.fix_all = fixed.applied == 0 ? std::nullopt
+                                   : workspace_edit(uri, d, {{{0, static_cast<uint32_t>(d.text.size())}, fixed.text}}, source, true, fixed.library);
+    return d.fix_all;
   }
 
   // Quick fixes (each finding's rewrite; a safe one preferred, an unsafe one titled so), "ignore
@@ -761,7 +745,8 @@ class Server {
     for (auto& [uri, d] : documents_)
       if (d.path.is_absolute()) try {
           includes_->set_text(d.path, d.text, *configs_->for_dir(folder_of(d)));
-        } catch (const std::exception&) {
+        } catch (const std::exception& e) {
+          log(std::string("include not re-read: ") + e.what());  // its analysis reports the config's problem
         }
     for (auto& [uri, d] : documents_) {
       d.analysed = false;
@@ -784,9 +769,9 @@ class Server {
     std::optional<Span> covered;
     for (const Finding& f : d.findings) {
       if (at < f.span.begin || at > f.span.end) continue;
-      auto rule = std::find_if(all_rules().begin(), all_rules().end(), [&](const RuleInfo& r) { return r.id == f.rule; });
+      const RuleInfo* rule = find_rule(f.rule);
       text = "**" + f.rule + "**: " + f.message;
-      if (rule != all_rules().end()) text += "\n\n" + rule->summary + ". " + rule->rationale + "\n\n[" + f.rule + "](" + rule_doc_url(f.rule) + ")";
+      if (rule) text += "\n\n" + rule->summary + ". " + rule->rationale + "\n\n[" + f.rule + "](" + rule_doc_url(f.rule) + ")";
       covered = f.span;
       break;
     }

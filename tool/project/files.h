@@ -40,6 +40,11 @@ struct ReadResult {
 };
 ReadResult read_file(const std::filesystem::path& path, size_t max_bytes);
 
+// A path percent-encoded as a URI reference allows (SARIF locations, the editor's file: URIs).
+std::string uri_encode(std::string_view path);
+// A file: URI's path (or any URI's text) with its %XX escapes decoded.
+std::filesystem::path path_of_uri(std::string_view uri);
+
 }  // namespace lwc
 
 namespace lwc {

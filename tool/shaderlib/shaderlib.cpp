@@ -168,6 +168,13 @@ bool is_written_library(std::string_view text) {
   return head.starts_with("// lwc_doublefloat.") && head.find(kWrittenMarker) != std::string_view::npos;
 }
 
+std::optional<std::string> library_file_text(Lang lang, const std::set<std::string>& names, const std::optional<std::string>& existing) {
+  if (existing && !is_written_library(*existing)) return std::nullopt;
+  std::set<std::string> all = names;
+  if (existing) all.merge(library_names_used(lang, *existing));
+  return library_text(lang, all);
+}
+
 std::string library_text(Lang lang, const std::set<std::string>& names) {
   const std::vector<Block>& blocks = blocks_for(lang);
   // Close the wanted set over the blocks' uses.

@@ -1,4 +1,5 @@
 #pragma once
+#include <optional>
 #include <set>
 #include <string>
 #include <string_view>
@@ -20,6 +21,9 @@ std::string library_file_name(Lang lang);
 // True for a library file `lwcport fix` wrote (its header says so): lint skips it, and fix may
 // regenerate it; any other file of that name is the user's.
 bool is_written_library(std::string_view text);
+// The library file's text once `names` are added to what `existing` (the file's text now, if there
+// is one) holds: what fix writes beside fixed code. None when `existing` is not a file lwcport wrote.
+std::optional<std::string> library_file_text(Lang lang, const std::set<std::string>& names, const std::optional<std::string>& existing);
 
 // An Unreal environment for compiling Unreal-era shaders without the engine: the library plus
 // declarations of the View / PrimaryView / ResolvedView / Primitive members, the LWC tile/offset
