@@ -11,6 +11,7 @@
 #include "corpus_files.h"
 #include "fix/apply.h"
 #include "fix/scene.h"
+#include "lang/embedded.h"
 #include "shaderlib/shaderlib.h"
 #include "support.h"
 #include "verify/compile.h"
@@ -50,10 +51,26 @@ CompileResult compile_corpus_file(const std::string& path, const std::string& te
   return compile_file(build, text);
 }
 
+// The shaders of a corpus file, each with the name it compiles under: the file, or each GLSL
+// template literal of a script (a vertex stage when it writes gl_Position, else a fragment one).
+std::vector<std::pair<std::string, std::string>> shaders_of(const std::string& path, const std::string& text) {
+  if (!path.ends_with(".js") && !path.ends_with(".ts")) return {{path, text}};
+  std::vector<std::pair<std::string, std::string>> out;
+  for (Span literal : glsl_template_literals(path, text)) {
+    std::string shader = text.substr(literal.begin, literal.end - literal.begin);
+    out.emplace_back(path + (shader.find("gl_Position") != std::string::npos ? ".vert" : ".frag"), shader);
+  }
+  return out;
+}
+
 TEST(CompileCorpus, EveryShaderCompilesAsWritten) {
   for (const std::string& path : test::corpus_shaders()) {
-    CompileResult r = compile_corpus_file(path, test::read(test::source_dir() + "/" + path), engine_version(path));
-    EXPECT_TRUE(r.ok) << format_messages(r);
+    auto shaders = shaders_of(path, test::read(test::source_dir() + "/" + path));
+    EXPECT_FALSE(shaders.empty()) << path;
+    for (const auto& [name, shader] : shaders) {
+      CompileResult r = compile_corpus_file(name, shader, engine_version(path));
+      EXPECT_TRUE(r.ok) << format_messages(r);
+    }
   }
 }
 
