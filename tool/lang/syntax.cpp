@@ -7,7 +7,9 @@
 #include <tree_sitter/api.h>
 
 #include <cstring>
+#include <optional>
 #include <memory>
+#include <unordered_map>
 
 
 extern "C" const TSLanguage* tree_sitter_cpp(void);
@@ -101,11 +103,34 @@ bool is_punctuation(const char* type) {
   return *type != 0;
 }
 
-void flatten(TSTree* tree, SyntaxTree& out) {
-  TSTreeCursor cursor = ts_tree_cursor_new(ts_tree_root_node(tree));
-  std::vector<int32_t> parents;        // ids of the open ancestors
-  std::vector<int32_t> last_child;     // per node id, its last child so far
-  auto add = [&]() -> int32_t {
+// Builds the flattened tree in pre-order, from tree-sitter's nodes or, for a top-level
+// declaration tree-sitter reused from the last parse, from the last parse's flattened copy.
+class Flattener {
+ public:
+  explicit Flattener(SyntaxTree& out) : out_(out) {}
+
+  // Appends the node under the cursor and everything below it.
+  void walk(TSTreeCursor& cursor, int32_t parent) {
+    int32_t current = add(cursor, parent);
+    std::vector<int32_t> parents;  // the open ancestors below the starting node
+    for (;;) {
+      if (ts_tree_cursor_goto_first_child(&cursor)) {
+        parents.push_back(current);
+        current = add(cursor, parents.back());
+        continue;
+      }
+      for (;;) {
+        if (parents.empty()) return;  // never past the starting node
+        if (ts_tree_cursor_goto_next_sibling(&cursor)) break;
+        ts_tree_cursor_goto_parent(&cursor);
+        parents.pop_back();
+      }
+      current = add(cursor, parents.back());
+    }
+  }
+
+  // Appends the node under the cursor alone (-1 for punctuation, which is not kept).
+  int32_t add(TSTreeCursor& cursor, int32_t parent) {
     TSNode n = ts_tree_cursor_current_node(&cursor);
     Node node;
     node.type = ts_node_type(n);
@@ -116,38 +141,100 @@ void flatten(TSTree* tree, SyntaxTree& out) {
     node.begin = ts_node_start_byte(n);
     node.end = ts_node_end_byte(n);
     node.error = missing || (ts_node_symbol(n) == static_cast<TSSymbol>(-1));
-    node.parent = parents.empty() ? -1 : parents.back();
-    node.depth = static_cast<uint32_t>(parents.size());
-    int32_t id = static_cast<int32_t>(out.nodes.size());
-    if (node.error) {
-      if (out.error_count++ == 0) out.first_error = node.begin;
-    }
-    if (node.parent >= 0) {
-      int32_t& last = last_child[node.parent];
-      if (last < 0) out.nodes[node.parent].first_child = id;
-      else out.nodes[last].next_sibling = id;
-      last = id;
-    }
-    out.nodes.push_back(node);
-    last_child.push_back(-1);
+    node.parent = parent;
+    node.depth = parent < 0 ? 0 : out_.nodes[parent].depth + 1;
+    auto id = static_cast<int32_t>(out_.nodes.size());
+    append(node);
+    link(parent, id);
     return id;
-  };
-  int32_t current = add();
-  for (;;) {
-    if (ts_tree_cursor_goto_first_child(&cursor)) {
-      parents.push_back(current);
-      current = add();
-      continue;
-    }
-    while (!ts_tree_cursor_goto_next_sibling(&cursor)) {
-      if (!ts_tree_cursor_goto_parent(&cursor)) {
-        ts_tree_cursor_delete(&cursor);
-        return;
-      }
-      parents.pop_back();
-    }
-    current = add();
   }
+
+  // Appends `count` nodes of an earlier flattening from `first` (a whole subtree), moved by
+  // `shift` bytes, as a child of `parent`.
+  void copy(const std::vector<Node>& from, int32_t first, int32_t count, int64_t shift, int32_t parent, const char* field) {
+    auto base = static_cast<int32_t>(out_.nodes.size());
+    auto moved = [&](int32_t id) { return id < 0 ? -1 : id - first + base; };
+    for (int32_t k = first; k < first + count; ++k) {
+      Node n = from[k];
+      n.begin = static_cast<uint32_t>(n.begin + shift);
+      n.end = static_cast<uint32_t>(n.end + shift);
+      n.first_child = moved(n.first_child);
+      n.next_sibling = k == first ? -1 : moved(n.next_sibling);
+      n.parent = k == first ? parent : moved(n.parent);
+      if (k == first) n.field = field;
+      append(n);
+    }
+    link(parent, base);
+  }
+
+ private:
+  void append(const Node& node) {
+    if (node.error && out_.error_count++ == 0) out_.first_error = node.begin;
+    out_.nodes.push_back(node);
+    last_child_.push_back(-1);
+  }
+
+  void link(int32_t parent, int32_t id) {
+    if (parent < 0) return;
+    int32_t& last = last_child_[parent];
+    if (last < 0) out_.nodes[parent].first_child = id;
+    else out_.nodes[last].next_sibling = id;
+    last = id;
+  }
+
+  SyntaxTree& out_;
+  std::vector<int32_t> last_child_;  // per node id, its last child so far
+};
+
+// Where a new tree can differ from the last one: tree-sitter's changed ranges and the edited
+// text, in the new text's bytes, and how the edit moved what follows it.
+struct Changes {
+  std::vector<std::pair<uint32_t, uint32_t>> ranges;
+  TSInputEdit edit;
+
+  bool touch(uint32_t begin, uint32_t end) const {
+    return std::any_of(ranges.begin(), ranges.end(), [&](auto r) { return r.first <= end && begin <= r.second; });
+  }
+  // Where a byte of the new text outside the edit was in the last text.
+  int64_t before(uint32_t at) const {
+    return at >= edit.new_end_byte ? int64_t{at} - edit.new_end_byte + edit.old_end_byte : at;
+  }
+};
+
+// Flattens `tree`. With `last` (the document's last flattening of this variant) and the changes
+// since, a top-level declaration no change touches keeps the structure it had, and is copied from
+// the last flattening rather than walked again; `last` then describes this flattening.
+void flatten(TSTree* tree, SyntaxTree& out, ParseReuse::Flat* last, const Changes* changes) {
+  Flattener flat(out);
+  TSTreeCursor cursor = ts_tree_cursor_new(ts_tree_root_node(tree));
+  if (!last) {
+    flat.walk(cursor, -1);
+    ts_tree_cursor_delete(&cursor);
+    return;
+  }
+  std::unordered_map<int64_t, size_t> earlier;  // a top-level node's first byte -> its index in last->tops
+  if (changes)
+    for (size_t i = 0; i < last->tops.size(); ++i) earlier.emplace(last->nodes[last->tops[i]].begin, i);
+  std::vector<int32_t> tops;
+  int32_t root = flat.add(cursor, -1);
+  for (bool more = ts_tree_cursor_goto_first_child(&cursor); more; more = ts_tree_cursor_goto_next_sibling(&cursor)) {
+    TSNode n = ts_tree_cursor_current_node(&cursor);
+    uint32_t begin = ts_node_start_byte(n), end = ts_node_end_byte(n);
+    auto first = static_cast<int32_t>(out.nodes.size());
+    auto it = changes && !changes->touch(begin, end) ? earlier.find(changes->before(begin)) : earlier.end();
+    const Node* old = it != earlier.end() ? &last->nodes[last->tops[it->second]] : nullptr;
+    if (old && names_equal(old->type, ts_node_type(n)) && old->end == changes->before(end)) {
+      int32_t old_end = it->second + 1 < last->tops.size() ? last->tops[it->second + 1] : static_cast<int32_t>(last->nodes.size());
+      flat.copy(last->nodes, last->tops[it->second], old_end - last->tops[it->second], int64_t{begin} - old->begin, root,
+                ts_tree_cursor_current_field_name(&cursor));
+    } else {
+      flat.walk(cursor, root);
+    }
+    if (static_cast<int32_t>(out.nodes.size()) > first) tops.push_back(first);
+  }
+  ts_tree_cursor_delete(&cursor);
+  last->tops = std::move(tops);
+  last->nodes = out.nodes;
 }
 
 // The row and byte column `to` is at in `text`, counting on from `from` at `p`.
@@ -192,23 +279,34 @@ SyntaxTree parse(const Source& source, Lang lang, const MaskOptions& options) {
   TSParser* parser = thread_parser(lang);
   ts_parser_set_timeout_micros(parser, static_cast<uint64_t>(std::max(1e-6, options.max_parse_seconds) * 1e6));
   ParseReuse::Last* last = options.reuse ? &options.reuse->last_[{lang, options.variant}] : nullptr;
+  std::optional<Changes> changes;
   if (last && last->tree) {
-    TSInputEdit edit = edit_between(last->masked, masked.text);
-    ts_tree_edit(last->tree, &edit);
+    changes.emplace();
+    changes->edit = edit_between(last->masked, masked.text);
+    ts_tree_edit(last->tree, &changes->edit);
   }
   std::unique_ptr<TSTree, TreeDeleter> tree(
       ts_parser_parse_string(parser, last ? last->tree : nullptr, masked.text.data(), static_cast<uint32_t>(masked.text.size())));
-  if (last && last->tree) {
-    ts_tree_delete(last->tree);  // edited: good for nothing but this parse
-    last->tree = nullptr;
-  }
   if (!tree) {  // out of budget: the parser keeps its state for a resume that will not come
     ts_parser_reset(parser);
     out.timed_out = true;
+    if (last && last->tree) {
+      ts_tree_delete(last->tree);
+      last->tree = nullptr;
+      last->flat = {};
+    }
     return out;
   }
-  flatten(tree.get(), out);
+  if (changes) {
+    uint32_t count = 0;
+    TSRange* ranges = ts_tree_get_changed_ranges(last->tree, tree.get(), &count);
+    for (uint32_t i = 0; i < count; ++i) changes->ranges.emplace_back(ranges[i].start_byte, ranges[i].end_byte);
+    free(ranges);
+    changes->ranges.emplace_back(changes->edit.start_byte, changes->edit.new_end_byte);
+  }
+  flatten(tree.get(), out, last ? &last->flat : nullptr, changes ? &*changes : nullptr);
   if (last) {
+    if (last->tree) ts_tree_delete(last->tree);
     last->tree = tree.release();
     last->masked = std::move(masked.text);
   }

@@ -70,8 +70,9 @@ class SyntaxTree {
 
 // The tree-sitter trees of one document's last parse (per language and variant), kept so that the
 // next parse of its edited text is tree-sitter's incremental one: the old tree is edited where the
-// text changed and only what the edit touches is parsed again. For an editor's open documents;
-// the result is the tree a fresh parse gives.
+// text changed and only what the edit touches is parsed again; a top-level declaration outside
+// what tree-sitter reports changed is copied from the last flattening, not walked again. For an editor's
+// open documents; the result is the tree a fresh parse gives.
 class ParseReuse {
  public:
   ParseReuse() = default;
@@ -79,11 +80,18 @@ class ParseReuse {
   ParseReuse& operator=(const ParseReuse&) = delete;
   ~ParseReuse();
 
+  // A flattening (SyntaxTree::nodes) and where each top-level node starts in it.
+  struct Flat {
+    std::vector<Node> nodes;
+    std::vector<int32_t> tops;
+  };
+
  private:
   friend SyntaxTree parse(const Source& source, Lang lang, const MaskOptions& options);
   struct Last {
     std::string masked;   // the text the tree was parsed from
     TSTree* tree = nullptr;
+    Flat flat;            // the tree flattened
   };
   std::map<std::pair<Lang, int>, Last> last_;
 };

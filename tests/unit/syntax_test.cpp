@@ -1,0 +1,66 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "lang/syntax.h"
+#include "support.h"
+
+namespace lwc {
+namespace {
+
+// Every field of every node, and the tree's error summary, as a fresh parse gives them.
+void expect_same_tree(const SyntaxTree& reused, const SyntaxTree& fresh, const std::string& where) {
+  ASSERT_EQ(reused.nodes.size(), fresh.nodes.size()) << where;
+  EXPECT_EQ(reused.error_count, fresh.error_count) << where;
+  EXPECT_EQ(reused.first_error, fresh.first_error) << where;
+  EXPECT_EQ(reused.variants, fresh.variants) << where;
+  for (size_t i = 0; i < fresh.nodes.size(); ++i) {
+    const Node& a = reused.nodes[i];
+    const Node& b = fresh.nodes[i];
+    bool same = std::string_view(a.type) == b.type && (a.field == nullptr) == (b.field == nullptr) &&
+                (!a.field || std::string_view(a.field) == b.field) && a.begin == b.begin && a.end == b.end &&
+                a.parent == b.parent && a.first_child == b.first_child && a.next_sibling == b.next_sibling &&
+                a.depth == b.depth && a.named == b.named && a.error == b.error;
+    ASSERT_TRUE(same) << where << ": node " << i << " (" << b.type << " at " << b.begin << ") differs: reused " << a.type << " "
+                      << a.begin << "-" << a.end << " parent " << a.parent << " child " << a.first_child << " sibling "
+                      << a.next_sibling;
+  }
+}
+
+// Edits an editor makes: characters typed and deleted, lines split and joined, braces and
+// preprocessor lines that change the structure around them, whole declarations removed.
+std::string random_edit(const std::string& text, std::mt19937& rng) {
+  static const char* pieces[] = {" ", "x", "\n", ";", "{", "}", "(", "float3 P = Q;\n", "#if A\n", "#endif\n", "/*", "*/", "// c\n", "é"};
+  size_t at = std::uniform_int_distribution<size_t>(0, text.size())(rng);
+  size_t cut = std::uniform_int_distribution<int>(0, 3)(rng) == 0 ? std::uniform_int_distribution<size_t>(0, 40)(rng) : 0;
+  cut = std::min(cut, text.size() - at);
+  std::string piece = std::uniform_int_distribution<int>(0, 2)(rng) == 0 ? "" : pieces[rng() % std::size(pieces)];
+  return text.substr(0, at) + piece + text.substr(at + cut);
+}
+
+// The document's last trees edited and reparsed (and top-level declarations copied from the last
+// flattening) give exactly the nodes a fresh parse gives, variant by variant, edit after edit.
+TEST(ParseReuse, GivesTheTreeAFreshParseGives) {
+  std::mt19937 rng(20261124);
+  for (const char* file : {"corpus/ue4/DeferredLightPixelShaders.usf", "corpus/ue4/LocalVertexFactory.ush", "corpus/d3d/Terrain.hlsl",
+                           "corpus/glsl/forward.vert", "corpus/glsl/lighting.glsl", "corpus/negative/Suppressions.usf"}) {
+    std::string text = test::read(test::source_dir() + "/" + file);
+    Lang lang = lang_from_path(file).value();
+    ParseReuse reuse;
+    for (int edit = 0; edit < 150; ++edit) {
+      text = edit % 50 == 49 ? test::read(test::source_dir() + "/" + file) : random_edit(text, rng);
+      Source source(file, text);
+      int variants = 1;
+      for (int variant = 0; variant < variants; ++variant) {
+        SyntaxTree reused = parse(source, lang, {nullptr, variant, 10.0, &reuse});
+        SyntaxTree fresh = parse(source, lang, {nullptr, variant, 10.0, nullptr});
+        variants = fresh.variants;
+        expect_same_tree(reused, fresh, std::string(file) + " edit " + std::to_string(edit) + " variant " + std::to_string(variant));
+        if (HasFatalFailure()) return;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace lwc
