@@ -275,6 +275,27 @@ TEST(LanguageServer, ADocumentWithAByteOrderMark) {
   EXPECT_TRUE(found) << published[0].dump();
 }
 
+// Diagnostics are written as JSON text directly: their messages (hints after a line break,
+// backticks) are `lint --format json`'s, in a document with quotes, tabs and control characters.
+TEST(LanguageServer, DiagnosticMessagesAreLintsMessages) {
+  std::string text = "// caf\u00e9 \"quoted\"\t\x01 \\ \U0001F600\nuniform mat4 modelMatrix;\nin vec3 position;\n"
+                     "void main() { gl_Position = modelMatrix * vec4(position, 1.0); }\n";
+  std::string dir = test::scratch("lsp-json-text");
+  test::write(dir + "/a.vert", text);
+  json lint = json::parse(test::run(test::binary() + " lint " + dir + "/a.vert --format json --fail-on none").out);
+  Session s = serve(frame(initialize()) + frame(open_document("file://" + dir + "/a.vert", "glsl", text)) + end_session());
+  std::vector<json> published = diagnostics(s);
+  ASSERT_EQ(published.size(), 1u);
+  ASSERT_EQ(published[0]["diagnostics"].size(), lint["findings"].size());
+  ASSERT_FALSE(lint["findings"].empty());
+  for (size_t i = 0; i < lint["findings"].size(); ++i) {
+    const json &d = published[0]["diagnostics"][i], &f = lint["findings"][i];
+    std::string hint = f.value("hint", "");
+    EXPECT_EQ(d["message"], f["message"].get<std::string>() + (hint.empty() ? "" : "\n" + hint));
+    EXPECT_EQ(d["range"]["start"]["line"], f["start"]["line"].get<int>() - 1);
+  }
+}
+
 // An open include is what its includers see: editing it (here, so that its function no longer
 // returns an absolute position) analyses the open file that includes it again, with the new text,
 // before anything is saved.

@@ -119,4 +119,24 @@ std::optional<uint32_t> find_invalid_utf8(std::string_view text) {
   return std::nullopt;
 }
 
+std::string json_quoted(std::string_view text) {
+  std::string out = "\"";
+  for (size_t i = 0; i < text.size();) {
+    size_t n = utf8_sequence(text, i);
+    char c = text[i];
+    if (n == 0) out += "\xEF\xBF\xBD";
+    else if (n > 1) out.append(text, i, n);
+    else if (c == '"' || c == '\\') (out += '\\') += c;
+    else if (c == '\n') out += "\\n";
+    else if (c == '\r') out += "\\r";
+    else if (c == '\t') out += "\\t";
+    else if (c == '\b') out += "\\b";
+    else if (c == '\f') out += "\\f";
+    else if (static_cast<unsigned char>(c) < 0x20) out += fmt::format("\\u{:04x}", c);
+    else out += c;
+    i += std::max<size_t>(n, 1);
+  }
+  return out + '"';
+}
+
 }  // namespace lwc

@@ -58,5 +58,8 @@ size_t utf8_sequence(std::string_view text, size_t i);
 size_t utf8_char_start(std::string_view text, size_t i);
 // The text with each byte that is not valid UTF-8 shown as `\xNN` (for text output).
 std::string escape_invalid_utf8(std::string_view text);
+// The text as a JSON string, quotes included, as nlohmann::json writes it; each byte that is not
+// UTF-8 becomes U+FFFD. For messages written without building a json value first.
+std::string json_quoted(std::string_view text);
 
 }  // namespace lwc
