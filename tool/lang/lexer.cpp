@@ -93,17 +93,16 @@ struct Lexer {
 
 }  // namespace
 
-LexResult lex(std::string_view text) {
-  // A file is lexed by the masker and twice by era inference: the last text's tokens are kept
-  // (per thread) and given again for the same text.
+std::shared_ptr<const LexResult> lex(std::string_view text) {
+  // A file is lexed by the masker and twice by era inference.
   thread_local std::string last_text;
-  thread_local LexResult last;
-  if (text.size() == last_text.size() && text == last_text) return last;
+  thread_local std::shared_ptr<const LexResult> last;
+  if (last && text.size() == last_text.size() && text == last_text) return last;
   Lexer lexer{text, {}};
   lexer.run();
   last_text.assign(text);
-  last = lexer.out;
-  return std::move(lexer.out);
+  last = std::make_shared<const LexResult>(std::move(lexer.out));
+  return last;
 }
 
 Directive read_directive(std::string_view d) {

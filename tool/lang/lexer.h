@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -20,7 +21,8 @@ struct LexResult {
   std::optional<uint32_t> unterminated_comment;  // offset of a `/*` that never ends
 };
 
-LexResult lex(std::string_view text);
+// Shared: the last text lexed on a thread is kept, and lexing the same text again gives its tokens.
+std::shared_ptr<const LexResult> lex(std::string_view text);
 
 bool ident_start(char c);
 bool ident_char(char c);

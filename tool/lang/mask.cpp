@@ -462,7 +462,8 @@ MaskResult mask_source(std::string_view original, Lang lang, const MaskOptions& 
   if (text.size() >= 3 && text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.replace(0, 3, "   ");
   mask_substitutions(text);
   const std::string source = text;  // what the tokens index: the file with its BOM and substitutions masked
-  LexResult lexed = lex(source);
+  std::shared_ptr<const LexResult> lexed_text = lex(source);
+  const LexResult& lexed = *lexed_text;
   result.unterminated_comment = lexed.unterminated_comment;
 
   ConditionalPlan plan = plan_conditionals(source, lexed.tokens, options.variant);

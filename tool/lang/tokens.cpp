@@ -2,7 +2,7 @@
 
 namespace lwc {
 
-TokenText::TokenText(std::string_view t) : text(t), tokens(lex(t).tokens) {}
+TokenText::TokenText(std::string_view t) : text(t), tokens(lex(t)->tokens) {}
 
 std::string_view TokenText::operator[](size_t i) const {
   if (i >= size()) return {};

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cstring>
 #include <cctype>
 #include <stdexcept>
 
@@ -32,9 +33,11 @@ std::string_view era_name(UnrealEra era) {
 
 UnrealEra infer_unreal_era(std::string_view text) {
   bool tile_offset = false, double_float = false;
-  const std::vector<Token> tokens = lex(text).tokens;
+  std::shared_ptr<const LexResult> lexed = lex(text);
+  const std::vector<Token>& tokens = lexed->tokens;
   for (size_t i = 0; i < tokens.size(); ++i) {
-    if (tokens[i].kind != Tok::ident) continue;
+    // Only names that start with F, L, M, D or P can say anything (the check below is the slow part).
+    if (tokens[i].kind != Tok::ident || !std::strchr("FLMDP", text[tokens[i].begin])) continue;
     std::string_view w = text.substr(tokens[i].begin, tokens[i].end - tokens[i].begin);
     bool call = i + 1 < tokens.size() && text[tokens[i + 1].begin] == '(';
     auto named = [&](std::string_view prefix) {
@@ -87,7 +90,8 @@ std::vector<EraArm> era_guarded_arms(std::string_view text) {
   };
   std::vector<EraArm> out;
   std::vector<Open> stack;
-  for (const Token& t : lex(text).tokens) {
+  std::shared_ptr<const LexResult> lexed = lex(text);
+  for (const Token& t : lexed->tokens) {
     if (t.kind != Tok::directive) continue;
     Directive d = read_directive(text.substr(t.begin, t.end - t.begin));
     auto close_arm = [&](Open& g) {
