@@ -120,8 +120,17 @@ std::optional<uint32_t> find_invalid_utf8(std::string_view text) {
 }
 
 std::string json_quoted(std::string_view text) {
-  std::string out = "\"";
+  std::string out;
+  out.reserve(text.size() + 2);
+  out += '"';
   for (size_t i = 0; i < text.size();) {
+    // Printable ASCII but for the quote and the backslash goes as it is, a run at a time.
+    size_t run = i;
+    while (run < text.size() && static_cast<unsigned char>(text[run]) >= 0x20 && static_cast<unsigned char>(text[run]) < 0x80 &&
+           text[run] != '"' && text[run] != '\\')
+      ++run;
+    out.append(text, i, run - i);
+    if ((i = run) == text.size()) break;
     size_t n = utf8_sequence(text, i);
     char c = text[i];
     if (n == 0) out += "\xEF\xBF\xBD";
@@ -132,8 +141,7 @@ std::string json_quoted(std::string_view text) {
     else if (c == '\t') out += "\\t";
     else if (c == '\b') out += "\\b";
     else if (c == '\f') out += "\\f";
-    else if (static_cast<unsigned char>(c) < 0x20) out += fmt::format("\\u{:04x}", c);
-    else out += c;
+    else out += fmt::format("\\u{:04x}", c);
     i += std::max<size_t>(n, 1);
   }
   return out + '"';

@@ -6,6 +6,7 @@
 
 #include <tree_sitter/api.h>
 
+#include <atomic>
 #include <cstring>
 #include <optional>
 #include <memory>
@@ -227,12 +228,16 @@ void flatten(TSTree* tree, SyntaxTree& out, ParseReuse::Flat* last, const Change
       int32_t old_end = it->second + 1 < last->tops.size() ? last->tops[it->second + 1] : static_cast<int32_t>(last->nodes.size());
       flat.copy(last->nodes, last->tops[it->second], old_end - last->tops[it->second], int64_t{begin} - old->begin, root,
                 ts_tree_cursor_current_field_name(&cursor));
+      out.reused.push_back({first, last->tops[it->second], old_end - last->tops[it->second]});
     } else {
       flat.walk(cursor, root);
     }
     if (static_cast<int32_t>(out.nodes.size()) > first) tops.push_back(first);
   }
   ts_tree_cursor_delete(&cursor);
+  static std::atomic<uint64_t> parses{0};
+  out.reused_from = last->number;
+  out.number = last->number = ++parses;
   last->tops = std::move(tops);
   last->nodes = out.nodes;
 }

@@ -50,6 +50,14 @@ class SyntaxTree {
   bool timed_out = false;  // the parser ran out of its budget (MaskOptions::max_parse_seconds): no nodes
   int variants = 1;  // how many variants the file's preprocessor groups need (lang/conditionals.h)
   std::vector<Span> resolved_conditionals;  // groups resolved per variant: no rewrite touches them
+  // A parse that edited the document's last one (ParseReuse): its number, the last one's, and
+  // the top-level declarations it copied from there unchanged (their first node here and there,
+  // and how many nodes each has). Analyses of the last tree can keep what they found there.
+  struct Reused {
+    int32_t here, there, count;
+  };
+  uint64_t number = 0, reused_from = 0;
+  std::vector<Reused> reused;
 
   const Node& at(int id) const { return nodes[id]; }
   bool is(int id, std::string_view type) const { return id >= 0 && names_equal(type, nodes[id].type); }
@@ -84,6 +92,7 @@ class ParseReuse {
   struct Flat {
     std::vector<Node> nodes;
     std::vector<int32_t> tops;
+    uint64_t number = 0;  // SyntaxTree::number
   };
 
  private:

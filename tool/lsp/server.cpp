@@ -279,6 +279,7 @@ class Server {
     std::string failure;            // the analysis could not run: why
     std::vector<fs::path> includes;  // the files its includes reach, as of the last analysis
     std::shared_ptr<ParseReuse> parses = std::make_shared<ParseReuse>();  // its last parse, which the next one edits
+    std::shared_ptr<ModelReuse> models = std::make_shared<ModelReuse>();  // its last models, which the next ones replay
     // What its includes declare (options_for), for these include lines and include generation.
     std::shared_ptr<const FileSummary> summary;
     std::vector<std::string> summary_includes;
@@ -477,6 +478,7 @@ class Server {
     AnalyzeOptions options = analysis_options(*config);
     if (d.lang) options.lang = d.lang;
     options.reuse = d.parses.get();
+    options.model_reuse = d.models.get();  // it read the summary it was made with: replaced with it below
     if (d.text.find("include") == std::string::npos) {
       d.includes.clear();
       return options;
@@ -484,6 +486,8 @@ class Server {
     std::vector<std::string> wanted = include_paths(d.text);
     if (!d.summary || d.summary_includes != wanted || d.summary_generation != include_generation_) {
       d.summary = std::make_shared<FileSummary>(includes_->for_file(d.path, d.text, *config));
+      d.models = std::make_shared<ModelReuse>();
+      options.model_reuse = d.models.get();
       d.summary_includes = std::move(wanted);
       d.summary_generation = include_generation_;
       d.includes = d.path.is_absolute() ? includes_->included_files(d.path, d.text, *config) : std::vector<fs::path>{};

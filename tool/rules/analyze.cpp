@@ -459,7 +459,10 @@ void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, co
       errors += tree.error_count;
       if (!first_error) first_error = tree.first_error;
     }
-    WorldModel world(tree, data, context);
+    ModelContext this_variant = context;
+    this_variant.reuse = literal || !options.reuse ? nullptr : options.model_reuse;
+    this_variant.variant = variant;
+    WorldModel world(tree, data, this_variant);
     std::vector<Finding> found;
     for (const auto& [rule, check] : checks()) {
       if (rule->applies_to(lang) && options.enabled(rule->id)) check->run(CheckContext{tree, world, *rule, found, unreal});
@@ -591,7 +594,9 @@ std::optional<ValueDescription> describe_value(const Source& source, const Analy
   MacroTable macros = macro_table(format->lang, options);
   SyntaxTree tree = parse(source, format->lang, {&macros, 0, options.max_parse_seconds, options.reuse});
   if (tree.timed_out) return std::nullopt;
-  WorldModel world(tree, world_data(format->lang, options.world_sources), model_context(source, format->lang, options.includes));
+  ModelContext context = model_context(source, format->lang, options.includes);
+  if (options.reuse) context.reuse = options.model_reuse;  // the parse moved on: so does the model
+  WorldModel world(tree, world_data(format->lang, options.world_sources), context);
   int node = value_node_at(world, offset);
   if (node < 0) return std::nullopt;
   Kind kind = value_kind(world, node);

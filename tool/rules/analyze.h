@@ -33,6 +33,7 @@ struct AnalyzeOptions {
   size_t max_bytes = 16u << 20;          // larger files are skipped with a diagnostic
   double max_parse_seconds = 30;         // the parser's budget per file variant (.lwcport.json "max-parse-seconds")
   ParseReuse* reuse = nullptr;           // the document's last parse, for an editor (lang/syntax.h); the result is the same
+  ModelReuse* model_reuse = nullptr;     // ... and its last models (world/model.h), which need `reuse`; the same again
   SceneNumbers scene;                    // what the scene needs (the default: Unreal's full world)
   Strategy strategy = Strategy::automatic;
 

@@ -331,14 +331,86 @@ static Variable make_variable(std::string name, std::string type, Variable::Role
   return v;
 }
 
+namespace {
+
+struct Summary {
+  Kind ret = Kind::unknown;
+  std::vector<Kind> outs;
+  bool operator==(const Summary&) const = default;
+};
+using MemoKey = std::pair<int, std::vector<Kind>>;  // a function definition, the kinds of its arguments
+
+// What the file stores into a GLSL stage output named as world-space data.
+struct NamedOutput {
+  bool stored = false, unclassified = false;
+  Kind stored_kind = Kind::unknown;  // joined over the stores
+  bool operator==(const NamedOutput&) const = default;
+};
+
+// A variable's part of the model's state, as a function's analysis reads and leaves it.
+struct VariableState {
+  Kind kind = Kind::unknown;
+  std::optional<NamedOutput> output;
+  bool operator==(const VariableState&) const = default;
+};
+
+// One top-level function's analysis (with every analysis of a callee it started): the state it
+// read or changed, as it was before (first touch; nullopt: not there yet) and after, and what it
+// added to the model. Node ids are those of the tree it ran on; variables are named by their
+// declarator node.
+struct RunLog {
+  std::vector<int> functions;  // function definitions whose nodes it read
+  std::vector<Variable> created;
+  std::vector<std::pair<int, std::optional<VariableState>>> variables_before;
+  std::vector<std::pair<int, VariableState>> variables_after;
+  std::vector<std::pair<MemoKey, std::optional<Summary>>> memo_before;
+  std::vector<std::pair<MemoKey, Summary>> memo_after;
+  std::vector<std::pair<std::string, std::optional<Kind>>> fields_before;
+  std::vector<std::pair<std::string, Kind>> fields_after;
+  std::vector<std::pair<int, Kind>> kinds;  // node -> what the analysis recorded, joined
+  std::vector<std::pair<int, int>> refs;    // identifier -> the declarator of its variable
+  std::vector<AbsoluteHolder> reports;      // in order
+  std::vector<int> too_deep, cleared;       // nodes; declarators
+  std::vector<std::pair<std::string, Kind>> returns;
+  std::vector<std::pair<std::string, std::string>> return_types;
+};
+
+}  // namespace
+
+struct ModelReuse::Log {
+  uint64_t tree = 0;  // SyntaxTree::number of the tree the model ran on
+  const WorldData* data = nullptr;
+  const FileSummary* includes = nullptr;
+  bool names_as_evidence = true, plain_names = true;
+  std::optional<UnrealEra> era;
+  std::vector<Variable> collected;  // the variables the declarations outside functions made
+  std::vector<int> function_order;
+  std::vector<std::string> function_names;  // in that order
+  std::unordered_map<int, RunLog> runs;  // by function definition
+};
+
+ModelReuse::ModelReuse() = default;
+ModelReuse::~ModelReuse() = default;
+
 // The analysis itself; WorldModel keeps only its results.
 class Analyzer {
  public:
-  Analyzer(WorldModel& m, const FileSummary* includes) : m_(m), t_(m.tree_), d_(m.data_), inc_(includes) {}
+  Analyzer(WorldModel& m, const ModelContext& context) : m_(m), t_(m.tree_), d_(m.data_), inc_(context.includes), context_(context) {}
 
   void run() {
     collect();
-    for (int fn : function_order_) analyze_function(fn, {});
+    prepare_reuse();
+    for (int fn : function_order_) {
+      if (replay(fn)) {
+        ++m_.replayed_functions_;
+        continue;
+      }
+      m_.analysed_functions_.push_back(fn);
+      begin_run();
+      analyze_function(fn, {});
+      end_run(fn);
+    }
+    if (log_) context_.reuse->logs_[context_.variant] = std::move(log_);
     // A stage output named as world-space data holds what the file stores into it when every
     // store is classified and none is absolute (`cameraPosition = vec3(1.0)`): the name was wrong.
     for (const auto& [var, output] : named_outputs_) {
@@ -356,10 +428,6 @@ class Analyzer {
   }
 
  private:
-  struct Summary {
-    Kind ret = Kind::unknown;
-    std::vector<Kind> outs;
-  };
   struct Frame {
     int function = -1;
     std::unordered_map<std::string, int> scope;  // name -> variable
@@ -390,11 +458,23 @@ class Analyzer {
 
   int new_variable(Variable v) {
     auto it = decl_var_.find(v.decl);
-    if (it != decl_var_.end()) return it->second;
+    if (it != decl_var_.end()) {
+      touch_variable(it->second);
+      return it->second;
+    }
     int id = static_cast<int>(m_.variables_.size());
     decl_var_[v.decl] = id;
+    if (run_) {
+      run_->created.push_back(v);
+      touched_variables_.emplace(id, std::nullopt);
+    }
     m_.variables_.push_back(std::move(v));
     return id;
+  }
+
+  std::string function_name(int fn) const {
+    int name = declarator_name(t_.child_by_field(fn, "declarator"));
+    return name >= 0 ? std::string(t_.text(name)) : std::string();
   }
 
   void collect() {
@@ -504,6 +584,10 @@ class Analyzer {
   // ---- functions ----------------------------------------------------------------------------
   Summary analyze_function(int fn, const std::vector<Kind>& args) {
     auto key = std::make_pair(fn, args);
+    if (run_) {
+      run_->functions.push_back(fn);
+      if (touched_memo_.insert(key).second) run_->memo_before.emplace_back(key, memo_entry(key));
+    }
     if (auto it = memo_.find(key); it != memo_.end()) return it->second;
     if (active_.count(fn)) return {};
     active_.insert(fn);
@@ -546,6 +630,10 @@ class Analyzer {
         std::string n(t_.text(name));
         m_.returns_[n] = join(m_.returns_[n], s.ret);
         m_.return_types_[n] = std::string(type_of(fn));
+        if (run_) {
+          run_->returns.emplace_back(n, s.ret);
+          run_->return_types.emplace_back(n, m_.return_types_[n]);
+        }
       }
     }
     frame_ = outer;
@@ -616,11 +704,13 @@ class Analyzer {
       auto it = frame_->current.find(var);
       if (it != frame_->current.end()) return it->second;
     }
+    touch_variable(var);
     return m_.variables_[var].kind;
   }
 
   // `var` now holds `k`: remember it, and report a float-typed holder of absolute data.
   void hold(int var, Kind k, int site) {
+    touch_variable(var);
     if (auto it = named_outputs_.find(var); it != named_outputs_.end()) {
       it->second.stored = true;
       it->second.unclassified |= k == Kind::unknown;
@@ -639,6 +729,7 @@ class Analyzer {
   }
 
   void report(AbsoluteHolder h) {
+    if (run_) run_->reports.push_back(h);
     if (reported_.insert(h.site).second) m_.holders_.push_back(std::move(h));
   }
 
@@ -681,12 +772,22 @@ class Analyzer {
   Kind record(int id, Kind k) {
     auto [it, inserted] = m_.kinds_.emplace(id, k);
     if (!inserted) it->second = join(it->second, k);
+    if (run_) {
+      auto [r, added] = run_kinds_.emplace(id, k);
+      if (!added) r->second = join(r->second, k);
+    }
     return k;
+  }
+
+  void refer(int identifier, int var) {
+    m_.refs_[identifier] = var;
+    if (run_) run_->refs.emplace_back(identifier, m_.variables_[var].decl);
   }
 
   Kind eval(int id, int depth) {
     if (depth > kMaxDepth) {
       m_.too_deep_.push_back(id);
+      if (run_) run_->too_deep.push_back(id);
       return Kind::unknown;
     }
     return record(id, eval_node(id, depth + 1));
@@ -737,7 +838,7 @@ class Analyzer {
     std::string_view name = t_.text(id);
     int var = lookup(name);
     if (var >= 0) {
-      m_.refs_[id] = var;
+      refer(id, var);
       return current(var);
     }
     if (auto k = source_kind(Path{{std::string(name), false}})) return *k;
@@ -760,7 +861,7 @@ class Analyzer {
     if (base >= 0 && t_.is(base, "identifier") && block_instances_.count(std::string(t_.text(base)))) {
       int var = lookup(name);
       if (var >= 0) {
-        m_.refs_[field] = var;
+        refer(field, var);
         return current(var);
       }
     }
@@ -773,8 +874,13 @@ class Analyzer {
       if ((name == "w" || name == "a") && base_kind != Kind::unknown) return Kind::local;
       return base_kind;
     }
-    auto it = field_kinds_.find(owner_of(base) + "." + name);
-    if (it == field_kinds_.end()) it = field_kinds_.find("." + name);
+    std::string by_owner = owner_of(base) + "." + name;
+    touch_field(by_owner);
+    auto it = field_kinds_.find(by_owner);
+    if (it == field_kinds_.end()) {
+      touch_field("." + name);
+      it = field_kinds_.find("." + name);
+    }
     return it != field_kinds_.end() ? it->second : Kind::unknown;
   }
 
@@ -993,6 +1099,7 @@ class Analyzer {
       while (d >= 0 && !t_.is(d, "function_declarator")) d = t_.child_by_field(d, "declarator");
       int list = d >= 0 ? t_.child_by_field(d, "parameters") : -1;
       if (list >= 0 && t_.named_children(list).size() == args.size()) fn = candidate;
+      if (run_) run_->functions.push_back(candidate);
     }
     bool interesting = std::any_of(kinds.begin(), kinds.end(), [](Kind k) { return k != Kind::unknown && k != Kind::local; });
     Summary s = analyze_function(fn, interesting ? kinds : std::vector<Kind>{});
@@ -1079,7 +1186,7 @@ class Analyzer {
     if (t_.is(lhs, "identifier")) {
       int var = lookup(t_.text(lhs));
       if (var >= 0) {
-        m_.refs_[lhs] = var;
+        refer(lhs, var);
         hold(var, k, -1);
       }
       return;
@@ -1093,8 +1200,9 @@ class Analyzer {
       // M[3] = vec4(0, 0, 0, 1): the translation of a matrix is cleared, and it only rotates now
       // (the relative-to-eye pattern of globe engines).
       if (var >= 0 && is_matrix(current(var)) && index >= 0 && t_.text(index) == "3" && !holds_absolute(k)) {
-        m_.refs_[base] = var;
+        refer(base, var);
         m_.cleared_.insert(var);
+        if (run_) run_->cleared.push_back(m_.variables_[var].decl);
         if (frame_) frame_->current[var] = Kind::rotation_matrix;
         return;
       }
@@ -1111,6 +1219,8 @@ class Analyzer {
       return;
     }
     std::string owner = owner_of(base);
+    touch_field(owner + "." + name);
+    touch_field("." + name);
     Kind& by_owner = field_kinds_[owner + "." + name];
     by_owner = join(by_owner, k);
     Kind& by_name = field_kinds_["." + name];
@@ -1131,10 +1241,179 @@ class Analyzer {
       report({AbsoluteHolder::What::field, lhs, std::string(t_.text(lhs)), type, k});
   }
 
+  // ---- replaying the document's last model (ModelReuse) ------------------------------------
+  // This model's log, when the document keeps one; the last model's, when it ran on the tree this
+  // tree's parse edited, with the same data and context, and the declarations outside functions
+  // made the same variables.
+  void prepare_reuse() {
+    if (!context_.reuse) return;
+    log_ = std::make_unique<ModelReuse::Log>();
+    log_->tree = t_.number;
+    log_->data = &d_;
+    log_->includes = inc_;
+    log_->names_as_evidence = m_.names_as_evidence_;
+    log_->plain_names = m_.plain_names_;
+    log_->era = m_.era_;
+    log_->collected = m_.variables_;
+    log_->function_order = function_order_;
+    for (int fn : function_order_) log_->function_names.push_back(function_name(fn));
+    auto it = context_.reuse->logs_.find(context_.variant);
+    if (it == context_.reuse->logs_.end() || t_.reused_from == 0) return;
+    ModelReuse::Log& old = *it->second;
+    if (old.tree != t_.reused_from || old.data != &d_ || old.includes != inc_ || old.names_as_evidence != m_.names_as_evidence_ ||
+        old.plain_names != m_.plain_names_ || old.era != m_.era_)
+      return;
+    to_old_.assign(t_.nodes.size(), kGone);
+    for (const SyntaxTree::Reused& r : t_.reused) {
+      if (to_new_.size() < static_cast<size_t>(r.there + r.count)) to_new_.resize(r.there + r.count, kGone);
+      for (int32_t k = 0; k < r.count; ++k) {
+        to_old_[r.here + k] = r.there + k;
+        to_new_[r.there + k] = r.here + k;
+      }
+    }
+    if (old.collected.size() != m_.variables_.size()) return;
+    for (size_t i = 0; i < old.collected.size(); ++i)
+      if (!(moved(old.collected[i]) == m_.variables_[i])) return;
+    // The same functions by name in the same order (an edited one has no old node).
+    if (old.function_names != log_->function_names) return;
+    for (size_t i = 0; i < function_order_.size(); ++i)
+      if (new_id(old.function_order[i]) != function_order_[i] && (new_id(old.function_order[i]) >= 0 || to_old_[function_order_[i]] >= 0))
+        return;
+    old_ = &old;
+  }
+
+  static constexpr int kGone = -2;  // a node of the last tree this tree does not have
+  int new_id(int old) const { return old < 0 ? old : static_cast<size_t>(old) < to_new_.size() ? to_new_[old] : kGone; }
+
+  // A variable of the last model as this tree has it (node ids moved).
+  Variable moved(Variable v) const {
+    for (int* n : {&v.decl, &v.declaration, &v.function, &v.init, &v.block}) *n = new_id(*n);
+    return v;
+  }
+
+  VariableState variable_state(int var) const {
+    auto it = named_outputs_.find(var);
+    return {m_.variables_[var].kind, it != named_outputs_.end() ? std::optional<NamedOutput>(it->second) : std::nullopt};
+  }
+
+  std::optional<Summary> memo_entry(const MemoKey& key) const {
+    auto it = memo_.find(key);
+    return it != memo_.end() ? std::optional<Summary>(it->second) : std::nullopt;
+  }
+
+  std::optional<Kind> field_kind(const std::string& key) const {
+    auto it = field_kinds_.find(key);
+    return it != field_kinds_.end() ? std::optional<Kind>(it->second) : std::nullopt;
+  }
+
+  // The first time the analysis being recorded reads or changes a part of the state: as it was.
+  void touch_variable(int var) const {
+    if (run_) touched_variables_.emplace(var, variable_state(var));
+  }
+  void touch_field(const std::string& key) {
+    if (run_ && touched_fields_.insert(key).second) run_->fields_before.emplace_back(key, field_kind(key));
+  }
+
+  void begin_run() {
+    if (!log_) return;
+    current_run_ = {};
+    run_ = &current_run_;
+  }
+
+  void end_run(int fn) {
+    if (!run_) return;
+    for (const auto& [var, before] : touched_variables_) {
+      run_->variables_before.emplace_back(m_.variables_[var].decl, before);
+      run_->variables_after.emplace_back(m_.variables_[var].decl, variable_state(var));
+    }
+    for (const MemoKey& key : touched_memo_)
+      if (auto s = memo_entry(key)) run_->memo_after.emplace_back(key, *s);
+    for (const std::string& key : touched_fields_)
+      if (auto k = field_kind(key)) run_->fields_after.emplace_back(key, *k);
+    run_->kinds.assign(run_kinds_.begin(), run_kinds_.end());
+    touched_variables_.clear();
+    touched_memo_.clear();
+    touched_fields_.clear();
+    run_kinds_.clear();
+    log_->runs[fn] = std::move(current_run_);
+    run_ = nullptr;
+  }
+
+  // The last model's analysis of this function, applied to this one, when everything it read is
+  // as it was: the functions it read are unchanged (copied from the last tree) and the state it
+  // touched holds what it held then.
+  bool replay(int fn) {
+    if (!old_ || to_old_[fn] < 0) return false;
+    auto found = old_->runs.find(to_old_[fn]);
+    if (found == old_->runs.end()) return false;
+    const RunLog& r = found->second;
+    auto memo_key = [&](const MemoKey& key) { return MemoKey{new_id(key.first), key.second}; };
+    auto variable = [&](int decl) {
+      auto it = decl_var_.find(new_id(decl));
+      return it != decl_var_.end() ? it->second : -1;
+    };
+    for (int f : r.functions)
+      if (new_id(f) < 0) return false;
+    for (const auto& [decl, before] : r.variables_before) {
+      if (new_id(decl) < 0) return false;
+      int var = variable(decl);
+      if (before ? var < 0 || !(variable_state(var) == *before) : var >= 0) return false;
+    }
+    for (const auto& [key, before] : r.memo_before)
+      if (memo_entry(memo_key(key)) != before) return false;
+    for (const auto& [key, before] : r.fields_before)
+      if (field_kind(key) != before) return false;
+
+    // Valid: the log moves to this model, its nodes renumbered for this tree, and is applied.
+    RunLog now = std::move(found->second);
+    for (std::vector<int>* nodes : {&now.functions, &now.too_deep, &now.cleared})
+      for (int& n : *nodes) n = new_id(n);
+    for (Variable& v : now.created) v = moved(std::move(v));
+    for (auto& [decl, state] : now.variables_before) decl = new_id(decl);
+    for (auto& [decl, state] : now.variables_after) decl = new_id(decl);
+    for (auto& [key, summary] : now.memo_before) key.first = new_id(key.first);
+    for (auto& [key, summary] : now.memo_after) key.first = new_id(key.first);
+    for (auto& [node, k] : now.kinds) node = new_id(node);
+    for (auto& [identifier, decl] : now.refs) identifier = new_id(identifier), decl = new_id(decl);
+    for (AbsoluteHolder& h : now.reports) h.site = new_id(h.site);
+
+    auto here = [&](int decl) { return decl_var_.at(decl); };
+    for (const Variable& v : now.created) new_variable(v);
+    for (const auto& [decl, after] : now.variables_after) {
+      int var = here(decl);
+      m_.variables_[var].kind = after.kind;
+      if (after.output) named_outputs_[var] = *after.output;
+    }
+    for (const auto& [key, after] : now.memo_after) memo_[key] = after;
+    for (const auto& [key, after] : now.fields_after) field_kinds_[key] = after;
+    for (const auto& [node, k] : now.kinds) {
+      auto [it, inserted] = m_.kinds_.emplace(node, k);
+      if (!inserted) it->second = join(it->second, k);
+    }
+    for (const auto& [identifier, decl] : now.refs) m_.refs_[identifier] = here(decl);
+    for (const AbsoluteHolder& h : now.reports) report(h);
+    m_.too_deep_.insert(m_.too_deep_.end(), now.too_deep.begin(), now.too_deep.end());
+    for (int decl : now.cleared) m_.cleared_.insert(here(decl));
+    for (const auto& [name, k] : now.returns) m_.returns_[name] = join(m_.returns_[name], k);
+    for (const auto& [name, type] : now.return_types) m_.return_types_[name] = type;
+    if (log_) log_->runs[fn] = std::move(now);
+    return true;
+  }
+
   WorldModel& m_;
   const SyntaxTree& t_;
   const WorldData& d_;
   const FileSummary* inc_;
+  const ModelContext& context_;
+  std::unique_ptr<ModelReuse::Log> log_;
+  ModelReuse::Log* old_ = nullptr;  // its runs move to log_ as they are replayed
+  std::vector<int> to_old_, to_new_;  // node ids between the last tree and this one (kGone: none)
+  RunLog current_run_;
+  RunLog* run_ = nullptr;  // the top-level analysis being recorded
+  mutable std::unordered_map<int, std::optional<VariableState>> touched_variables_;
+  std::set<MemoKey> touched_memo_;
+  std::set<std::string> touched_fields_;
+  std::unordered_map<int, Kind> run_kinds_;
   Frame* frame_ = nullptr;
   std::unordered_map<std::string, std::vector<int>> functions_;
   std::vector<int> function_order_;
@@ -1149,10 +1428,6 @@ class Analyzer {
   std::set<int> reported_;
   std::unordered_map<std::string, std::optional<Kind>> source_cache_;
   // GLSL stage outputs named as world-space data, and what the file stores into them.
-  struct NamedOutput {
-    bool stored = false, unclassified = false;
-    Kind stored_kind = Kind::unknown;  // joined over the stores
-  };
   std::map<int, NamedOutput> named_outputs_;
   // Included fields by name -> their one type ("" when types differ), built on first use.
   mutable std::optional<std::unordered_map<std::string, std::string>> include_field_by_name_;
@@ -1160,7 +1435,7 @@ class Analyzer {
 
 WorldModel::WorldModel(const SyntaxTree& tree, const WorldData& data, const ModelContext& context)
     : tree_(tree), data_(data), names_as_evidence_(context.names_as_evidence), plain_names_(context.plain_names), era_(context.era), includes_(context.includes) {
-  Analyzer(*this, context.includes).run();
+  Analyzer(*this, context).run();
   for (size_t i = 0; i < variables_.size(); ++i) {
     const Variable& v = variables_[i];
     if (v.decl >= 0) declared_at_.emplace(v.decl, static_cast<int>(i));

@@ -110,6 +110,7 @@ struct Variable {
   bool clip = false;      // declared with an SV_Position semantic: clip space
   std::string owner;      // for fields: the struct's name
   Kind kind = Kind::unknown;  // for uniforms: from the sources; otherwise the most absolute kind held
+  bool operator==(const Variable&) const = default;
 };
 
 // A float-typed place found holding absolute-world data.
@@ -145,6 +146,24 @@ struct FileSummary {
   void merge(const FileSummary& from);
 };
 
+// What the last models of one document did, function by function, kept so that the model of its
+// edited text replays each top-level function's analysis whose inputs the edit left as they were
+// (the function's own nodes and those of the functions it reached, and every part of the model's
+// state it read) rather than running it again: only what the edit can change is analysed again.
+// The result is the model a fresh analysis gives. One per document, for an editor's open ones.
+class ModelReuse {
+ public:
+  ModelReuse();
+  ModelReuse(const ModelReuse&) = delete;
+  ModelReuse& operator=(const ModelReuse&) = delete;
+  ~ModelReuse();
+  struct Log;
+
+ private:
+  friend class Analyzer;
+  std::map<int, std::unique_ptr<Log>> logs_;  // by variant
+};
+
 // What the model knows of a file besides its text.
 struct ModelContext {
   const FileSummary* includes = nullptr;  // what its #includes declare
@@ -155,6 +174,9 @@ struct ModelContext {
   bool plain_names = true;
   // Unreal code: the engine era its own code is written for (rules/world-space.json "engine").
   std::optional<UnrealEra> era;
+  // The document's last models (of trees this tree's parse edited), and this tree's variant.
+  ModelReuse* reuse = nullptr;
+  int variant = 0;
 };
 
 // Classifies every value of one parsed file. Function parameters and returns are followed within
@@ -192,6 +214,10 @@ class WorldModel {
   bool combined_with_translated(int var) const;
   // Nodes whose analysis was cut because they nest too deeply.
   const std::vector<int>& too_deep() const { return too_deep_; }
+  // The functions analysed (their definitions), and how many were replayed from the document's
+  // last model instead (ModelReuse).
+  const std::vector<int>& analysed_functions() const { return analysed_functions_; }
+  int replayed_functions() const { return replayed_functions_; }
   FileSummary summary() const;
   // The declared return type of a function of this file, or "".
   std::string function_return_type(const std::string& name) const;
@@ -220,6 +246,8 @@ class WorldModel {
   bool plain_names_ = true;
   std::optional<UnrealEra> era_;
   std::set<int> cleared_;  // matrices whose translation the code clears (M[3] = ...)
+  std::vector<int> analysed_functions_;
+  int replayed_functions_ = 0;
 
   const FileSummary* includes_ = nullptr;  // valid while the model is: the caller's summary
   // "name/arity" -> each overload's parameter variables in order (-1 where unnamed), built on first use.
