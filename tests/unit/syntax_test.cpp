@@ -42,20 +42,23 @@ std::string random_edit(const std::string& text, std::mt19937& rng) {
 // flattening) give exactly the nodes a fresh parse gives, variant by variant, edit after edit.
 TEST(ParseReuse, GivesTheTreeAFreshParseGives) {
   std::mt19937 rng(20261124);
+  std::vector<std::pair<std::string, std::string>> inputs;
   for (const char* file : {"corpus/ue4/DeferredLightPixelShaders.usf", "corpus/ue4/LocalVertexFactory.ush", "corpus/d3d/Terrain.hlsl",
-                           "corpus/glsl/forward.vert", "corpus/glsl/lighting.glsl", "corpus/negative/Suppressions.usf"}) {
-    std::string text = test::read(test::source_dir() + "/" + file);
+                           "corpus/glsl/forward.vert", "corpus/glsl/lighting.glsl", "corpus/negative/Suppressions.usf"})
+    inputs.emplace_back(file, test::read(test::source_dir() + "/" + file));
+  for (const auto& [file, original] : inputs) {
+    std::string text = original;
     Lang lang = lang_from_path(file).value();
     ParseReuse reuse;
     for (int edit = 0; edit < 150; ++edit) {
-      text = edit % 50 == 49 ? test::read(test::source_dir() + "/" + file) : random_edit(text, rng);
+      text = edit % 50 == 49 ? original : random_edit(text, rng);
       Source source(file, text);
       int variants = 1;
       for (int variant = 0; variant < variants; ++variant) {
         SyntaxTree reused = parse(source, lang, {nullptr, variant, 10.0, &reuse});
         SyntaxTree fresh = parse(source, lang, {nullptr, variant, 10.0, nullptr});
         variants = fresh.variants;
-        expect_same_tree(reused, fresh, std::string(file) + " edit " + std::to_string(edit) + " variant " + std::to_string(variant));
+        expect_same_tree(reused, fresh, file + " edit " + std::to_string(edit) + " variant " + std::to_string(variant));
         if (HasFatalFailure()) return;
       }
     }

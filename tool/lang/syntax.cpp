@@ -292,6 +292,12 @@ SyntaxTree parse(const Source& source, Lang lang, const MaskOptions& options) {
   }
   std::unique_ptr<TSTree, TreeDeleter> tree(
       ts_parser_parse_string(parser, last ? last->tree : nullptr, masked.text.data(), static_cast<uint32_t>(masked.text.size())));
+  // Where the text has a syntax error, an incremental parse can recover from it otherwise than a
+  // fresh one does (seen on Unreal's shaders): that text is parsed afresh.
+  if (tree && changes && ts_node_has_error(ts_tree_root_node(tree.get()))) {
+    changes.reset();
+    tree.reset(ts_parser_parse_string(parser, nullptr, masked.text.data(), static_cast<uint32_t>(masked.text.size())));
+  }
   if (!tree) {  // out of budget: the parser keeps its state for a resume that will not come
     ts_parser_reset(parser);
     out.timed_out = true;

@@ -79,8 +79,9 @@ class SyntaxTree {
 // The tree-sitter trees of one document's last parse (per language and variant), kept so that the
 // next parse of its edited text is tree-sitter's incremental one: the old tree is edited where the
 // text changed and only what the edit touches is parsed again; a top-level declaration outside
-// what tree-sitter reports changed is copied from the last flattening, not walked again. For an editor's
-// open documents; the result is the tree a fresh parse gives.
+// what tree-sitter reports changed is copied from the last flattening, not walked again. Text with
+// a syntax error is parsed afresh (tree-sitter's recovery can differ between the two). For an
+// editor's open documents; the result is the tree a fresh parse gives.
 class ParseReuse {
  public:
   ParseReuse() = default;

@@ -9,7 +9,7 @@ namespace lwc::checks {
 std::vector<int> nodes_of(const SyntaxTree& tree, std::string_view type) {
   std::vector<int> out;
   for (int id = 0; id < static_cast<int>(tree.nodes.size()); ++id)
-    if (type == tree.nodes[id].type) out.push_back(id);
+    if (names_equal(type, tree.nodes[id].type)) out.push_back(id);
   return out;
 }
 
