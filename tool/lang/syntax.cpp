@@ -155,10 +155,13 @@ class Flattener {
   void copy(const std::vector<Node>& from, int32_t first, int32_t count, int64_t shift, int32_t parent, const char* field) {
     auto base = static_cast<int32_t>(out_.nodes.size());
     auto moved = [&](int32_t id) { return id < 0 ? -1 : id - first + base; };
+    // The same declaration can sit at another depth now (an #if line around it typed or deleted).
+    int64_t deeper = int64_t{parent < 0 ? 0 : out_.nodes[parent].depth + 1} - from[first].depth;
     for (int32_t k = first; k < first + count; ++k) {
       Node n = from[k];
       n.begin = static_cast<uint32_t>(n.begin + shift);
       n.end = static_cast<uint32_t>(n.end + shift);
+      n.depth = static_cast<uint32_t>(n.depth + deeper);
       n.first_child = moved(n.first_child);
       n.next_sibling = k == first ? -1 : moved(n.next_sibling);
       n.parent = k == first ? parent : moved(n.parent);
@@ -202,9 +205,19 @@ struct Changes {
   }
 };
 
+// Preprocessor groups and blocks (`#if` arms, a masked cbuffer's `extern "C" { }`) hold
+// declarations as the file does: their children are reused one by one, to this depth.
+bool holds_declarations(const char* type) {
+  for (const char* t : {"preproc_if", "preproc_ifdef", "preproc_else", "preproc_elif", "linkage_specification", "declaration_list"})
+    if (std::strcmp(type, t) == 0) return true;
+  return false;
+}
+constexpr int kReuseDepth = 8;
+
 // Flattens `tree`. With `last` (the document's last flattening of this variant) and the changes
-// since, a top-level declaration no change touches keeps the structure it had, and is copied from
-// the last flattening rather than walked again; `last` then describes this flattening.
+// since, a declaration of the file (at the top level, or in a group or block that holds
+// declarations) no change touches keeps the structure it had, and is copied from the last
+// flattening rather than walked again; `last` then describes this flattening.
 void flatten(TSTree* tree, SyntaxTree& out, ParseReuse::Flat* last, const Changes* changes) {
   Flattener flat(out);
   TSTreeCursor cursor = ts_tree_cursor_new(ts_tree_root_node(tree));
@@ -213,27 +226,37 @@ void flatten(TSTree* tree, SyntaxTree& out, ParseReuse::Flat* last, const Change
     ts_tree_cursor_delete(&cursor);
     return;
   }
-  std::unordered_map<int64_t, size_t> earlier;  // a top-level node's first byte -> its index in last->tops
+  auto key = [](int64_t begin, int64_t end) { return (begin << 32) | end; };
+  std::unordered_map<int64_t, const ParseReuse::Flat::Top*> earlier;  // by first and last byte
   if (changes)
-    for (size_t i = 0; i < last->tops.size(); ++i) earlier.emplace(last->nodes[last->tops[i]].begin, i);
-  std::vector<int32_t> tops;
-  int32_t root = flat.add(cursor, -1);
-  for (bool more = ts_tree_cursor_goto_first_child(&cursor); more; more = ts_tree_cursor_goto_next_sibling(&cursor)) {
-    TSNode n = ts_tree_cursor_current_node(&cursor);
-    uint32_t begin = ts_node_start_byte(n), end = ts_node_end_byte(n);
-    auto first = static_cast<int32_t>(out.nodes.size());
-    auto it = changes && !changes->touch(begin, end) ? earlier.find(changes->before(begin)) : earlier.end();
-    const Node* old = it != earlier.end() ? &last->nodes[last->tops[it->second]] : nullptr;
-    if (old && names_equal(old->type, ts_node_type(n)) && old->end == changes->before(end)) {
-      int32_t old_end = it->second + 1 < last->tops.size() ? last->tops[it->second + 1] : static_cast<int32_t>(last->nodes.size());
-      flat.copy(last->nodes, last->tops[it->second], old_end - last->tops[it->second], int64_t{begin} - old->begin, root,
-                ts_tree_cursor_current_field_name(&cursor));
-      out.reused.push_back({first, last->tops[it->second], old_end - last->tops[it->second]});
-    } else {
-      flat.walk(cursor, root);
+    for (const auto& top : last->tops) earlier.emplace(key(last->nodes[top.first].begin, last->nodes[top.first].end), &top);
+  std::vector<ParseReuse::Flat::Top> tops;
+  // The children of the node under the cursor, each copied or walked (or, for a group that holds
+  // declarations, added and its children done alike); the cursor ends where it started.
+  auto children = [&](auto& self, int32_t parent, int depth) -> void {
+    for (bool more = ts_tree_cursor_goto_first_child(&cursor); more; more = ts_tree_cursor_goto_next_sibling(&cursor)) {
+      TSNode n = ts_tree_cursor_current_node(&cursor);
+      uint32_t begin = ts_node_start_byte(n), end = ts_node_end_byte(n);
+      auto first = static_cast<int32_t>(out.nodes.size());
+      auto it = changes && !changes->touch(begin, end) ? earlier.find(key(changes->before(begin), changes->before(end))) : earlier.end();
+      const ParseReuse::Flat::Top* old = it != earlier.end() ? it->second : nullptr;
+      if (old && names_equal(last->nodes[old->first].type, ts_node_type(n))) {
+        flat.copy(last->nodes, old->first, old->count, int64_t{begin} - last->nodes[old->first].begin, parent,
+                  ts_tree_cursor_current_field_name(&cursor));
+        out.reused.push_back({first, old->first, old->count});
+      } else if (depth < kReuseDepth && holds_declarations(ts_node_type(n))) {
+        int32_t group = flat.add(cursor, parent);
+        self(self, group, depth + 1);
+      } else {
+        flat.walk(cursor, parent);
+      }
+      auto count = static_cast<int32_t>(out.nodes.size()) - first;
+      if (count > 0) tops.push_back({first, count});
     }
-    if (static_cast<int32_t>(out.nodes.size()) > first) tops.push_back(first);
-  }
+    ts_tree_cursor_goto_parent(&cursor);
+  };
+  int32_t root = flat.add(cursor, -1);
+  children(children, root, 0);
   ts_tree_cursor_delete(&cursor);
   static std::atomic<uint64_t> parses{0};
   out.reused_from = last->number;
@@ -284,17 +307,19 @@ SyntaxTree parse(const Source& source, Lang lang, const MaskOptions& options) {
   TSParser* parser = thread_parser(lang);
   ts_parser_set_timeout_micros(parser, static_cast<uint64_t>(std::max(1e-6, options.max_parse_seconds) * 1e6));
   ParseReuse::Last* last = options.reuse ? &options.reuse->last_[{lang, options.variant}] : nullptr;
+  // Where the text has a syntax error, an incremental parse can recover from it otherwise than a
+  // fresh one does (seen on Unreal's shaders): a tree with an error is neither edited nor kept
+  // as one, and text with an error is parsed afresh.
   std::optional<Changes> changes;
-  if (last && last->tree) {
+  if (last && last->tree && !ts_node_has_error(ts_tree_root_node(last->tree))) {
     changes.emplace();
     changes->edit = edit_between(last->masked, masked.text);
     ts_tree_edit(last->tree, &changes->edit);
   }
   std::unique_ptr<TSTree, TreeDeleter> tree(
-      ts_parser_parse_string(parser, last ? last->tree : nullptr, masked.text.data(), static_cast<uint32_t>(masked.text.size())));
-  // Where the text has a syntax error, an incremental parse can recover from it otherwise than a
-  // fresh one does (seen on Unreal's shaders): that text is parsed afresh.
-  if (tree && changes && ts_node_has_error(ts_tree_root_node(tree.get()))) {
+      ts_parser_parse_string(parser, changes ? last->tree : nullptr, masked.text.data(), static_cast<uint32_t>(masked.text.size())));
+  bool broken = tree && ts_node_has_error(ts_tree_root_node(tree.get()));
+  if (broken && changes) {
     changes.reset();
     tree.reset(ts_parser_parse_string(parser, nullptr, masked.text.data(), static_cast<uint32_t>(masked.text.size())));
   }
@@ -315,7 +340,8 @@ SyntaxTree parse(const Source& source, Lang lang, const MaskOptions& options) {
     free(ranges);
     changes->ranges.emplace_back(changes->edit.start_byte, changes->edit.new_end_byte);
   }
-  flatten(tree.get(), out, last ? &last->flat : nullptr, changes ? &*changes : nullptr);
+  if (broken && last) last->flat = {};
+  flatten(tree.get(), out, last && !broken ? &last->flat : nullptr, changes ? &*changes : nullptr);
   if (last) {
     if (last->tree) ts_tree_delete(last->tree);
     last->tree = tree.release();

@@ -78,7 +78,7 @@ class SyntaxTree {
 
 // The tree-sitter trees of one document's last parse (per language and variant), kept so that the
 // next parse of its edited text is tree-sitter's incremental one: the old tree is edited where the
-// text changed and only what the edit touches is parsed again; a top-level declaration outside
+// text changed and only what the edit touches is parsed again; a declaration of the file outside
 // what tree-sitter reports changed is copied from the last flattening, not walked again. Text with
 // a syntax error is parsed afresh (tree-sitter's recovery can differ between the two). For an
 // editor's open documents; the result is the tree a fresh parse gives.
@@ -91,8 +91,11 @@ class ParseReuse {
 
   // A flattening (SyntaxTree::nodes) and where each top-level node starts in it.
   struct Flat {
+    struct Top {
+      int32_t first, count;  // a declaration's first node and how many nodes it has
+    };
     std::vector<Node> nodes;
-    std::vector<int32_t> tops;
+    std::vector<Top> tops;
     uint64_t number = 0;  // SyntaxTree::number
   };
 

@@ -1247,6 +1247,10 @@ class Analyzer {
   // made the same variables.
   void prepare_reuse() {
     if (!context_.reuse) return;
+    if (t_.number == 0) {  // a tree the next parse will not edit (lang/syntax.h): nothing to keep
+      context_.reuse->logs_.erase(context_.variant);
+      return;
+    }
     log_ = std::make_unique<ModelReuse::Log>();
     log_->tree = t_.number;
     log_->data = &d_;
