@@ -104,8 +104,8 @@ bool is_punctuation(const char* type) {
   return *type != 0;
 }
 
-// Builds the flattened tree in pre-order, from tree-sitter's nodes or, for a top-level
-// declaration tree-sitter reused from the last parse, from the last parse's flattened copy.
+// Builds the flattened tree in pre-order, from tree-sitter's nodes or, for a declaration no change
+// touched, from the last parse's flattening.
 class Flattener {
  public:
   explicit Flattener(SyntaxTree& out) : out_(out) {}

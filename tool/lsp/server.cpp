@@ -186,10 +186,10 @@ std::vector<size_t> line_starts(const std::string& text) {
   return starts;
 }
 
-// Bytes of the UTF-8 sequence that starts with `lead` (1 for a byte that starts none).
 // JSON text of a value. Text from the user's files may not be UTF-8: replaced, never a thrown dump.
 std::string json_text(const json& value) { return value.dump(-1, ' ', false, json::error_handler_t::replace); }
 
+// Bytes of the UTF-8 sequence that starts with `lead` (1 for a byte that starts none).
 size_t sequence_length(unsigned char lead) { return lead >= 0xF0 ? 4 : lead >= 0xE0 ? 3 : lead >= 0xC0 ? 2 : 1; }
 
 

@@ -769,13 +769,14 @@ class Analyzer {
     return g != globals_.end() ? g->second : -1;
   }
 
-  Kind record(int id, Kind k) {
-    auto [it, inserted] = m_.kinds_.emplace(id, k);
+  static void join_at(std::unordered_map<int, Kind>& kinds, int id, Kind k) {
+    auto [it, inserted] = kinds.emplace(id, k);
     if (!inserted) it->second = join(it->second, k);
-    if (run_) {
-      auto [r, added] = run_kinds_.emplace(id, k);
-      if (!added) r->second = join(r->second, k);
-    }
+  }
+
+  Kind record(int id, Kind k) {
+    join_at(m_.kinds_, id, k);
+    if (run_) join_at(run_kinds_, id, k);
     return k;
   }
 
@@ -1312,7 +1313,7 @@ class Analyzer {
 
   // The first time the analysis being recorded reads or changes a part of the state: as it was.
   void touch_variable(int var) const {
-    if (run_) touched_variables_.emplace(var, variable_state(var));
+    if (run_ && !touched_variables_.count(var)) touched_variables_.emplace(var, variable_state(var));
   }
   void touch_field(const std::string& key) {
     if (run_ && touched_fields_.insert(key).second) run_->fields_before.emplace_back(key, field_kind(key));
@@ -1390,17 +1391,14 @@ class Analyzer {
     }
     for (const auto& [key, after] : now.memo_after) memo_[key] = after;
     for (const auto& [key, after] : now.fields_after) field_kinds_[key] = after;
-    for (const auto& [node, k] : now.kinds) {
-      auto [it, inserted] = m_.kinds_.emplace(node, k);
-      if (!inserted) it->second = join(it->second, k);
-    }
+    for (const auto& [node, k] : now.kinds) join_at(m_.kinds_, node, k);
     for (const auto& [identifier, decl] : now.refs) m_.refs_[identifier] = here(decl);
     for (const AbsoluteHolder& h : now.reports) report(h);
     m_.too_deep_.insert(m_.too_deep_.end(), now.too_deep.begin(), now.too_deep.end());
     for (int decl : now.cleared) m_.cleared_.insert(here(decl));
     for (const auto& [name, k] : now.returns) m_.returns_[name] = join(m_.returns_[name], k);
     for (const auto& [name, type] : now.return_types) m_.return_types_[name] = type;
-    if (log_) log_->runs[fn] = std::move(now);
+    log_->runs[fn] = std::move(now);  // old_ is set only beside a log_
     return true;
   }
 
