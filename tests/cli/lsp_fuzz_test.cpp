@@ -1,6 +1,7 @@
 // The language server under random editing: 10,000 seeded edit sequences on corpus files, each
 // ending at a checkpoint (a request on the document), keep every diagnostic the server publishes
-// equal to a fresh analysis of the text the client holds at that version, as `lint` runs it.
+// equal to a fresh analysis of the text the client holds at that version, as `lint` runs it
+// (ranges, words, related places and what resolving its fixes needs).
 #include <gtest/gtest.h>
 
 #include <functional>
@@ -30,12 +31,24 @@ std::vector<Finding> fresh_lint(const std::string& path, const std::string& text
   return analyze(Source(path, text), options);
 }
 
-// The diagnostic a client should see for a finding of `text`.
-json expected_diagnostic(const std::string& text, const Finding& f) {
+// The diagnostic a client should see for the finding `index` of `text` at `version`.
+json expected_diagnostic(const std::string& text, const Finding& f, int version, size_t index) {
+  auto range = [&](Span span) { return json{{"start", position_of(text, span.begin)}, {"end", position_of(text, span.end)}}; };
+  json related = json::array();
+  for (const auto& [span, message] : f.related) related.push_back({{"range", range(span)}, {"message", message}});
   return {{"code", f.rule},
           {"severity", f.severity == Severity::error ? 1 : f.severity == Severity::warning ? 2 : 3},
           {"message", f.hint.empty() ? f.message : f.message + "\n" + f.hint},
-          {"range", {{"start", position_of(text, f.span.begin)}, {"end", position_of(text, f.span.end)}}}};
+          {"range", range(f.span)},
+          {"related", related},
+          {"data", {{"version", version}, {"finding", index}, {"fixes", f.fixes.size()}}}};
+}
+
+// What a published diagnostic says about where its value came from, as expected_diagnostic has it.
+json related_of(const json& diagnostic) {
+  json out = json::array();
+  for (const json& r : diagnostic.value("relatedInformation", json::array())) out.push_back({{"range", r["location"]["range"]}, {"message", r["message"]}});
+  return out;
 }
 
 TEST(LanguageServerFuzz, TenThousandEditSequencesKeepDiagnosticsEqualToAFreshLint) {
@@ -96,8 +109,9 @@ TEST(LanguageServerFuzz, TenThousandEditSequencesKeepDiagnosticsEqualToAFreshLin
       const json& got = published["diagnostics"];
       ASSERT_EQ(got.size(), findings.size()) << file << " version " << v << ":\n" << at;
       for (size_t i = 0; i < findings.size(); ++i) {
-        json want = expected_diagnostic(at, findings[i]);
-        for (const char* key : {"code", "severity", "message", "range"}) ASSERT_EQ(got[i][key], want[key]) << file << " version " << v << ", " << key;
+        json want = expected_diagnostic(at, findings[i], v, i);
+        for (const char* key : {"code", "severity", "message", "range", "data"}) ASSERT_EQ(got[i][key], want[key]) << file << " version " << v << ", " << key;
+        ASSERT_EQ(related_of(got[i]), want["related"]) << file << " version " << v;
       }
       ++compared;
     }

@@ -266,6 +266,11 @@ class Server {
   }
 
  private:
+  // A diagnostic as JSON text, in two parts: before its document version and after it.
+  struct DiagnosticText {
+    std::string before_version, after_version;
+  };
+
   struct Document {
     std::string uri;  // as the client names it
     fs::path path;
@@ -287,6 +292,13 @@ class Server {
     // The last "fix all" edit, for (analysis, unsafe): editors ask for code actions at every move.
     std::optional<std::pair<long, bool>> fix_all_for;
     std::optional<json> fix_all;
+    // The diagnostics last published, as text, with what their text was made of (diagnostics_text).
+    struct Sent {
+      std::vector<size_t> inputs;
+      std::vector<std::string> words;
+      DiagnosticText text;
+    };
+    mutable std::vector<Sent> sent;
   };
 
   static double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
@@ -533,9 +545,9 @@ class Server {
                             json_quoted(uri), d.version, diagnostics_text(d)));
   }
 
-  // A diagnostic as JSON text. Written directly rather than built as a json value: every edit
-  // sends every finding of the document again, and building them was a fifth of a keystroke's work.
-  std::string diagnostic_text(const Document& d, size_t index) const {
+  // Written directly rather than built as a json value: every edit sends every finding of the
+  // document again, and building them was a fifth of a keystroke's work.
+  DiagnosticText diagnostic_parts(const Document& d, size_t index) const {
     const Finding& f = d.findings[index];
     auto range_text = [&](Span span) {
       auto [line, column] = line_and_column(d, span.begin);
@@ -543,27 +555,70 @@ class Server {
       return fmt::format(R"({{"start":{{"line":{},"character":{}}},"end":{{"line":{},"character":{}}}}})", line, column, end_line, end_column);
     };
     int severity = f.severity == Severity::error ? 1 : f.severity == Severity::warning ? 2 : 3;
-    std::string out = fmt::format(
-        R"({{"range":{},"severity":{},"code":{},"codeDescription":{{"href":{}}},"source":"lwcport","message":{},"data":{{"version":{},"finding":{},"fixes":{}}})",
-        range_text(f.span), severity, json_quoted(f.rule), json_quoted(rule_doc_url(f.rule)), json_quoted(f.hint.empty() ? f.message : f.message + "\n" + f.hint),
-        d.version, index, f.fixes.size());
+    DiagnosticText out;
+    out.before_version = fmt::format(
+        R"({{"range":{},"severity":{},"code":{},"codeDescription":{{"href":{}}},"source":"lwcport","message":{},"data":{{"version":)",
+        range_text(f.span), severity, json_quoted(f.rule), json_quoted(rule_doc_url(f.rule)), json_quoted(f.hint.empty() ? f.message : f.message + "\n" + f.hint));
+    out.after_version = fmt::format(R"(,"finding":{},"fixes":{}}})", index, f.fixes.size());
     for (size_t i = 0; i < f.related.size(); ++i)
-      out += fmt::format(R"({}{{"location":{{"uri":{},"range":{}}},"message":{}}})", i == 0 ? ",\"relatedInformation\":[" : ",",
-                         json_quoted(d.uri), range_text(f.related[i].first), json_quoted(f.related[i].second));
-    out += f.related.empty() ? "}" : "]}";
+      out.after_version += fmt::format(R"({}{{"location":{{"uri":{},"range":{}}},"message":{}}})", i == 0 ? ",\"relatedInformation\":[" : ",",
+                                       json_quoted(d.uri), range_text(f.related[i].first), json_quoted(f.related[i].second));
+    out.after_version += f.related.empty() ? "}" : "]}";
     return out;
   }
 
+  std::string diagnostic_text(const Document& d, size_t index) const {
+    DiagnosticText parts = diagnostic_parts(d, index);
+    return parts.before_version + std::to_string(d.version) + parts.after_version;
+  }
+
   json diagnostic(const Document& d, size_t index) const { return json::parse(diagnostic_text(d, index)); }
+
+  // What a diagnostic's text is made of, but offsets: an edit moves the offsets of every finding
+  // after it while most keep their lines, columns and words, and their text is sent again as it was.
+  static std::vector<size_t> text_inputs(const Server& server, const Document& d, const Finding& f) {
+    std::vector<size_t> at;
+    auto add = [&](Span span) {
+      for (uint32_t offset : {span.begin, span.end}) {
+        auto [line, column] = server.line_and_column(d, offset);
+        at.push_back(line);
+        at.push_back(static_cast<size_t>(column));
+      }
+    };
+    add(f.span);
+    for (const auto& r : f.related) add(r.first);
+    at.push_back(static_cast<size_t>(f.severity));
+    at.push_back(f.fixes.size());
+    return at;
+  }
+  // Its rule, message, hint and related messages, in that order.
+  static std::vector<std::string_view> words(const Finding& f) {
+    std::vector<std::string_view> out{f.rule, f.message, f.hint};
+    for (const auto& r : f.related) out.push_back(r.second);
+    return out;
+  }
 
   std::string diagnostics_text(const Document& d) const {
     if (!d.failure.empty())
       return json_text(json::array({{{"range", range(d, {0, 0})}, {"severity", 1}, {"source", "lwcport"}, {"code", std::string(kInputRule)},
                                      {"message", "lwcport could not analyse this document: " + d.failure}}}));
+    std::vector<Document::Sent>& sent = d.sent;
+    sent.resize(d.findings.size());
     std::string out = "[";
+    std::string version = std::to_string(d.version);
     for (size_t i = 0; i < d.findings.size(); ++i) {
       if (i > 0) out += ',';
-      out += diagnostic_text(d, i);
+      std::vector<size_t> inputs = text_inputs(*this, d, d.findings[i]);
+      std::vector<std::string_view> now = words(d.findings[i]);
+      Document::Sent& s = sent[i];
+      if (s.inputs != inputs || !std::equal(s.words.begin(), s.words.end(), now.begin(), now.end())) {
+        s.text = diagnostic_parts(d, i);
+        s.inputs = std::move(inputs);
+        s.words.assign(now.begin(), now.end());
+      }
+      out += s.text.before_version;
+      out += version;
+      out += s.text.after_version;
     }
     return out + "]";
   }
