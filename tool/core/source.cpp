@@ -9,15 +9,15 @@ namespace lwc {
 
 Source::Source(std::string path, std::string text) : path_(std::move(path)), text_(std::move(text)) {
   bom_ = text_.size() >= 3 && std::memcmp(text_.data(), "\xEF\xBB\xBF", 3) == 0;
-  line_starts_.push_back(0);
-  ascii_lines_.push_back(1);
-  for (uint32_t i = 0; i < text_.size(); ++i) {
-    if (static_cast<unsigned char>(text_[i]) >= 0x80) ascii_lines_.back() = 0;
-    if (text_[i] == '\n') {
-      line_starts_.push_back(i + 1);
-      ascii_lines_.push_back(1);
-      if (i > 0 && text_[i - 1] == '\r') crlf_ = true;
-    }
+  // A line at a time (memchr): this runs on every keystroke in the language server.
+  for (size_t begin = 0;;) {
+    size_t end = text_.find('\n', begin);
+    size_t stop = end == std::string::npos ? text_.size() : end;
+    line_starts_.push_back(static_cast<uint32_t>(begin));
+    ascii_lines_.push_back(ascii_run(std::string_view(text_).substr(begin, stop - begin)) == stop - begin);
+    if (end == std::string::npos) break;
+    if (end > 0 && text_[end - 1] == '\r') crlf_ = true;
+    begin = end + 1;
   }
   if (bom_) ascii_lines_[0] = 0;
 }
@@ -110,8 +110,19 @@ std::optional<uint32_t> find_binary_marker(std::string_view text) {
   return static_cast<uint32_t>(static_cast<const char*>(nul) - text.data());
 }
 
+size_t ascii_run(std::string_view text) {
+  size_t i = 0;
+  for (uint64_t word; i + 8 <= text.size(); i += 8) {  // eight bytes at a time while no high bit is set
+    std::memcpy(&word, text.data() + i, 8);
+    if (word & 0x8080808080808080ull) break;
+  }
+  while (i < text.size() && static_cast<unsigned char>(text[i]) < 0x80) ++i;
+  return i;
+}
+
 std::optional<uint32_t> find_invalid_utf8(std::string_view text) {
-  for (size_t i = 0; i < text.size();) {
+  size_t i = 0;
+  while ((i += ascii_run(text.substr(i))) < text.size()) {
     size_t len = utf8_sequence(text, i);
     if (len == 0) return static_cast<uint32_t>(i);
     i += len;

@@ -49,6 +49,8 @@ class Source {
 
 // The first NUL byte in the first 8 KiB marks a binary file (as git and grep decide).
 std::optional<uint32_t> find_binary_marker(std::string_view text);
+// How many bytes at the start of `text` are ASCII.
+size_t ascii_run(std::string_view text);
 // Offset of the first byte that is not valid UTF-8, if any.
 std::optional<uint32_t> find_invalid_utf8(std::string_view text);
 // The length of the valid UTF-8 sequence that starts at byte `i`, or 0 when none does there.

@@ -181,6 +181,10 @@ class Inbox {
 // belongs to no column.
 std::vector<size_t> line_starts(const std::string& text) {
   std::vector<size_t> starts = {0};
+  if (text.find('\r') == std::string::npos) {  // the usual file: memchr finds its lines far faster than a byte loop
+    for (size_t at = text.find('\n'); at != std::string::npos; at = text.find('\n', at + 1)) starts.push_back(at + 1);
+    return starts;
+  }
   for (size_t i = 0; i < text.size(); ++i)
     if (text[i] == '\n' || (text[i] == '\r' && (i + 1 == text.size() || text[i + 1] != '\n'))) starts.push_back(i + 1);
   return starts;
