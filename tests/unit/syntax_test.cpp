@@ -65,5 +65,49 @@ TEST(ParseReuse, GivesTheTreeAFreshParseGives) {
   }
 }
 
+// What deepest_covering means, as the plain descent from the root reads it.
+int covering_by_descent(const SyntaxTree& t, uint32_t begin, uint32_t end) {
+  int node = 0;
+  for (bool deeper = true; deeper;) {
+    deeper = false;
+    for (int c = t.at(node).first_child; c >= 0; c = t.at(c).next_sibling) {
+      if (t.at(c).begin <= begin && end <= t.at(c).end && t.at(c).end > t.at(c).begin) {
+        node = c;
+        deeper = true;
+        break;
+      }
+    }
+  }
+  return node;
+}
+
+// On every node's span, on spans across nodes and on empty spans, of corpus files and of broken
+// edits of them (error nodes, missing tokens).
+TEST(SyntaxTree, DeepestCoveringIsTheDescentFromTheRoot) {
+  std::mt19937 rng(20261124);
+  int spans = 0;
+  for (const char* file : {"corpus/ue4/DeferredLightPixelShaders.usf", "corpus/ue5.4/EngineSpaces.usf", "corpus/glsl/lighting.glsl",
+                           "corpus/d3d/Terrain.hlsl"}) {
+    std::string text = test::read(test::source_dir() + "/" + file);
+    for (int edit = 0; edit < 30; ++edit, text = random_edit(text, rng)) {
+      Source source(file, text);
+      SyntaxTree t = parse(source, lang_from_path(file).value(), {nullptr, 0, 10.0, nullptr});
+      std::vector<Span> wanted;
+      for (size_t n = 0; n < t.nodes.size(); ++n) wanted.push_back(t.span(static_cast<int>(n)));
+      for (int k = 0; k < 200; ++k) {
+        uint32_t a = std::uniform_int_distribution<uint32_t>(0, static_cast<uint32_t>(text.size()))(rng);
+        uint32_t b = std::uniform_int_distribution<uint32_t>(0, static_cast<uint32_t>(text.size()))(rng);
+        wanted.push_back({std::min(a, b), std::max(a, b)});
+        wanted.push_back({a, a});
+      }
+      for (Span s : wanted) {
+        ASSERT_EQ(t.deepest_covering(s.begin, s.end), covering_by_descent(t, s.begin, s.end)) << file << " edit " << edit << " span " << s.begin << "-" << s.end;
+        ++spans;
+      }
+    }
+  }
+  EXPECT_GT(spans, 50000);
+}
+
 }  // namespace
 }  // namespace lwc

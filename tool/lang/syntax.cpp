@@ -53,6 +53,31 @@ std::vector<int> SyntaxTree::named_children(int id) const {
   return out;
 }
 
+int SyntaxTree::deepest_covering(uint32_t begin, uint32_t end) const {
+  if (nodes.empty()) return -1;
+  auto holds = [&](int n) { return nodes[n].begin <= begin && end <= nodes[n].end && nodes[n].end > nodes[n].begin; };
+  int node = 0;
+  if (begin < end) {
+    // Nodes are in pre-order, so the last one to begin by `begin` lies inside the deepest that
+    // holds the span: up from it is a holder (a wide span has one chain of holders, and the
+    // descent below finds the deepest) without walking the thousand declarations of a file.
+    auto after = std::upper_bound(nodes.begin(), nodes.end(), begin, [](uint32_t at, const Node& n) { return at < n.begin; });
+    for (node = static_cast<int>(after - nodes.begin()) - 1; node > 0 && !holds(node);) node = nodes[node].parent;
+    node = std::max(node, 0);
+  }
+  for (bool deeper = true; deeper;) {
+    deeper = false;
+    for (int c = nodes[node].first_child; c >= 0; c = nodes[c].next_sibling) {
+      if (holds(c)) {
+        node = c;
+        deeper = true;
+        break;
+      }
+    }
+  }
+  return node;
+}
+
 int SyntaxTree::ancestor(int id, std::string_view type) const {
   for (; id >= 0; id = nodes[id].parent)
     if (names_equal(type, nodes[id].type)) return id;

@@ -67,6 +67,9 @@ class SyntaxTree {
   // The first named child, or the n-th named child.
   int named_child(int id, int n = 0) const;
   std::vector<int> named_children(int id) const;
+  // The deepest node whose span holds [begin, end] (of the children that hold it, the first with
+  // any width), or -1 in an empty tree.
+  int deepest_covering(uint32_t begin, uint32_t end) const;
   // Nearest ancestor (or self) of the given type, or -1.
   int ancestor(int id, std::string_view type) const;
   // The identifier a declarator declares (through arrays, pointers, references, initialisers,

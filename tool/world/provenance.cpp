@@ -33,23 +33,6 @@ bool worth_tracing(Kind k) { return k != Kind::unknown && k != Kind::local && k 
 // The kinds' order of concern: what makes a value most absolute is what explains it.
 int concern(Kind k) { return holds_absolute(k) ? 3 : worth_tracing(k) ? 2 : k == Kind::unknown ? 0 : 1; }
 
-// The deepest node whose span holds [begin, end], descending from the root.
-int deepest_covering(const SyntaxTree& t, uint32_t begin, uint32_t end) {
-  if (t.nodes.empty()) return -1;
-  int node = 0;
-  for (bool deeper = true; deeper;) {
-    deeper = false;
-    for (int c = t.at(node).first_child; c >= 0; c = t.at(c).next_sibling) {
-      if (t.at(c).begin <= begin && end <= t.at(c).end && t.at(c).end > t.at(c).begin) {
-        node = c;
-        deeper = true;
-        break;
-      }
-    }
-  }
-  return node;
-}
-
 bool ends_a_value(const SyntaxTree& t, int node) {
   for (const char* type : {"expression_statement", "compound_statement", "function_definition", "declaration", "translation_unit",
                            "field_declaration", "parameter_declaration", "return_statement", "struct_specifier"})
@@ -336,14 +319,14 @@ int ProvenanceTracer::step_identifier(int node) {
 
 int value_node_at(const WorldModel& model, uint32_t offset) {
   const SyntaxTree& t = model.tree();
-  for (int node = deepest_covering(t, offset, offset); node >= 0 && !ends_a_value(t, node); node = t.at(node).parent)
+  for (int node = t.deepest_covering(offset, offset); node >= 0 && !ends_a_value(t, node); node = t.at(node).parent)
     if (value_kind(model, node) != Kind::unknown) return node;
   return -1;
 }
 
 int value_node_for(const WorldModel& model, Span span) {
   const SyntaxTree& t = model.tree();
-  for (int node = deepest_covering(t, span.begin, span.end); node >= 0 && t.span(node) == span; node = t.at(node).parent)
+  for (int node = t.deepest_covering(span.begin, span.end); node >= 0 && t.span(node) == span; node = t.at(node).parent)
     if (worth_tracing(value_kind(model, node)) || function_named_by(t, node) >= 0) return node;
   return -1;
 }
