@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bitset>
 #include <cctype>
 
 #include "lang/conditionals.h"
@@ -30,9 +31,13 @@ constexpr std::array kKeywords = {
 constexpr std::array kBlockKeywords = {"struct"sv, "class"sv, "cbuffer"sv, "tbuffer"sv, "namespace"sv,
                                        "enum"sv, "interface"sv, "layout"sv, "uniform"sv, "buffer"sv};
 
+// Every identifier of a file is looked up in these lists: the first byte is compared before the
+// rest (a memcmp per word of the same length was most of the masking's time).
 template <size_t N>
 bool one_of(std::string_view word, const std::array<std::string_view, N>& set) {
-  return std::find(set.begin(), set.end(), word) != set.end();
+  for (std::string_view s : set)
+    if (s.size() == word.size() && s[0] == word[0] && s == word) return true;
+  return false;
 }
 
 constexpr size_t kNone = SIZE_MAX;
@@ -44,6 +49,9 @@ class Masker {
          const MacroTable& learnt)
       : src_(src), out_(out), t_(std::move(tokens)), masked_(t_.size(), false), lang_(lang), table_(table), learnt_(learnt) {
     match_brackets();
+    for (const MacroTable* names : {&table_, &learnt_})
+      for (const auto& [name, use] : *names)
+        if (!name.empty()) macro_shapes_.set(shape(name));
   }
 
   void run() {
@@ -245,7 +253,10 @@ class Masker {
       out_.replace(t_[i].begin, w.size(), std::string(w.size(), '_'));
     return j;
   }
+  // A name's length and first byte, which most words share with no macro.
+  static size_t shape(std::string_view w) { return std::min<size_t>(w.size(), 63) * 64 + (static_cast<unsigned char>(w[0]) & 63); }
   std::optional<MacroUse> macro_use(std::string_view w) const {
+    if (!macro_shapes_.test(shape(w))) return std::nullopt;
     if (auto it = learnt_.find(w); it != learnt_.end()) return it->second;
     if (auto it = table_.find(w); it != table_.end()) return it->second;
     return std::nullopt;
@@ -401,6 +412,7 @@ class Masker {
   Lang lang_;
   const MacroTable& table_;
   const MacroTable& learnt_;
+  std::bitset<64 * 64> macro_shapes_;  // shape() of every macro name either table has
   std::vector<Scope> scopes_{Scope::file};
   bool statement_is_block_ = false, statement_has_parameters_ = false;
   int parens_ = 0;
