@@ -53,6 +53,15 @@ std::vector<int> SyntaxTree::named_children(int id) const {
   return out;
 }
 
+const std::vector<int>& SyntaxTree::of_type(std::string_view type) const {
+  for (const auto& [name, ids] : of_type_)
+    if (name == type) return ids;
+  std::vector<int> ids;
+  for (int id = 0; id < static_cast<int>(nodes.size()); ++id)
+    if (names_equal(type, nodes[id].type)) ids.push_back(id);
+  return of_type_.emplace_back(std::string(type), std::move(ids)).second;
+}
+
 int SyntaxTree::deepest_covering(uint32_t begin, uint32_t end) const {
   if (nodes.empty()) return -1;
   auto holds = [&](int n) { return nodes[n].begin <= begin && end <= nodes[n].end && nodes[n].end > nodes[n].begin; };

@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <optional>
 #include <string>
@@ -67,6 +68,9 @@ class SyntaxTree {
   // The first named child, or the n-th named child.
   int named_child(int id, int n = 0) const;
   std::vector<int> named_children(int id) const;
+  // Every node of a type, in pre-order (source order); each type is found once per tree, as
+  // several checks ask for the same one.
+  const std::vector<int>& of_type(std::string_view type) const;
   // The deepest node whose span holds [begin, end] (of the children that hold it, the first with
   // any width), or -1 in an empty tree.
   int deepest_covering(uint32_t begin, uint32_t end) const;
@@ -77,6 +81,9 @@ class SyntaxTree {
   int declarator_name(int declarator) const;
   // The index expression of a subscript (`M[3]`: the `3`), in both grammars, or -1.
   int subscript_index(int subscript) const;
+
+ private:
+  mutable std::deque<std::pair<std::string, std::vector<int>>> of_type_;  // a deque: what of_type returned stays put
 };
 
 // The tree-sitter trees of one document's last parse (per language and variant), kept so that the

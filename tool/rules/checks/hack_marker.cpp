@@ -3,6 +3,8 @@
 // pre-view translation), the translated twins compute the same thing at full precision.
 #include <fmt/format.h>
 
+#include <set>
+
 #include "rules/checks/util.h"
 
 namespace lwc::checks {
@@ -11,14 +13,15 @@ namespace {
 class HackMarker : public Check {
  public:
   explicit HackMarker(const RuleInfo& rule)
-      : markers_(rule.data.at("markers")), demotions_(string_list(rule.data, "demotions")), conversions_(rule.data.at("conversions")) {}
+      : markers_(rule.data.at("markers")), demotions_(string_list(rule.data, "demotions")), conversions_(rule.data.at("conversions")) {
+    for (const auto& [name, loss] : markers_.items()) marker_names_.insert(name);
+  }
 
   void run(const CheckContext& ctx) const override {
     const SyntaxTree& t = ctx.tree;
-    for (int id = 0; id < static_cast<int>(t.nodes.size()); ++id) {
-      if (!t.is(id, "identifier")) continue;
+    for (int id : nodes_of(t, "identifier")) {
+      if (!marker_names_.contains(t.text(id)) || is_definition_name(t, id)) continue;
       std::string name(t.text(id));
-      if (!markers_.contains(name) || is_definition_name(t, id)) continue;
       Finding& f = ctx.report(t.span(id), {{"marker", name}, {"loss", markers_.at(name).get<std::string>()}});
       if (matches_any(demotions_, name)) offer_fix(ctx, f, id);
       if (conversions_.contains(name)) offer_drop(ctx, f, id, conversions_.at(name).get<std::string>());
@@ -105,6 +108,7 @@ class HackMarker : public Check {
   }
 
   nlohmann::json markers_;               // marker -> what it loses
+  std::set<std::string, std::less<>> marker_names_;  // its keys: every identifier of a file is looked up
   std::vector<std::string> demotions_;  // markers that demote one value to float
   nlohmann::json conversions_;          // conversion marker -> the type prefix it converts to
 };

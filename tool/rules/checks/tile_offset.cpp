@@ -24,7 +24,9 @@ class TileOffset : public Check {
         mapping_(rule.data.value("mapping", nlohmann::json::object())),
         construct_(rule.data.value("constructors", nlohmann::json::object())),
         parts_(string_list(rule.data, "parts")),
-        kept_(string_list(rule.data, "kept-tile-offset")) {}
+        kept_(string_list(rule.data, "kept-tile-offset")) {
+    for (const auto& [from, to] : mapping_.items()) renames_.emplace(from, to.get<std::string>());
+  }
 
   void run(const CheckContext& ctx) const override {
     const SyntaxTree& t = ctx.tree;
@@ -116,22 +118,28 @@ class TileOffset : public Check {
       std::string written, renamed;
     };
     std::vector<Signature> all;
+    bool any_renamed = false;
     for (int fn : nodes_of(t, "function_definition")) {
       int d = t.child_by_field(fn, "declarator");
       while (d >= 0 && !t.is(d, "function_declarator")) d = t.child_by_field(d, "declarator");
       int params = d >= 0 ? t.child_by_field(d, "parameters") : -1;
       int name = d >= 0 ? t.declarator_name(d) : -1;
       if (params < 0 || name < 0) continue;
-      Signature sig{fn, std::string(t.text(name)) + "(", std::string(t.text(name)) + "("};
-      for (int p : t.named_children(params)) {
+      Signature sig{fn, std::string(t.text(name)) + "(", ""};
+      sig.renamed = sig.written;
+      for (int p = t.at(params).first_child; p >= 0; p = t.at(p).next_sibling) {
+        if (!t.at(p).named) continue;
         int type = t.child_by_field(p, "type");
-        std::string written = type >= 0 ? std::string(t.text(type)) : "";
-        sig.written += written + ",";
-        sig.renamed += mapping_.value(written, written) + ",";
+        std::string_view written = type >= 0 ? t.text(type) : std::string_view();
+        auto renamed = renames_.find(written);
+        any_renamed |= renamed != renames_.end();
+        (sig.written += written) += ',';
+        (sig.renamed += renamed != renames_.end() ? std::string_view(renamed->second) : written) += ',';
       }
-      all.push_back(sig);
+      all.push_back(std::move(sig));
     }
     std::map<int, std::string> out;
+    if (!any_renamed) return out;  // no signature names a tile/offset type
     for (const Signature& a : all) {
       if (a.renamed == a.written) continue;
       for (const Signature& b : all)
@@ -145,6 +153,7 @@ class TileOffset : public Check {
 
   std::vector<std::string> types_, functions_, excluded_;
   nlohmann::json mapping_, construct_;
+  std::map<std::string, std::string, std::less<>> renames_;  // mapping_ as strings: looked up per parameter of every function
   std::vector<std::string> parts_, kept_;
 };
 

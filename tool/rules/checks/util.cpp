@@ -6,12 +6,7 @@
 
 namespace lwc::checks {
 
-std::vector<int> nodes_of(const SyntaxTree& tree, std::string_view type) {
-  std::vector<int> out;
-  for (int id = 0; id < static_cast<int>(tree.nodes.size()); ++id)
-    if (names_equal(type, tree.nodes[id].type)) out.push_back(id);
-  return out;
-}
+const std::vector<int>& nodes_of(const SyntaxTree& tree, std::string_view type) { return tree.of_type(type); }
 
 std::string_view call_name(const SyntaxTree& tree, int call) {
   int fn = tree.child_by_field(call, "function");

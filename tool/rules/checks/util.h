@@ -10,7 +10,7 @@
 namespace lwc::checks {
 
 // Every node of a type, in source order.
-std::vector<int> nodes_of(const SyntaxTree& tree, std::string_view type);
+const std::vector<int>& nodes_of(const SyntaxTree& tree, std::string_view type);
 // The called name of a call_expression when it is a plain identifier, else "".
 std::string_view call_name(const SyntaxTree& tree, int call);
 std::vector<int> call_arguments(const SyntaxTree& tree, int call);
