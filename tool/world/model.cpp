@@ -773,9 +773,15 @@ class Analyzer {
     auto [it, inserted] = kinds.emplace(id, k);
     if (!inserted) it->second = join(it->second, k);
   }
+  // The same on the model's kinds by node, where nothing recorded is Kind::unknown (its join with
+  // any kind is that kind).
+  void join_at_node(int id, Kind k) {
+    Kind& at = m_.kinds_[static_cast<size_t>(id)];
+    at = join(at, k);
+  }
 
   Kind record(int id, Kind k) {
-    join_at(m_.kinds_, id, k);
+    join_at_node(id, k);
     if (run_) join_at(run_kinds_, id, k);
     return k;
   }
@@ -1391,7 +1397,7 @@ class Analyzer {
     }
     for (const auto& [key, after] : now.memo_after) memo_[key] = after;
     for (const auto& [key, after] : now.fields_after) field_kinds_[key] = after;
-    for (const auto& [node, k] : now.kinds) join_at(m_.kinds_, node, k);
+    for (const auto& [node, k] : now.kinds) join_at_node(node, k);
     for (const auto& [identifier, decl] : now.refs) m_.refs_[identifier] = here(decl);
     for (const AbsoluteHolder& h : now.reports) report(h);
     m_.too_deep_.insert(m_.too_deep_.end(), now.too_deep.begin(), now.too_deep.end());
@@ -1437,17 +1443,19 @@ class Analyzer {
 
 WorldModel::WorldModel(const SyntaxTree& tree, const WorldData& data, const ModelContext& context)
     : tree_(tree), data_(data), names_as_evidence_(context.names_as_evidence), plain_names_(context.plain_names), era_(context.era), includes_(context.includes) {
+  kinds_.assign(tree.nodes.size(), Kind::unknown);
+  refs_.assign(tree.nodes.size(), -1);
+  declared_at_.assign(tree.nodes.size(), -1);
   Analyzer(*this, context).run();
   for (size_t i = 0; i < variables_.size(); ++i) {
     const Variable& v = variables_[i];
-    if (v.decl >= 0) declared_at_.emplace(v.decl, static_cast<int>(i));
+    if (v.decl >= 0 && declared_at_[v.decl] < 0) declared_at_[v.decl] = static_cast<int>(i);
     if (v.role == Variable::Role::global) globals_by_name_[v.name].push_back(static_cast<int>(i));
   }
 }
 
 int WorldModel::variable_declared_at(int identifier) const {
-  auto it = declared_at_.find(identifier);
-  return it != declared_at_.end() ? it->second : -1;
+  return identifier >= 0 && identifier < static_cast<int>(declared_at_.size()) ? declared_at_[identifier] : -1;
 }
 
 const std::vector<int>& WorldModel::globals_named(const std::string& name) const {
@@ -1459,8 +1467,7 @@ const std::vector<int>& WorldModel::globals_named(const std::string& name) const
 WorldModel::~WorldModel() = default;
 
 Kind WorldModel::kind(int node) const {
-  auto it = kinds_.find(node);
-  return it != kinds_.end() ? it->second : Kind::unknown;
+  return node >= 0 && node < static_cast<int>(kinds_.size()) ? kinds_[node] : Kind::unknown;
 }
 
 std::optional<Path> WorldModel::path(int node) const {
@@ -1740,15 +1747,14 @@ std::optional<ParameterUse> WorldModel::included_parameter_use(int call, int arg
 }
 
 int WorldModel::variable_at(int identifier) const {
-  auto it = refs_.find(identifier);
-  return it != refs_.end() ? it->second : -1;
+  return identifier >= 0 && identifier < static_cast<int>(refs_.size()) ? refs_[identifier] : -1;
 }
 
 std::vector<int> WorldModel::uses(int variable) const {
-  if (uses_.empty() && !refs_.empty()) {  // indexed once: the rules ask for many variables
+  if (uses_.empty() && !variables_.empty()) {  // indexed once: the rules ask for many variables
     uses_.resize(variables_.size());
-    for (auto [node, var] : refs_) uses_[var].push_back(node);
-    for (auto& list : uses_) std::sort(list.begin(), list.end());
+    for (int node = 0; node < static_cast<int>(refs_.size()); ++node)  // in node order: each list comes sorted
+      if (refs_[node] >= 0) uses_[refs_[node]].push_back(node);
   }
   return variable >= 0 && variable < static_cast<int>(uses_.size()) ? uses_[variable] : std::vector<int>{};
 }

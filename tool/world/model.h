@@ -233,11 +233,13 @@ class WorldModel {
   const SyntaxTree& tree_;
   const WorldData& data_;
   std::vector<Variable> variables_;
-  std::unordered_map<int, int> refs_;  // identifier node -> variable
-  std::unordered_map<int, int> declared_at_;                         // declarator identifier -> variable
+  // By node id (dense, as large as the tree: a keystroke builds a model of a 5,000-line file, and
+  // hash maps of its nodes were a tenth of that): -1 or Kind::unknown where there is nothing.
+  std::vector<int> refs_;         // identifier node -> variable
+  std::vector<int> declared_at_;  // declarator identifier -> variable
   std::unordered_map<std::string, std::vector<int>> globals_by_name_;  // filled once the analysis is done
   mutable std::vector<std::vector<int>> uses_;  // variable -> its identifier nodes, built on first use
-  std::unordered_map<int, Kind> kinds_;
+  std::vector<Kind> kinds_;
   std::vector<AbsoluteHolder> holders_;
   std::vector<int> too_deep_;
   std::map<std::string, Kind> returns_;
