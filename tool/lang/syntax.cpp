@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <cstring>
+#include <iterator>
 #include <optional>
 #include <memory>
 #include <unordered_map>
@@ -54,11 +55,27 @@ std::vector<int> SyntaxTree::named_children(int id) const {
 }
 
 const std::vector<int>& SyntaxTree::of_type(std::string_view type) const {
+  if (by_type_pointer_.empty() && !nodes.empty()) {
+    // One pass for every type: a node's type is one of the grammar's static strings.
+    std::unordered_map<const char*, std::vector<int>> index;
+    const char* last = nullptr;
+    std::vector<int>* list = nullptr;
+    for (int id = 0; id < static_cast<int>(nodes.size()); ++id) {
+      if (nodes[id].type != last) list = &index[last = nodes[id].type];
+      list->push_back(id);
+    }
+    by_type_pointer_.assign(std::make_move_iterator(index.begin()), std::make_move_iterator(index.end()));
+  }
   for (const auto& [name, ids] : of_type_)
     if (name == type) return ids;
+  // An alias can give one name two strings of the grammar: their nodes are merged in order.
   std::vector<int> ids;
-  for (int id = 0; id < static_cast<int>(nodes.size()); ++id)
-    if (names_equal(type, nodes[id].type)) ids.push_back(id);
+  for (const auto& [pointer, list] : by_type_pointer_) {
+    if (!names_equal(type, pointer)) continue;
+    std::vector<int> merged;
+    std::merge(ids.begin(), ids.end(), list.begin(), list.end(), std::back_inserter(merged));
+    ids = std::move(merged);
+  }
   return of_type_.emplace_back(std::string(type), std::move(ids)).second;
 }
 

@@ -83,6 +83,7 @@ class SyntaxTree {
   int subscript_index(int subscript) const;
 
  private:
+  mutable std::vector<std::pair<const char*, std::vector<int>>> by_type_pointer_;  // every node, by its type's string
   mutable std::deque<std::pair<std::string, std::vector<int>>> of_type_;  // a deque: what of_type returned stays put
 };
 
