@@ -6,6 +6,7 @@
 // warning: it is not error-free, but reassociating it loses the low words.
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <set>
@@ -91,7 +92,11 @@ class MissingPrecise : public Check {
     std::string no_precise = glsl_version_without_precise(t);
     std::set<int> reported_results;
     std::vector<Span> reported;
-    for (int id = 0; id < static_cast<int>(t.nodes.size()); ++id) {
+    // The sums, differences and calls, in source order (what is reported first covers what it holds).
+    std::vector<int> operations;
+    std::merge(nodes_of(t, "binary_expression").begin(), nodes_of(t, "binary_expression").end(), nodes_of(t, "call_expression").begin(),
+               nodes_of(t, "call_expression").end(), std::back_inserter(operations));
+    for (int id : operations) {
       bool candidate = (t.is(id, "binary_expression") && (op(t, id) == "+" || op(t, id) == "-")) ||
                        (t.is(id, "call_expression") && (matches_any(fma_, call_name(t, id)) || precise_call(t, id)));
       if (!candidate) continue;
@@ -159,16 +164,18 @@ class MissingPrecise : public Check {
       const Variable& v = ctx.world.variables()[var];
       if (v.init >= 0) d.assigned[static_cast<int>(var)].emplace_back(v.decl, v.init);
     }
-    for (int a = 0; a < static_cast<int>(t.nodes.size()); ++a) {
-      bool assign = t.is(a, "assignment_expression"), update = t.is(a, "update_expression");
-      if (!assign && !update) continue;
-      int target = strip(t, t.child_by_field(a, assign ? "left" : "argument"));
-      int var = target >= 0 && t.is(target, "identifier") ? ctx.world.variable_at(target) : -1;
-      if (var < 0) continue;
-      if (assign && op(t, a) == "=") d.assigned[var].emplace_back(a, t.child_by_field(a, "right"));
-      else d.mutated[var].push_back(a);
+    for (const char* type : {"assignment_expression", "update_expression"}) {  // each list is sorted below
+      bool assign = type[0] == 'a';
+      for (int a : nodes_of(t, type)) {
+        int target = strip(t, t.child_by_field(a, assign ? "left" : "argument"));
+        int var = target >= 0 && t.is(target, "identifier") ? ctx.world.variable_at(target) : -1;
+        if (var < 0) continue;
+        if (assign && op(t, a) == "=") d.assigned[var].emplace_back(a, t.child_by_field(a, "right"));
+        else d.mutated[var].push_back(a);
+      }
     }
     for (auto& [var, list] : d.assigned) std::sort(list.begin(), list.end());
+    for (auto& [var, list] : d.mutated) std::sort(list.begin(), list.end());
     return d;
   }
 
@@ -338,12 +345,14 @@ class MissingPrecise : public Check {
   std::vector<uint8_t> subtree_flags(const CheckContext& ctx, const Definitions& d) const {
     const SyntaxTree& t = ctx.tree;
     std::vector<uint8_t> flags(t.nodes.size(), 0);
+    std::vector<bool> assigned(ctx.world.variables().size(), false);  // d.assigned's keys, asked of every identifier
+    for (const auto& [var, list] : d.assigned) assigned[var] = true;
     for (int n = static_cast<int>(t.nodes.size()) - 1; n >= 0; --n) {  // children come after their parent
       if (!t.at(n).named && t.text(n) == "-") flags[n] |= kSubtracts;
       if (t.is(n, "call_expression") && precise_op(call_name(t, n)) == "subtract") flags[n] |= kSubtracts;
       if (t.is(n, "identifier")) {
         int var = ctx.world.variable_at(n);
-        if (var >= 0 && d.assigned.count(var)) flags[n] |= kSubstitutable;
+        if (var >= 0 && assigned[var]) flags[n] |= kSubstitutable;
       }
       if (int parent = t.at(n).parent; parent >= 0) flags[parent] |= flags[n];
     }

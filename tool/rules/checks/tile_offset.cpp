@@ -1,6 +1,8 @@
 // lwc-tile-offset: UE 5.0-5.3 tile/offset types and operations, superseded by DoubleFloat.
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <iterator>
 #include <map>
 
 #include "rules/checks/util.h"
@@ -31,7 +33,14 @@ class TileOffset : public Check {
   void run(const CheckContext& ctx) const override {
     const SyntaxTree& t = ctx.tree;
     std::vector<Site> sites;
-    for (int id = 0; id < static_cast<int>(t.nodes.size()); ++id) {
+    // Types, names and member reads, in source order (the first site without a counterpart is the
+    // one a blocker names).
+    std::vector<int> names, candidates;
+    std::merge(nodes_of(t, "type_identifier").begin(), nodes_of(t, "type_identifier").end(), nodes_of(t, "identifier").begin(),
+               nodes_of(t, "identifier").end(), std::back_inserter(names));
+    std::merge(names.begin(), names.end(), nodes_of(t, "field_expression").begin(), nodes_of(t, "field_expression").end(),
+               std::back_inserter(candidates));
+    for (int id : candidates) {
       bool type = t.is(id, "type_identifier");
       bool call = t.is(id, "identifier") && t.is(t.at(id).parent, "call_expression") &&
                   t.child_by_field(t.at(id).parent, "function") == id;
