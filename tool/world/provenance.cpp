@@ -65,8 +65,7 @@ Kind value_kind(const WorldModel& model, int node) {
 }
 
 ProvenanceTracer::ProvenanceTracer(const WorldModel& model) : m_(model), t_(model.tree()) {
-  for (int id = 0; id < static_cast<int>(t_.nodes.size()); ++id) {
-    if (!t_.is(id, "function_definition")) continue;
+  for (int id : t_.of_type("function_definition")) {
     int name = t_.declarator_name(t_.child_by_field(id, "declarator"));
     if (name >= 0) functions_.emplace(std::string(t_.text(name)), id);
   }
