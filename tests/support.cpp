@@ -1,5 +1,6 @@
 #include "support.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -21,6 +22,14 @@ Run run(const std::string& command) {
   while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
   int status = ::pclose(pipe);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+std::string random_edit(const std::string& text, std::mt19937& rng, const std::vector<std::string>& pieces) {
+  size_t at = std::uniform_int_distribution<size_t>(0, text.size())(rng);
+  size_t cut = std::uniform_int_distribution<int>(0, 3)(rng) == 0 ? std::uniform_int_distribution<size_t>(0, 40)(rng) : 0;
+  cut = std::min(cut, text.size() - at);
+  std::string piece = std::uniform_int_distribution<int>(0, 2)(rng) == 0 ? "" : pieces[rng() % pieces.size()];
+  return text.substr(0, at) + piece + text.substr(at + cut);
 }
 
 std::string read(const std::string& path) {

@@ -21,12 +21,8 @@ std::string describe(const Token& t) { return std::to_string(static_cast<int>(t.
 // What changes the lexer's state far beyond itself: comments opened and closed, quotes, a `#`
 // at a line start, continuations, line ends; and plain typing.
 std::string random_edit(const std::string& text, std::mt19937& rng) {
-  static const char* pieces[] = {" ", "x", "1e", "+", "\n", "/*", "*/", "//", "\"", "'", "#", "#if A\n", "\\", "\\\n", "::", ":", ".5"};
-  size_t at = std::uniform_int_distribution<size_t>(0, text.size())(rng);
-  size_t cut = std::uniform_int_distribution<int>(0, 3)(rng) == 0 ? std::uniform_int_distribution<size_t>(0, 30)(rng) : 0;
-  cut = std::min(cut, text.size() - at);
-  std::string piece = std::uniform_int_distribution<int>(0, 3)(rng) == 0 ? "" : pieces[rng() % std::size(pieces)];
-  return text.substr(0, at) + piece + text.substr(at + cut);
+  static const std::vector<std::string> pieces = {" ", "x", "1e", "+", "\n", "/*", "*/", "//", "\"", "'", "#", "#if A\n", "\\", "\\\n", "::", ":", ".5"};
+  return test::random_edit(text, rng, pieces);
 }
 
 TEST(Lexer, AnEditedTextLexedAgainWhereItChangedGivesAFreshLexingsTokens) {

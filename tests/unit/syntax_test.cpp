@@ -30,12 +30,8 @@ void expect_same_tree(const SyntaxTree& reused, const SyntaxTree& fresh, const s
 // Edits an editor makes: characters typed and deleted, lines split and joined, braces and
 // preprocessor lines that change the structure around them, whole declarations removed.
 std::string random_edit(const std::string& text, std::mt19937& rng) {
-  static const char* pieces[] = {" ", "x", "\n", ";", "{", "}", "(", "float3 P = Q;\n", "#if A\n", "#endif\n", "/*", "*/", "// c\n", "é"};
-  size_t at = std::uniform_int_distribution<size_t>(0, text.size())(rng);
-  size_t cut = std::uniform_int_distribution<int>(0, 3)(rng) == 0 ? std::uniform_int_distribution<size_t>(0, 40)(rng) : 0;
-  cut = std::min(cut, text.size() - at);
-  std::string piece = std::uniform_int_distribution<int>(0, 2)(rng) == 0 ? "" : pieces[rng() % std::size(pieces)];
-  return text.substr(0, at) + piece + text.substr(at + cut);
+  static const std::vector<std::string> pieces = {" ", "x", "\n", ";", "{", "}", "(", "float3 P = Q;\n", "#if A\n", "#endif\n", "/*", "*/", "// c\n", "é"};
+  return test::random_edit(text, rng, pieces);
 }
 
 // The document's last trees edited and reparsed (and top-level declarations copied from the last
