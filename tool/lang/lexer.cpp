@@ -96,10 +96,6 @@ struct Lexer {
   }
 };
 
-}  // namespace
-
-namespace {
-
 // How many bytes two texts share at their start, and then at their end (the two never overlap).
 std::pair<size_t, size_t> common_ends(std::string_view a, std::string_view b) {
   constexpr size_t kBlock = 256;  // memcmp over blocks first: a byte loop would cost more than the lexing saved

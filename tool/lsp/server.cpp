@@ -580,11 +580,11 @@ class Server {
 
   // What a diagnostic's text is made of, but offsets: an edit moves the offsets of every finding
   // after it while most keep their lines, columns and words, and their text is sent again as it was.
-  static std::vector<size_t> text_inputs(const Server& server, const Document& d, const Finding& f) {
+  std::vector<size_t> text_inputs(const Document& d, const Finding& f) const {
     std::vector<size_t> at;
     auto add = [&](Span span) {
       for (uint32_t offset : {span.begin, span.end}) {
-        auto [line, column] = server.line_and_column(d, offset);
+        auto [line, column] = line_and_column(d, offset);
         at.push_back(line);
         at.push_back(static_cast<size_t>(column));
       }
@@ -612,7 +612,7 @@ class Server {
     std::string version = std::to_string(d.version);
     for (size_t i = 0; i < d.findings.size(); ++i) {
       if (i > 0) out += ',';
-      std::vector<size_t> inputs = text_inputs(*this, d, d.findings[i]);
+      std::vector<size_t> inputs = text_inputs(d, d.findings[i]);
       std::vector<std::string_view> now = words(d.findings[i]);
       Document::Sent& s = sent[i];
       if (s.inputs != inputs || !std::equal(s.words.begin(), s.words.end(), now.begin(), now.end())) {

@@ -6,7 +6,6 @@
 // warning: it is not error-free, but reassociating it loses the low words.
 #include <algorithm>
 #include <cmath>
-#include <iterator>
 #include <map>
 #include <optional>
 #include <set>
@@ -93,10 +92,7 @@ class MissingPrecise : public Check {
     std::set<int> reported_results;
     std::vector<Span> reported;
     // The sums, differences and calls, in source order (what is reported first covers what it holds).
-    std::vector<int> operations;
-    std::merge(nodes_of(t, "binary_expression").begin(), nodes_of(t, "binary_expression").end(), nodes_of(t, "call_expression").begin(),
-               nodes_of(t, "call_expression").end(), std::back_inserter(operations));
-    for (int id : operations) {
+    for (int id : nodes_of(t, {"binary_expression", "call_expression"})) {
       bool candidate = (t.is(id, "binary_expression") && (op(t, id) == "+" || op(t, id) == "-")) ||
                        (t.is(id, "call_expression") && (matches_any(fma_, call_name(t, id)) || precise_call(t, id)));
       if (!candidate) continue;
@@ -164,18 +160,15 @@ class MissingPrecise : public Check {
       const Variable& v = ctx.world.variables()[var];
       if (v.init >= 0) d.assigned[static_cast<int>(var)].emplace_back(v.decl, v.init);
     }
-    for (const char* type : {"assignment_expression", "update_expression"}) {  // each list is sorted below
-      bool assign = type[0] == 'a';
-      for (int a : nodes_of(t, type)) {
-        int target = strip(t, t.child_by_field(a, assign ? "left" : "argument"));
-        int var = target >= 0 && t.is(target, "identifier") ? ctx.world.variable_at(target) : -1;
-        if (var < 0) continue;
-        if (assign && op(t, a) == "=") d.assigned[var].emplace_back(a, t.child_by_field(a, "right"));
-        else d.mutated[var].push_back(a);
-      }
+    for (int a : nodes_of(t, {"assignment_expression", "update_expression"})) {
+      bool assign = t.is(a, "assignment_expression");
+      int target = strip(t, t.child_by_field(a, assign ? "left" : "argument"));
+      int var = target >= 0 && t.is(target, "identifier") ? ctx.world.variable_at(target) : -1;
+      if (var < 0) continue;
+      if (assign && op(t, a) == "=") d.assigned[var].emplace_back(a, t.child_by_field(a, "right"));
+      else d.mutated[var].push_back(a);
     }
     for (auto& [var, list] : d.assigned) std::sort(list.begin(), list.end());
-    for (auto& [var, list] : d.mutated) std::sort(list.begin(), list.end());
     return d;
   }
 

@@ -1,8 +1,6 @@
 // lwc-tile-offset: UE 5.0-5.3 tile/offset types and operations, superseded by DoubleFloat.
 #include <fmt/format.h>
 
-#include <algorithm>
-#include <iterator>
 #include <map>
 
 #include "rules/checks/util.h"
@@ -35,12 +33,7 @@ class TileOffset : public Check {
     std::vector<Site> sites;
     // Types, names and member reads, in source order (the first site without a counterpart is the
     // one a blocker names).
-    std::vector<int> names, candidates;
-    std::merge(nodes_of(t, "type_identifier").begin(), nodes_of(t, "type_identifier").end(), nodes_of(t, "identifier").begin(),
-               nodes_of(t, "identifier").end(), std::back_inserter(names));
-    std::merge(names.begin(), names.end(), nodes_of(t, "field_expression").begin(), nodes_of(t, "field_expression").end(),
-               std::back_inserter(candidates));
-    for (int id : candidates) {
+    for (int id : nodes_of(t, {"type_identifier", "identifier", "field_expression"})) {
       bool type = t.is(id, "type_identifier");
       bool call = t.is(id, "identifier") && t.is(t.at(id).parent, "call_expression") &&
                   t.child_by_field(t.at(id).parent, "function") == id;

@@ -1,12 +1,25 @@
 #include "rules/checks/util.h"
 
+#include <algorithm>
 #include <cctype>
+#include <iterator>
 
 #include <fmt/format.h>
 
 namespace lwc::checks {
 
 const std::vector<int>& nodes_of(const SyntaxTree& tree, std::string_view type) { return tree.of_type(type); }
+
+std::vector<int> nodes_of(const SyntaxTree& tree, std::initializer_list<std::string_view> types) {
+  std::vector<int> out;
+  for (std::string_view type : types) {
+    const std::vector<int>& more = tree.of_type(type);
+    std::vector<int> merged;
+    std::merge(out.begin(), out.end(), more.begin(), more.end(), std::back_inserter(merged));
+    out = std::move(merged);
+  }
+  return out;
+}
 
 std::string_view call_name(const SyntaxTree& tree, int call) {
   int fn = tree.child_by_field(call, "function");

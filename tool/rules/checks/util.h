@@ -1,4 +1,5 @@
 #pragma once
+#include <initializer_list>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -11,6 +12,8 @@ namespace lwc::checks {
 
 // Every node of a type, in source order.
 const std::vector<int>& nodes_of(const SyntaxTree& tree, std::string_view type);
+// Every node of any of these types, in source order.
+std::vector<int> nodes_of(const SyntaxTree& tree, std::initializer_list<std::string_view> types);
 // The called name of a call_expression when it is a plain identifier, else "".
 std::string_view call_name(const SyntaxTree& tree, int call);
 std::vector<int> call_arguments(const SyntaxTree& tree, int call);
