@@ -24,6 +24,7 @@
 #include "project/config.h"
 #include "project/files.h"
 #include "project/includes.h"
+#include "cli/options.h"
 #include "cli/report.h"
 #include "cli/verify_report.h"
 #include "lsp/server.h"
@@ -45,177 +46,6 @@ namespace fs = std::filesystem;
 namespace lwc {
 
 namespace {
-
-constexpr const char* kUsage = R"(usage: lwcport <command> [options] [PATHS...]
-
-commands:
-  lint [PATHS...]     report world-space hazards and their fixes (folders recurse; default: .)
-  fix [PATHS...]      apply the safe fixes in place, then report what remains
-  verify [PATHS...]   run every function with a finding, as written and as each rewrite, on the
-                      Vulkan device (lavapipe) against a float64 reference: error and run time
-  verify --shaderlib  run every DoubleFloat operation on the Vulkan device (lavapipe) against a
-                      double-double reference and check the published error bounds
-  parse [PATHS...]    parse only and count syntax errors (the benchmark's baseline); with
-                      --verbose, each error's position and the text around it
-  rules               list the rules
-  lsp [--log FILE]    serve editors over the Language Server Protocol (stdio): diagnostics as
-                      you type, quick fixes, hover (docs/editors.md); --stdio is accepted
-
-lint and fix options:
-  --format text|json|sarif|github   output format (default: text)
-  --color auto|always|never         colour text output (default: auto)
-  --fail-on error|warning|note|none exit 1 when a finding is at least this severe (default: warning)
-  --select ID[,ID...]               run only these rules
-  --ignore ID[,ID...]               skip these rules
-  --lang hlsl|glsl                  analyse every file as this language
-  --jobs N                          worker threads (default: all cores)
-  --output FILE                     write the report to FILE instead of standard output
-  --scene FILE                      the scene profile: world extent, view distance, precision
-                                    (default: Unreal's full world, 2^43 cm, to 1/16 cm)
-  --strategy auto|translated|df     rewrite to translated world, DoubleFloat, or per site from
-                                    the scene profile (default: auto)
-  --explain                         print each scene decision with its numbers
-
-fix options:
-  --diff                            print a unified diff of the fixes and write nothing (exit 1
-                                    when there is something to fix, unless --fail-on none)
-  --unsafe-fixes                    apply the unsafe fixes too
-  --verify                          run each fixed file's functions on the Vulkan device against
-                                    the float64 reference first; apply only the files whose
-                                    rewrites all pass (the others are reported, unchanged)
-  --check-build                     compile each file before and after fixing (glslang; Unreal
-                                    code against its engine era's stub); a file whose original
-                                    compiled and whose fixed text does not is held back
-  --force                           replace a file that has other hard links too (the other
-                                    names keep the old content; without it such a file is left
-                                    unchanged, with the reason)
-
-verify options:
-  --format text|json                output format (default: text)
-  --output FILE                     write the report to FILE instead of standard output
-  --scene FILE                      the scene profile whose precision each variant must meet
-  --fail-on none                    exit 0 even when a rewrite fails or does not compile
-  --jobs N                          functions verified side by side, one driver process each
-                                    (default: all cores)
-  --timeout SECONDS                 stop a kernel that runs longer (default: 60); the driver
-                                    process is restarted and the other functions still run
-  --explain                         print each function's inputs: the role each is given (by the
-                                    world-space model's kind, else its name) and how it is filled
-  --version, --help
-)";
-
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-struct Options {
-  std::string command;
-  std::vector<std::string> paths;
-  ReportOptions report;
-  std::string color = "auto";
-  std::optional<Severity> fail_on = Severity::warning;
-  std::set<std::string> select, ignore;
-  std::optional<Lang> lang;
-  unsigned jobs = 0;
-  std::string output;
-  std::optional<Scene> scene;
-  Strategy strategy = Strategy::automatic;
-  bool diff = false, unsafe_fixes = false;
-  bool shaderlib = false;
-  bool verify = false;  // fix: apply only the rewrites that pass on the device
-  bool verbose = false;  // parse: list each syntax error with the text around it
-  bool check_build = false;  // fix: a file whose fix would break its build is held back
-  bool force = false;  // fix: replace files with other hard links too (splitting them)
-  double timeout_seconds = 60;  // per kernel on the device
-  std::string log_file;  // lsp: where the server logs
-};
-
-std::set<std::string> rule_list(const std::string& value, const char* flag) {
-  std::set<std::string> out;
-  std::stringstream ss(value);
-  std::string id;
-  while (std::getline(ss, id, ',')) {
-    if (id.empty()) continue;
-    if (!find_rule(id)) throw UsageError(fmt::format("{}: unknown rule id '{}' (see `lwcport rules`)", flag, id));
-    out.insert(id);
-  }
-  return out;
-}
-
-Options parse_options(const std::vector<std::string>& args) {
-  Options o;
-  size_t i = 0;
-  auto value = [&](const std::string& flag) -> std::string {
-    if (i + 1 >= args.size()) throw UsageError(flag + " needs a value");
-    return args[++i];
-  };
-  for (; i < args.size(); ++i) {
-    std::string a = args[i];
-    std::string inline_value;
-    if (a.rfind("--", 0) == 0 && a.find('=') != std::string::npos) {
-      inline_value = a.substr(a.find('=') + 1);
-      a = a.substr(0, a.find('='));
-    }
-    auto get = [&]() { return inline_value.empty() ? value(a) : inline_value; };
-    if (a == "--help" || a == "-h") o.command = "help";
-    else if (a == "--version") o.command = "version";
-    else if (a == "--format") {
-      std::string f = get();
-      if (f == "text") o.report.format = Format::text;
-      else if (f == "json") o.report.format = Format::json;
-      else if (f == "sarif") o.report.format = Format::sarif;
-      else if (f == "github") o.report.format = Format::github;
-      else throw UsageError("--format must be text, json, sarif or github");
-    } else if (a == "--color") {
-      o.color = get();
-      if (o.color != "auto" && o.color != "always" && o.color != "never") throw UsageError("--color must be auto, always or never");
-    } else if (a == "--fail-on") {
-      std::string f = get();
-      Severity s;
-      if (f == "none") o.fail_on.reset();
-      else if (parse_severity(f, s)) o.fail_on = s;
-      else throw UsageError("--fail-on must be error, warning, note or none");
-    } else if (a == "--select") o.select = rule_list(get(), "--select");
-    else if (a == "--ignore") o.ignore = rule_list(get(), "--ignore");
-    else if (a == "--lang") {
-      o.lang = parse_lang(get());
-      if (!o.lang) throw UsageError("--lang must be hlsl or glsl");
-    } else if (a == "--jobs" || a == "-j") {
-      std::string n = get();
-      char* end = nullptr;
-      long v = std::strtol(n.c_str(), &end, 10);
-      if (*end || v < 1 || v > 1024) throw UsageError("--jobs must be a number from 1 to 1024");
-      o.jobs = static_cast<unsigned>(v);
-    } else if (a == "--output" || a == "-o") o.output = get();
-    else if (a == "--scene") o.scene = load_scene(get());
-    else if (a == "--strategy") {
-      auto s = parse_strategy(get());
-      if (!s) throw UsageError("--strategy must be auto, translated or df");
-      o.strategy = *s;
-    } else if (a == "--explain") o.report.explain = true;
-    else if (a == "--diff") o.diff = true;
-    else if (a == "--unsafe-fixes") o.unsafe_fixes = true;
-    else if (a == "--shaderlib") o.shaderlib = true;
-    else if (a == "--verify") o.verify = true;
-    else if (a == "--verbose" || a == "-v") o.verbose = true;
-    else if (a == "--check-build") o.check_build = true;
-    else if (a == "--force") o.force = true;
-    else if (a == "--log") o.log_file = get();
-    else if (a == "--stdio") continue;  // editors' clients pass it; stdio is the only transport
-    else if (a == "--timeout") {
-      std::string n = get();
-      char* end = nullptr;
-      double v = std::strtod(n.c_str(), &end);
-      if (*end || !(v > 0) || v > 86400) throw UsageError("--timeout must be a number of seconds, above 0");
-      o.timeout_seconds = v;
-    }
-    else if (a.size() > 1 && a[0] == '-') throw UsageError("unknown option " + a);
-    else if (o.command.empty()) o.command = a;
-    else o.paths.push_back(a);
-  }
-  if (o.command.empty()) throw UsageError("no command given");
-  return o;
-}
 
 // Runs `work(i)` for every index on `jobs` threads; results land in per-index slots, so output
 // order never depends on scheduling.
@@ -285,7 +115,8 @@ LoadedFile load(const InputFile& file, const Options& o, IncludeSummaries& inclu
   };
   if (!file.error.empty())
     return problem(input_finding(Severity::error, 0, "cannot read: " + file.error, "check the path and its permissions"));
-  ReadResult r = read_file(file.path, config.max_file_bytes);
+  ReadResult r = file.content ? ReadResult{*file.content, "", file.content->size(), file.content->size() > config.max_file_bytes}
+                              : read_file(file.path, config.max_file_bytes);
   if (!r.error.empty())
     return problem(input_finding(Severity::error, 0, "cannot read: " + r.error, "check the path and its permissions"));
   if (r.too_large) return problem(too_large_finding(r.size, config.max_file_bytes));
@@ -369,17 +200,39 @@ LintOrder includes_first(const std::vector<InputFile>& files, IncludeSummaries& 
   return out;
 }
 
-// The report goes to standard output or --output; nullopt (after an error message) if that
-// file cannot be opened.
+// Where each file's settings come from: the nearest .lwcport.json, the one --config names, or
+// none (--isolated).
+std::unique_ptr<ConfigFinder> config_finder(const Options& o) {
+  if (o.isolated) return std::make_unique<ConfigFinder>(std::make_shared<const ProjectConfig>());
+  if (!o.config_file.empty()) return std::make_unique<ConfigFinder>(ConfigFinder::read(o.config_file));
+  return std::make_unique<ConfigFinder>();
+}
+
+// Colour under --color auto: FORCE_COLOR or CLICOLOR_FORCE (set, not "0") force it, NO_COLOR
+// turns it off, else a terminal gets it.
+bool colour(const Options& o) {
+  if (o.color != "auto") return o.color == "always";
+  auto set = [](const char* name) {
+    const char* v = std::getenv(name);
+    return v && *v && std::string_view(v) != "0";
+  };
+  if (set("FORCE_COLOR") || set("CLICOLOR_FORCE")) return true;
+  const char* no_color = std::getenv("NO_COLOR");
+  if (no_color && *no_color) return false;
+  return o.output.empty() && ::isatty(STDOUT_FILENO);
+}
+
+// The report goes to standard output or --output; false (after an error message) if that file
+// cannot be opened.
 struct ReportTarget {
   std::ofstream file;
   std::ostream* stream = nullptr;
 };
-bool open_target(const Options& o, std::ostream& out, std::ostream& err, ReportTarget& target, ReportOptions& ro) {
+bool open_target(const Options& o, ConfigFinder& configs, std::ostream& out, std::ostream& err, ReportTarget& target, ReportOptions& ro) {
   ro = o.report;
-  bool tty = o.output.empty() && ::isatty(STDOUT_FILENO) && !std::getenv("NO_COLOR");
-  ro.color = o.color == "always" || (o.color == "auto" && tty);
+  ro.color = colour(o);
   ro.working_dir = fs::current_path().string();
+  ro.help_uri_base = configs.for_dir(".")->help_uri_base;
   target.stream = &out;
   if (o.output.empty()) return true;
   target.file.open(o.output, std::ios::binary);
@@ -391,10 +244,26 @@ bool open_target(const Options& o, std::ostream& out, std::ostream& err, ReportT
   return true;
 }
 
+// Standard input as a file named by --stdin-filename (its language, config and suppressions), or `-`.
+InputFile standard_input(const Options& o, ConfigFinder& configs) {
+  if (o.stdin_filename.empty() && !o.lang)
+    throw UsageError("reading standard input needs --stdin-filename NAME (or --lang) to know its language", o.command);
+  InputFile file;
+  file.path = o.stdin_filename.empty() ? fs::path("-") : fs::path(o.stdin_filename);
+  file.display = o.stdin_filename.empty() ? "-" : o.stdin_filename;
+  fs::path dir = file.path.has_parent_path() ? file.path.parent_path() : fs::path(".");
+  file.config = configs.for_dir(dir);
+  std::ostringstream text;
+  text << std::cin.rdbuf();
+  file.content = text.str();
+  return file;
+}
+
 // The files to work on; each config's warnings are printed once, naming the config.
-std::vector<InputFile> input_files(const Options& o, std::ostream& err) {
-  ConfigFinder configs;
-  std::vector<InputFile> files = discover(o.paths.empty() ? std::vector<std::string>{"."} : o.paths, configs);
+std::vector<InputFile> input_files(const Options& o, ConfigFinder& configs, std::ostream& err) {
+  std::vector<InputFile> files;
+  if (o.paths.size() == 1 && o.paths[0] == "-") files.push_back(standard_input(o, configs));
+  else files = discover(o.paths.empty() ? std::vector<std::string>{"."} : o.paths, configs);
   for (const auto& config : configs.loaded())
     for (const std::string& w : config->warnings) err << fmt::format("lwcport: warning: {}: {}\n", (config->dir / ".lwcport.json").string(), w);
   return files;
@@ -433,10 +302,11 @@ struct CodeCounter {
 };
 
 int lint(const Options& o, std::ostream& out, std::ostream& err) {
-  std::vector<InputFile> files = input_files(o, err);
+  std::unique_ptr<ConfigFinder> configs = config_finder(o);
+  std::vector<InputFile> files = input_files(o, *configs, err);
   ReportTarget target;
   ReportOptions ro;
-  if (!open_target(o, out, err, target, ro)) return 2;
+  if (!open_target(o, *configs, out, err, target, ro)) return 2;
   ReportWriter writer(*target.stream, ro);
   IncludeSummaries includes;
   CodeCounter counter(files);
@@ -795,6 +665,7 @@ struct FixedFile {
   // A fixed text that includes the library waits to be written until the library is (fix()).
   std::optional<LoadedFile> pending;
   std::string pending_text;
+  std::optional<std::string> text_out;  // standard input: the text for standard output, fixed or not
 };
 
 // The library file one folder of fixed files includes (lwc_doublefloat.hlsl / .glsl).
@@ -824,6 +695,7 @@ FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& in
     return out;
   }
   const Source& source = *f.source;
+  if (file.content) out.text_out = source.text();
   FixOutcome fixed = fix_source(source, f.options, o.unsafe_fixes);
   out.path = file.path;
   out.report.path = file.display;
@@ -869,6 +741,16 @@ FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& in
   }
   if (o.diff) {
     out.diff = unified_diff(file.display, source.text(), fixed.text);
+    return out;
+  }
+  if (file.content) {  // standard input: the fixed text goes to standard output, nothing is written
+    if (out.library_lang)
+      out.report.findings.push_back(locate(result, input_finding(Severity::warning, 0,
+          fmt::format("the fixed text includes `{}`, which `lwcport fix` writes beside a file but not for standard input",
+                      library_file_name(*out.library_lang)),
+          "run `lwcport fix` on the file itself once, so the library is written beside it")));
+    out.library_lang.reset();
+    out.text_out = std::move(fixed.text);
     return out;
   }
   if (out.library_lang) {
@@ -923,16 +805,20 @@ bool write_library(const LibraryFile& lib, const Options& o, std::ostream& out, 
 
 int fix(const Options& o, std::ostream& out, std::ostream& err) {
   remove_temporary_files_on_signals();
-  std::vector<InputFile> files = input_files(o, err);
+  std::unique_ptr<ConfigFinder> configs = config_finder(o);
+  std::vector<InputFile> files = input_files(o, *configs, err);
   // --verify: one device, used by one file at a time (started before any thread: it forks).
   std::optional<Verifier> verifier;
   if (o.verify && !start_verifier(o, verifier.emplace(), err, 1, true)) return 2;
   ReportTarget target;
   ReportOptions ro;
-  if (!open_target(o, out, err, target, ro)) return 2;
+  if (!open_target(o, *configs, out, err, target, ro)) return 2;
   // With --diff the diff is the output; the remaining findings are not repeated.
+  // `fix -`: the fixed text is the output; what remains is reported on standard error.
+  bool to_stdout = files.size() == 1 && files[0].content && !o.diff;
+  if (to_stdout) ro.color = o.color == "always";
   std::optional<ReportWriter> writer;
-  if (!o.diff) writer.emplace(*target.stream, ro);
+  if (!o.diff) writer.emplace(to_stdout ? err : *target.stream, ro);
   IncludeSummaries includes;
   int applied = 0, changed_files = 0, unsafe_left = 0;
   std::map<BuildCheck::Outcome, int> builds;
@@ -984,6 +870,7 @@ int fix(const Options& o, std::ostream& out, std::ostream& err) {
     counter.add(r.report);
     if (o.diff) *target.stream << r.diff;
     else writer->file(r.report);
+    if (to_stdout && r.text_out) *target.stream << *r.text_out;
   }
   if (o.diff)
     for (const auto& [path, lib] : libraries) write_library(lib, o, *target.stream, err);
@@ -1029,9 +916,9 @@ std::string syntax_error_lines(const SyntaxTree& tree) {
 }
 
 int parse_only(const Options& o, std::ostream& out, std::ostream& err) {
-  ConfigFinder configs;
+  std::unique_ptr<ConfigFinder> configs = config_finder(o);
   std::vector<SkippedFile> skipped;
-  std::vector<InputFile> files = discover(o.paths.empty() ? std::vector<std::string>{"."} : o.paths, configs, &skipped);
+  std::vector<InputFile> files = discover(o.paths.empty() ? std::vector<std::string>{"."} : o.paths, *configs, &skipped);
   std::vector<int> errors(files.size());
   std::vector<std::string> details(files.size());
   std::vector<char> has_code(files.size(), 0);  // written by worker threads: not vector<bool>
@@ -1095,9 +982,9 @@ int parse_only(const Options& o, std::ostream& out, std::ostream& err) {
 }
 
 // `lwcport verify PATHS`: every function with a finding, in its original form and each rewrite.
-int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, std::ostream& err) {
+int verify_functions(const Options& o, ConfigFinder& configs, Verifier& verifier, std::ostream& out, std::ostream& err) {
   auto start = std::chrono::steady_clock::now();
-  std::vector<InputFile> files = input_files(o, err);
+  std::vector<InputFile> files = input_files(o, configs, err);
   IncludeSummaries includes;
   std::vector<FunctionResult> results;
   std::vector<std::string> unverified;  // files with findings where no function ran at all
@@ -1197,15 +1084,14 @@ int verify_functions(const Options& o, Verifier& verifier, std::ostream& out, st
 }
 
 int verify(const Options& o, std::ostream& out, std::ostream& err) {
-  if (o.report.format != Format::text && o.report.format != Format::json)
-    throw UsageError("verify: --format must be text or json");
   // One driver process per core for functions verified side by side (the library check uses one).
   Verifier verifier;
   if (!start_verifier(o, verifier, err, o.shaderlib ? 1 : job_count(o), !o.shaderlib)) return 2;
+  std::unique_ptr<ConfigFinder> configs = config_finder(o);
   ReportTarget target;
   ReportOptions ro;
-  if (!open_target(o, out, err, target, ro)) return 2;
-  if (!o.shaderlib) return verify_functions(o, verifier, *target.stream, err);
+  if (!open_target(o, *configs, out, err, target, ro)) return 2;
+  if (!o.shaderlib) return verify_functions(o, *configs, verifier, *target.stream, err);
   LibraryCheckOptions options;
   LibraryAccuracy accuracy = check_library(*verifier.device, verifier.probes, options);
   const std::string& name = verifier.device->name();
@@ -1214,15 +1100,51 @@ int verify(const Options& o, std::ostream& out, std::ostream& err) {
   return accuracy.failed() ? 1 : 0;
 }
 
-void list_rules(std::ostream& out) {
+// How a rule's fixes are labelled: "safe", "unsafe", "safe, unsafe", or "" when it has none.
+std::string fix_labels(const RuleInfo& r) {
+  std::set<std::string> labels;
+  for (const auto& [kind, fix] : r.fixes) labels.insert(fix.value("applicability", "unsafe"));
+  std::string out;
+  for (const std::string& l : labels) {
+    if (!out.empty()) out += ", ";
+    out += l;
+  }
+  return out;
+}
+
+int list_rules(const Options& o, std::ostream& out) {
+  if (o.report.format == Format::json) {
+    nlohmann::json rules = nlohmann::json::array();
+    for (const RuleInfo& r : all_rules()) {
+      std::vector<std::string> langs;
+      for (Lang l : r.languages) langs.emplace_back(lang_name(l));
+      std::string labels = fix_labels(r);
+      rules.push_back({{"id", r.id}, {"name", r.name}, {"severity", severity_name(r.severity)}, {"languages", langs},
+                       {"fix", labels.empty() ? nlohmann::json(nullptr) : nlohmann::json(labels)}, {"summary", r.summary},
+                       {"scene_dependent", r.scene_dependent}});
+    }
+    out << json_text(rules, 1) << '\n';
+    return 0;
+  }
+  out << fmt::format("{:<26} {:<8} {:<10} {:<13} {}\n", "RULE", "SEVERITY", "LANGUAGES", "FIX", "SUMMARY");
   for (const RuleInfo& r : all_rules()) {
     std::string langs;
     for (Lang l : r.languages) {
       if (!langs.empty()) langs += ',';
       langs += lang_name(l);
     }
-    out << fmt::format("{:<26} {:<8} {:<10} {}\n", r.id, severity_name(r.severity), langs, r.summary);
+    std::string labels = fix_labels(r);
+    out << fmt::format("{:<26} {:<8} {:<10} {:<13} {}\n", r.id, severity_name(r.severity), langs, labels.empty() ? "-" : labels, r.summary);
   }
+  out << "\n`lwcport rule ID` prints a rule's page.\n";
+  return 0;
+}
+
+int show_rule(const Options& o, std::ostream& out) {
+  const std::string& id = o.paths.front();
+  if (!find_rule(id)) throw UsageError(fmt::format("no rule '{}' (`lwcport rules` lists them)", id), "rule");
+  out << rule_page(id);
+  return 0;
 }
 
 }  // namespace
@@ -1231,7 +1153,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   try {
     Options o = parse_options(args);
     if (o.command == "help") {
-      out << kUsage;
+      out << usage(o.help_for);
       return 0;
     }
     if (o.command == "version") {
@@ -1243,13 +1165,11 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     if (o.command == "parse") return parse_only(o, out, err);
     if (o.command == "verify") return verify(o, out, err);
     if (o.command == "lsp") return run_language_server(std::cin, out, {o.log_file});
-    if (o.command == "rules") {
-      list_rules(out);
-      return 0;
-    }
+    if (o.command == "rules") return list_rules(o, out);
+    if (o.command == "rule") return show_rule(o, out);
     throw UsageError("unknown command '" + o.command + "'");
   } catch (const UsageError& e) {
-    err << "lwcport: error: " << e.what() << "\n\n" << kUsage;
+    err << usage_error_line(e);
     return 2;
   } catch (const std::exception& e) {
     err << "lwcport: error: " << e.what() << '\n';

@@ -2,8 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <map>
 
+#include "core/uri.h"
 #include "fix/apply.h"
 #include "project/files.h"
 #include "rules/rule.h"
@@ -138,17 +140,20 @@ nlohmann::json artifact_location(const std::string& path) {
   return {{"uri", uri_encode(rel)}, {"uriBaseId", "SRCROOT"}};
 }
 
-nlohmann::json sarif_rules() {
+nlohmann::json sarif_rules(const std::string& help_uri_base) {
   nlohmann::json rules = nlohmann::json::array();
   for (const RuleInfo& r : all_rules()) {
-    rules.push_back({{"id", r.id},
-                     {"name", r.name},
-                     {"shortDescription", {{"text", sentence(r.summary)}}},
-                     {"fullDescription", {{"text", sentence(r.rationale)}}},
-                     {"help", {{"text", sentence(r.hint)}, {"markdown", fmt::format("{} See [{}]({}).", sentence(r.rationale), r.id, rule_doc_url(r.id))}}},
-                     {"helpUri", rule_doc_url(r.id)},
-                     {"defaultConfiguration", {{"level", sarif_level(r.severity)}}},
-                     {"properties", {{"tags", {"large-world-coordinates", "precision"}}}}});
+    std::string url = rule_doc_url(r.id, help_uri_base);
+    std::string help = sentence(r.summary) + " " + sentence(r.rationale);
+    nlohmann::json rule = {{"id", r.id},
+                           {"name", r.name},
+                           {"shortDescription", {{"text", sentence(r.summary)}}},
+                           {"fullDescription", {{"text", sentence(r.rationale)}}},
+                           {"help", {{"text", help}, {"markdown", url.empty() ? help : fmt::format("{} See [{}]({}).", help, r.id, url)}}},
+                           {"defaultConfiguration", {{"level", sarif_level(r.severity)}}},
+                           {"properties", {{"tags", {"large-world-coordinates", "precision"}}}}};
+    if (!url.empty()) rule["helpUri"] = url;
+    rules.push_back(std::move(rule));
   }
   return rules;
 }
@@ -204,11 +209,13 @@ std::pair<std::string, std::string> sarif_frame(const ReportOptions& o) {
             {{"name", "lwcport"},
              {"version", LWCPORT_VERSION},
              {"semanticVersion", LWCPORT_VERSION},
-             {"informationUri", "https://github.com/lwcport/lwcport"},
-             {"rules", sarif_rules()}}}}},
+             {"informationUri", docs_url()},
+             {"rules", sarif_rules(o.help_uri_base)}}}}},
          {"originalUriBaseIds", {{"SRCROOT", {{"uri", "file://" + uri_encode(root)}}}}},
          {"columnKind", "unicodeCodePoints"},
          {"results", nlohmann::json::array()}}}}};
+  auto& driver = doc["runs"][0]["tool"]["driver"];
+  if (driver["informationUri"] == "") driver.erase("informationUri");
   std::string text = json_text(doc, 1);
   size_t at = text.find("\"results\": []");
   at += std::string("\"results\": [").size();
@@ -248,6 +255,7 @@ std::string json_text(const nlohmann::json& value, int indent) {
 ReportWriter::ReportWriter(std::ostream& out, ReportOptions options) : out_(out), options_(std::move(options)) { begin(); }
 
 void ReportWriter::begin() {
+  if (options_.statistics) return;
   if (options_.format == Format::json) {
     out_ << "{\n \"version\": 1,\n \"tool\": " << nlohmann::json({{"name", "lwcport"}, {"version", LWCPORT_VERSION}}).dump()
          << ",\n \"findings\": [";
@@ -262,7 +270,13 @@ void ReportWriter::file(const FileReport& report) {
   for (const auto& f : report.findings) {
     (f.severity == Severity::error ? errors_ : f.severity == Severity::warning ? warnings_ : notes_)++;
     if (!f.not_needed) worst_ = std::max(worst_, static_cast<int>(f.severity));
+    if (options_.statistics) {
+      RuleCount& c = per_rule_[f.rule];
+      ++c.findings;
+      if (f.fix) ++(f.fix->applicability == Applicability::safe ? c.safe : c.unsafe);
+    }
   }
+  if (options_.statistics) return;
   switch (options_.format) {
     case Format::text: write_text_file(out_, report, options_.color, options_.explain); break;
     case Format::github: write_github_file(out_, report); break;
@@ -285,6 +299,10 @@ void ReportWriter::file(const FileReport& report) {
 
 void ReportWriter::finish() {
   size_t total = errors_ + warnings_ + notes_;
+  if (options_.statistics) {
+    write_statistics();
+    return;
+  }
   switch (options_.format) {
     case Format::text:
       if (total == 0) out_ << fmt::format("No findings in {} file(s).\n", files_);
@@ -298,6 +316,24 @@ void ReportWriter::finish() {
       break;
     case Format::sarif: out_ << (first_ ? "" : "\n") << sarif_frame(options_).second << '\n'; break;
     case Format::github: break;
+  }
+  out_.flush();
+}
+
+// --statistics: per rule, most findings first, how many and how many a fix covers (safe / unsafe).
+void ReportWriter::write_statistics() {
+  std::vector<std::pair<std::string, RuleCount>> rows(per_rule_.begin(), per_rule_.end());
+  std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.second.findings > b.second.findings; });
+  if (options_.format == Format::json) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& [rule, c] : rows) list.push_back({{"rule", rule}, {"findings", c.findings}, {"safe_fixes", c.safe}, {"unsafe_fixes", c.unsafe}});
+    out_ << json_text({{"version", 1}, {"statistics", list}, {"files", files_},
+                       {"summary", {{"error", errors_}, {"warning", warnings_}, {"note", notes_}}}}, 1) << '\n';
+  } else {
+    out_ << fmt::format("{:>8}  {:<26} {:>9} {:>9}\n", "FINDINGS", "RULE", "SAFE FIX", "UNSAFE");
+    for (const auto& [rule, c] : rows) out_ << fmt::format("{:>8}  {:<26} {:>9} {:>9}\n", c.findings, rule, c.safe, c.unsafe);
+    out_ << fmt::format("{} finding(s) in {} file(s): {} error(s), {} warning(s), {} note(s).\n", errors_ + warnings_ + notes_,
+                        files_, errors_, warnings_, notes_);
   }
   out_.flush();
 }

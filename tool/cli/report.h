@@ -1,4 +1,5 @@
 #pragma once
+#include <map>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -63,7 +64,9 @@ struct ReportOptions {
   Format format = Format::text;
   bool color = false;
   bool explain = false;     // text: print each scene decision with its numbers
+  bool statistics = false;  // text or json: per-rule counts instead of each finding
   std::string working_dir;  // absolute, for SARIF's base URI
+  std::string help_uri_base;  // where the rule pages are ("" for the installed pages): SARIF's helpUri
 };
 
 // Writes a report file by file, in the order given, so no run holds every finding at once.
@@ -76,6 +79,11 @@ class ReportWriter {
 
  private:
   void begin();
+  void write_statistics();
+  struct RuleCount {
+    size_t findings = 0, safe = 0, unsafe = 0;
+  };
+  std::map<std::string, RuleCount> per_rule_;
   std::ostream& out_;
   ReportOptions options_;
   size_t files_ = 0, errors_ = 0, warnings_ = 0, notes_ = 0;

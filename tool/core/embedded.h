@@ -7,8 +7,9 @@ struct EmbeddedFile {
   std::string_view name;
   std::string_view text;
 };
-// Files embedded at build time (see embed_files.cmake): every rules/*.json file, and the shader
-// library sources of tool/shaderlib.
+// Files embedded at build time (see embed_files.cmake): every rules/*.json file, the rule pages
+// (docs/rules/*.md), and the shader library sources of tool/shaderlib.
 const std::vector<EmbeddedFile>& embedded_rule_files();
+const std::vector<EmbeddedFile>& embedded_rule_pages();
 const std::vector<EmbeddedFile>& embedded_shaderlib_files();
 }  // namespace lwc

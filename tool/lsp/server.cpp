@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/source.h"
+#include "core/uri.h"
 #include "fix/apply.h"
 #include "lang/formats.h"
 #include "project/config.h"
@@ -287,6 +288,7 @@ class Server {
     std::vector<Finding> findings;  // of the last analysis: what code actions offer
     std::string failure;            // the analysis could not run: why
     std::vector<fs::path> includes;  // the files its includes reach, as of the last analysis
+    std::string help_uri_base;  // its project's "help-uri-base": where its diagnostics' rule pages are
     std::shared_ptr<ParseReuse> parses = std::make_shared<ParseReuse>();  // its last parse, which the next one edits
     std::shared_ptr<ModelReuse> models = std::make_shared<ModelReuse>();  // its last models, which the next ones replay
     // What its includes declare (options_for), for these include lines and include generation.
@@ -492,6 +494,8 @@ class Server {
   AnalyzeOptions options_for(Document& d) {
     std::shared_ptr<const ProjectConfig> config = configs_->for_dir(folder_of(d));
     AnalyzeOptions options = analysis_options(*config);
+    if (d.help_uri_base != config->help_uri_base) d.sent.clear();  // the diagnostics' links change
+    d.help_uri_base = config->help_uri_base;
     if (d.lang) options.lang = d.lang;
     options.reuse = d.parses.get();
     options.model_reuse = d.models.get();  // it read the summary it was made with: replaced with it below
@@ -560,9 +564,11 @@ class Server {
     };
     int severity = f.severity == Severity::error ? 1 : f.severity == Severity::warning ? 2 : 3;
     DiagnosticText out;
+    std::string url = rule_doc_url(f.rule, d.help_uri_base);
     out.before_version = fmt::format(
-        R"({{"range":{},"severity":{},"code":{},"codeDescription":{{"href":{}}},"source":"lwcport","message":{},"data":{{"version":)",
-        range_text(f.span), severity, json_quoted(f.rule), json_quoted(rule_doc_url(f.rule)), json_quoted(f.hint.empty() ? f.message : f.message + "\n" + f.hint));
+        R"({{"range":{},"severity":{},"code":{},{}"source":"lwcport","message":{},"data":{{"version":)", range_text(f.span), severity,
+        json_quoted(f.rule), url.empty() ? "" : R"("codeDescription":{"href":)" + json_quoted(url) + "},",
+        json_quoted(f.hint.empty() ? f.message : f.message + "\n" + f.hint));
     out.after_version = fmt::format(R"(,"finding":{},"fixes":{}}})", index, f.fixes.size());
     for (size_t i = 0; i < f.related.size(); ++i)
       out.after_version += fmt::format(R"({}{{"location":{{"uri":{},"range":{}}},"message":{}}})", i == 0 ? ",\"relatedInformation\":[" : ",",
@@ -851,7 +857,8 @@ class Server {
       if (at < f.span.begin || at > f.span.end) continue;
       const RuleInfo* rule = find_rule(f.rule);
       text = "**" + f.rule + "**: " + f.message;
-      if (rule) text += "\n\n" + rule->summary + ". " + rule->rationale + "\n\n[" + f.rule + "](" + rule_doc_url(f.rule) + ")";
+      if (rule) text += "\n\n" + rule->summary + ". " + rule->rationale;
+      if (std::string url = rule_doc_url(f.rule, d.help_uri_base); rule && !url.empty()) text += "\n\n[" + f.rule + "](" + url + ")";
       covered = f.span;
       break;
     }

@@ -89,7 +89,7 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
     if (!find_rule(id)) fail(fmt::format("unknown rule id \"{}\"", id));
   };
   for (const auto& item : j.items()) {
-    static const char* known[] = {"severity", "select", "ignore", "include-dirs", "virtual-roots", "exclude", "world-sources", "max-file-bytes", "max-parse-seconds", "macros", "unreal", "library-definitions", "extensions", "defines", "overrides", "force-includes"};
+    static const char* known[] = {"severity", "select", "ignore", "include-dirs", "virtual-roots", "exclude", "world-sources", "max-file-bytes", "max-parse-seconds", "macros", "unreal", "library-definitions", "extensions", "defines", "overrides", "force-includes", "help-uri-base"};
     const std::string& key = item.key();
     if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) == std::end(known))
       fail(fmt::format("unknown key \"{}\"", key));
@@ -180,6 +180,13 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
       fail("\"max-parse-seconds\" must be a number of seconds above 0 (the default is 30)");
     c.max_parse_seconds = v.get<double>();
   }
+  if (j.contains("help-uri-base")) {
+    const auto& v = j.at("help-uri-base");
+    if (!v.is_string() || v.get<std::string>().empty())
+      fail("\"help-uri-base\" must be the address the rule pages are under (lwcport appends \"<rule-id>.md\")");
+    c.help_uri_base = v.get<std::string>();
+    if (c.help_uri_base.back() != '/') c.help_uri_base += '/';
+  }
   if (j.contains("macros")) add_macros(j.at("macros"), file.string(), c.macros);
   if (j.contains("unreal")) {
     const auto& u = j.at("unreal");
@@ -249,6 +256,7 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
 }
 
 std::vector<std::shared_ptr<const ProjectConfig>> ConfigFinder::loaded() {
+  if (fixed_) return fixed_->dir.empty() ? std::vector<std::shared_ptr<const ProjectConfig>>{} : std::vector{fixed_};
   std::lock_guard lock(mutex_);
   std::vector<std::shared_ptr<const ProjectConfig>> out;
   for (const auto& [dir, config] : by_dir_)
@@ -279,7 +287,16 @@ ProjectConfig::Defines ProjectConfig::defines_for(const fs::path& file) const {
   return out;
 }
 
+std::shared_ptr<const ProjectConfig> ConfigFinder::read(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw std::runtime_error(file.string() + ": cannot read");
+  std::stringstream text;
+  text << in.rdbuf();
+  return std::make_shared<const ProjectConfig>(ProjectConfig::parse(fs::absolute(file).lexically_normal(), text.str()));
+}
+
 std::shared_ptr<const ProjectConfig> ConfigFinder::for_dir(const fs::path& start) {
+  if (fixed_) return fixed_;
   std::error_code ec;
   fs::path dir = fs::absolute(start, ec).lexically_normal();
   std::lock_guard lock(mutex_);
@@ -293,11 +310,7 @@ std::shared_ptr<const ProjectConfig> ConfigFinder::for_dir(const fs::path& start
     visited.push_back(d);
     fs::path file = d / ".lwcport.json";
     if (fs::is_regular_file(file, ec)) {
-      std::ifstream in(file, std::ios::binary);
-      if (!in) throw std::runtime_error(file.string() + ": cannot read");
-      std::stringstream text;
-      text << in.rdbuf();
-      found = std::make_shared<const ProjectConfig>(ProjectConfig::parse(file, text.str()));
+      found = read(file);
       break;
     }
     if (d == d.parent_path() || d.empty()) {

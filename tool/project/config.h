@@ -32,6 +32,7 @@ struct ProjectConfig {
   std::optional<UnrealEra> unreal;  // the engine the project builds against (else inferred per file)
   FormatTable formats = FormatTable::defaults();  // which extensions are shaders, and how
   bool lint_library = false;        // report inside the LWC libraries' own definitions
+  std::string help_uri_base;  // where the rule pages are published (ends in '/'); "" for the installed pages
   // Macros the build defines (Unreal's ModifyCompilationEnvironment, -D flags), for where lwcport
   // compiles code: verify, fix --verify and --check-build. Name -> value, in order.
   using Defines = std::vector<std::pair<std::string, std::string>>;
@@ -57,6 +58,11 @@ struct ProjectConfig {
 // Finds the nearest .lwcport.json upward from a folder, loading each at most once.
 class ConfigFinder {
  public:
+  ConfigFinder() = default;
+  // Every folder gets `fixed` (`--config FILE`, or the built-in defaults for `--isolated`).
+  explicit ConfigFinder(std::shared_ptr<const ProjectConfig> fixed) : fixed_(std::move(fixed)) {}
+  // Reads and parses one config file; throws std::runtime_error naming it.
+  static std::shared_ptr<const ProjectConfig> read(const std::filesystem::path& file);
   // Throws std::runtime_error for a config that cannot be read or parsed.
   std::shared_ptr<const ProjectConfig> for_dir(const std::filesystem::path& dir);
   // Each config read so far, once.
@@ -65,6 +71,7 @@ class ConfigFinder {
  private:
   std::mutex mutex_;
   std::map<std::filesystem::path, std::shared_ptr<const ProjectConfig>> by_dir_;
+  std::shared_ptr<const ProjectConfig> fixed_;
 };
 
 // .gitignore-style match of a pattern against a path relative to the pattern's folder.

@@ -30,7 +30,7 @@ struct Walker {
   size_t argument = 0;
 
   void add(const fs::path& path, std::string display, std::string error = {}) {
-    InputFile f{path, std::move(display), nullptr, std::move(error), argument};
+    InputFile f{path, std::move(display), nullptr, std::move(error), argument, {}};
     f.config = configs.for_dir(path.parent_path().empty() ? fs::path(".") : path.parent_path());
     out.push_back(std::move(f));
   }
@@ -343,30 +343,6 @@ std::string create_file(const fs::path& path, std::string_view text) {
   int error = errno;
   if (linked != 0) return error == EEXIST ? "exists already; not changed" : fmt::format("cannot create: {}", std::strerror(error));
   return "";
-}
-
-std::string uri_encode(std::string_view path) {
-  std::string out;
-  for (unsigned char c : path) {
-    if (std::isalnum(c) || std::string_view("-._~/").find(static_cast<char>(c)) != std::string_view::npos) out += static_cast<char>(c);
-    else out += fmt::format("%{:02X}", c);
-  }
-  return out;
-}
-
-std::filesystem::path path_of_uri(std::string_view uri) {
-  std::string_view rest = uri.starts_with("file://") ? uri.substr(7) : uri;
-  std::string out;
-  for (size_t i = 0; i < rest.size(); ++i) {
-    if (rest[i] == '%' && i + 2 < rest.size() && std::isxdigit(static_cast<unsigned char>(rest[i + 1])) &&
-        std::isxdigit(static_cast<unsigned char>(rest[i + 2]))) {
-      out += static_cast<char>(std::stoi(std::string(rest.substr(i + 1, 2)), nullptr, 16));
-      i += 2;
-    } else {
-      out += rest[i];
-    }
-  }
-  return out;
 }
 
 }  // namespace lwc

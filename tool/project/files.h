@@ -17,6 +17,7 @@ struct InputFile {
   std::shared_ptr<const ProjectConfig> config;
   std::string error;
   size_t argument = 0;  // which command-line path it came from
+  std::optional<std::string> content;  // given instead of read from `path` (standard input)
 };
 
 // A file a walked folder holds that is not linted, and why.
@@ -40,10 +41,6 @@ struct ReadResult {
 };
 ReadResult read_file(const std::filesystem::path& path, size_t max_bytes);
 
-// A path percent-encoded as a URI reference allows (SARIF locations, the editor's file: URIs).
-std::string uri_encode(std::string_view path);
-// A file: URI's path (or any URI's text) with its %XX escapes decoded.
-std::filesystem::path path_of_uri(std::string_view uri);
 
 }  // namespace lwc
 

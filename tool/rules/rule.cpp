@@ -1,11 +1,14 @@
 #include "rules/rule.h"
 
+#include <filesystem>
+
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <stdexcept>
 
 #include "core/embedded.h"
+#include "core/uri.h"
 
 namespace lwc {
 
@@ -146,8 +149,38 @@ Fix* CheckContext::fix(Finding& finding, std::string_view kind, const Vars& vars
   return &finding.fixes.emplace_back(make_fix(rule, kind, vars, std::move(edits)));
 }
 
-std::string rule_doc_url(std::string_view id) {
-  return "https://github.com/lwcport/lwcport/blob/main/docs/rules/" + std::string(id) + ".md";
+std::string_view rule_page(std::string_view id) {
+  for (const EmbeddedFile& f : embedded_rule_pages())
+    if (f.name.size() == id.size() + 3 && f.name.substr(0, id.size()) == id && f.name.substr(id.size()) == ".md") return f.text;
+  return {};
 }
+
+namespace {
+
+// The documentation installed with the tool: PREFIX/share/doc/lwcport beside the binary's prefix,
+// else the source tree's docs/ it was built from; "" when neither holds the rule pages.
+const std::string& installed_docs() {
+  static const std::string dir = [] {
+    std::error_code ec;
+    std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    std::vector<std::filesystem::path> candidates;
+    if (!ec) candidates.push_back(exe.parent_path().parent_path() / "share/doc/lwcport");
+    candidates.push_back(std::filesystem::path(LWCPORT_SOURCE_DIR) / "docs");
+    for (const auto& c : candidates)
+      if (std::filesystem::is_regular_file(c / "rules" / (std::string(kInputRule) + ".md"), ec)) return c.lexically_normal().string();
+    return std::string();
+  }();
+  return dir;
+}
+
+}  // namespace
+
+std::string rule_doc_url(std::string_view id, std::string_view base) {
+  if (!base.empty()) return std::string(base) + std::string(id) + ".md";
+  if (installed_docs().empty()) return "";
+  return "file://" + uri_encode(installed_docs() + "/rules/" + std::string(id) + ".md");
+}
+
+std::string docs_url() { return installed_docs().empty() ? "" : "file://" + uri_encode(installed_docs() + "/"); }
 
 }  // namespace lwc

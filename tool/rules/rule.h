@@ -35,8 +35,14 @@ struct RuleInfo {
 
 // Every rule, sorted by id. Throws std::runtime_error on malformed rule data (a build defect).
 const std::vector<RuleInfo>& all_rules();
-// The page that documents a rule (SARIF's helpUri, the editor's code description).
-std::string rule_doc_url(std::string_view id);
+// The page that documents a rule (SARIF's helpUri, the editor's code description): `base` then
+// `<id>.md` when the project sets "help-uri-base", else the page installed with the tool as a
+// file: URI; "" when there is none (no link is better than a dead one).
+std::string rule_doc_url(std::string_view id, std::string_view base = "");
+// The documentation installed with the tool, as a file: URI of its folder; "" when not found.
+std::string docs_url();
+// A rule's page, docs/rules/<id>.md as embedded at build time; empty for an unknown id.
+std::string_view rule_page(std::string_view id);
 const RuleInfo* find_rule(std::string_view id);
 // The "world-space" object of rules/world-space.json.
 const nlohmann::json& world_space_data();
