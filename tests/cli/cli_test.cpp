@@ -251,6 +251,51 @@ TEST(Cli, SuppressionsOnTheLineAboveAndForTheFileAndUnusedOnes) {
                  }));
 }
 
+TEST(Cli, BareAndNextLineSuppressionsAndUnknownIds) {
+  std::string dir = test::scratch("suppress-forms");
+  test::write(dir + "/a.usf",
+              "float3 F(float3 L)\n{\n"
+              "\tfloat3 C = View.WorldCameraOrigin; // lwcport-ignore\n"           // every rule on its line
+              "\tfloat3 D = C; // lwcport-ignore-next-line: lwc-primary-view\n"   // trailing, yet the next line
+              "\tfloat3 E = View.WorldViewOrigin;\n"
+              "\t// lwcport-ignore-next-line\n"                                    // every rule on the next line
+              "\tfloat3 G = E - View.WorldViewOrigin;\n"
+              "\treturn G; // lwcport-ignore\n"                                    // nothing here: unused
+              "}\n"
+              "// lwcport-ignored is a word, not a suppression\n");
+  auto doc = nlohmann::json::parse(lint(dir, "a.usf --format json --fail-on none").out);
+  std::vector<std::string> got;
+  for (const auto& f : doc["findings"])
+    got.push_back(std::to_string(f["start"]["line"].get<int>()) + " " + f["rule"].get<std::string>() + " " + f["message"].get<std::string>());
+  EXPECT_EQ(got, (std::vector<std::string>{
+                     "4 lwc-float-world-position variable `D` (float3) holds an absolute world position in float32: far from the origin its "
+                     "spacing grows (1/8 cm at 10 km, 1 cm at 100 km, 2^20 cm at UE's world limit), so positions jitter and differences "
+                     "taken from it lose their digits",
+                     "5 lwc-float-world-position variable `E` (float3) holds an absolute world position in float32: far from the origin its "
+                     "spacing grows (1/8 cm at 10 km, 1 cm at 100 km, 2^20 cm at UE's world limit), so positions jitter and differences "
+                     "taken from it lose their digits",
+                     "8 lwc-unused-suppression unused suppression of every rule: no finding here to suppress",
+                 }))
+      << doc.dump(1);
+}
+
+TEST(Cli, RemovingAStaleSuppressionKeepsTheCommentsOtherWords) {
+  std::string dir = test::scratch("suppress-words");
+  test::write(dir + "/a.usf",
+              "float F(float X)\n{\n"
+              "\treturn X; // keep: fog is clamped here. lwcport-ignore: lwc-primary-view\n"
+              "}\n"
+              "// lwcport-ignore-file: lwc-tile-offset, lwc-not-a-rule\n"
+              "float G() { return 1; } /* lwcport-ignore */\n");
+  auto diff = test::run("cd " + dir + " && " + test::binary() + " fix a.usf && cat a.usf");
+  EXPECT_EQ(diff.out.substr(diff.out.find("float F")),
+            "float F(float X)\n{\n"
+            "\treturn X; // keep: fog is clamped here.\n"
+            "}\n"
+            "float G() { return 1; }\n")
+      << diff.out;
+}
+
 TEST(Cli, OutputIsIdenticalForAnyJobCount) {
   std::string corpus = test::source_dir() + "/corpus";
   auto one = test::run("cd " + test::source_dir() + " && " + test::binary() + " lint corpus --format json --jobs 1 --fail-on none");

@@ -123,49 +123,62 @@ Finding too_large_finding(size_t bytes, size_t limit) {
 
 namespace {
 
-// One `lwcport-ignore` comment and the rule ids it names.
+// One rule id of a `lwcport-ignore` comment, or the whole comment when it names none (a bare
+// `lwcport-ignore`: every rule).
 struct Suppression {
   Span span;       // the whole comment
+  Span marker;     // from `lwcport-ignore` to the end of its last id
   int line;        // the line it covers
   bool whole_file;
-  std::string rule;
+  std::string rule;  // "" for every rule
   Span rule_span;  // the rule id inside the comment
-  int ids = 1;     // how many ids the comment names
+  int ids = 1;     // how many ids the comment names (0 when bare)
   bool alone = false;  // the comment is alone on its line
   bool used = false;
 };
 
+bool id_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_'; }
+
+// `lwcport-ignore[-file|-next-line][: ID[, ID...]]` in a comment. A comment alone on its line
+// covers the next line, a trailing one its own; `-next-line` always the next; `-file` the file.
 std::vector<Suppression> find_suppressions(const SyntaxTree& tree) {
   std::vector<Suppression> out;
   const Source& src = *tree.source;
+  constexpr std::string_view kMarker = "lwcport-ignore";
   for (int id = 0; id < static_cast<int>(tree.nodes.size()); ++id) {
     if (!tree.is(id, "comment")) continue;
     std::string_view text = tree.text(id);
-    for (auto [marker, whole_file] : {std::pair{std::string_view("lwcport-ignore-file:"), true},
-                                      std::pair{std::string_view("lwcport-ignore:"), false}}) {
-      size_t at = text.find(marker);
-      if (at == std::string_view::npos) continue;
-      std::string_view rest = text.substr(at + marker.size());
-      size_t end = rest.find("*/");
-      if (end != std::string_view::npos) rest = rest.substr(0, end);
-      Position pos = src.position(tree.at(id).begin);
-      // A comment alone on its line covers the next line; a trailing one covers its own.
-      std::string_view before = src.line_text(pos.line).substr(0, src.offset(pos) - src.offset({pos.line, 1}));
-      bool alone = before.find_first_not_of(" \t") == std::string_view::npos;
-      size_t i = 0, first = out.size();
-      uint32_t rest_begin = tree.at(id).begin + static_cast<uint32_t>(at + marker.size());
-      while (i < rest.size()) {
-        while (i < rest.size() && (rest[i] == ' ' || rest[i] == ',' || rest[i] == '\t')) ++i;
-        size_t b = i;
-        while (i < rest.size() && (std::isalnum(static_cast<unsigned char>(rest[i])) || rest[i] == '-' || rest[i] == '_')) ++i;
-        if (i == b) break;
-        Suppression sup{tree.span(id), alone ? pos.line + 1 : pos.line, whole_file, std::string(rest.substr(b, i - b)),
-                        {rest_begin + static_cast<uint32_t>(b), rest_begin + static_cast<uint32_t>(i)}};
-        sup.alone = alone;
-        out.push_back(sup);
-      }
-      for (size_t k = first; k < out.size(); ++k) out[k].ids = static_cast<int>(out.size() - first);
-      break;
+    size_t at = text.find(kMarker);
+    if (at == std::string_view::npos || (at > 0 && id_char(text[at - 1]))) continue;
+    size_t after = at + kMarker.size();
+    bool whole_file = false, next_line = false;
+    if (text.substr(after).starts_with("-file")) whole_file = true, after += 5;
+    else if (text.substr(after).starts_with("-next-line")) next_line = true, after += 10;
+    if (after < text.size() && id_char(text[after])) continue;  // `lwcport-ignored`, `lwcport-ignore-all`: not ours
+    std::string_view rest;
+    if (after < text.size() && text[after] == ':') rest = text.substr(++after);
+    if (size_t end = rest.find("*/"); end != std::string_view::npos) rest = rest.substr(0, end);
+    Position pos = src.position(tree.at(id).begin);
+    std::string_view before = src.line_text(pos.line).substr(0, src.offset(pos) - src.offset({pos.line, 1}));
+    bool alone = before.find_first_not_of(" \t") == std::string_view::npos;
+    int line = whole_file ? 0 : alone || next_line ? pos.line + 1 : pos.line;
+    uint32_t begin = tree.at(id).begin;
+    Span marker{begin + static_cast<uint32_t>(at), begin + static_cast<uint32_t>(after)};
+    size_t i = 0, first = out.size();
+    while (i < rest.size()) {
+      while (i < rest.size() && (rest[i] == ' ' || rest[i] == ',' || rest[i] == '\t')) ++i;
+      size_t b = i;
+      while (i < rest.size() && id_char(rest[i])) ++i;
+      if (i == b) break;
+      Span rule_span{begin + static_cast<uint32_t>(after + b), begin + static_cast<uint32_t>(after + i)};
+      out.push_back({tree.span(id), {}, line, whole_file, std::string(rest.substr(b, i - b)), rule_span});
+      marker.end = rule_span.end;
+    }
+    if (out.size() == first) out.push_back({tree.span(id), {}, line, whole_file, "", marker, 0});
+    for (size_t k = first; k < out.size(); ++k) {
+      out[k].marker = marker;
+      out[k].alone = alone;
+      if (out[k].ids) out[k].ids = static_cast<int>(out.size() - first);
     }
   }
   return out;
@@ -184,24 +197,36 @@ const std::vector<std::pair<const RuleInfo*, std::unique_ptr<Check>>>& checks() 
   return all;
 }
 
-// The fix for a stale suppression: the id and its separator when the comment names others, else
-// the whole comment (and its line, when the comment is alone on it).
+// The fix for a stale suppression: the id and its separator when the comment names others; else
+// the marker and its ids when the comment says something more, else the whole comment (and its
+// line, when the comment is alone on it). No other word of the comment is lost.
 Fix remove_suppression(const RuleInfo& rule, const Suppression& s, const SyntaxTree& tree) {
   const std::string& text = tree.source->text();
+  auto blank = [&](uint32_t i) { return text[i] == ' ' || text[i] == '\t'; };
   Span cut = s.rule_span;
   if (s.ids > 1) {
     // Take the separator after the id, or, for the last id, the one before it.
     uint32_t e = cut.end;
-    while (e < s.span.end && (text[e] == ',' || text[e] == ' ' || text[e] == '\t')) ++e;
-    bool last = e >= s.span.end || text.compare(e, 2, "*/") == 0 || !(std::isalnum(static_cast<unsigned char>(text[e])) || text[e] == '-');
+    while (e < s.span.end && (text[e] == ',' || blank(e))) ++e;
+    bool last = e >= s.span.end || text.compare(e, 2, "*/") == 0 || !id_char(text[e]);
     if (!last) cut.end = e;
     else
-      while (cut.begin > s.span.begin && (text[cut.begin - 1] == ',' || text[cut.begin - 1] == ' ' || text[cut.begin - 1] == '\t')) --cut.begin;
+      while (cut.begin > s.span.begin && (text[cut.begin - 1] == ',' || blank(cut.begin - 1))) --cut.begin;
     return make_fix(rule, "remove", {{"what", "`" + s.rule + "` from the comment"}}, {{cut, ""}});
+  }
+  // The comment's words other than the marker: its delimiters and blanks aside.
+  std::string_view comment(text.data() + s.span.begin, s.span.end - s.span.begin);
+  std::string others(comment.substr(0, s.marker.begin - s.span.begin));
+  others += comment.substr(s.marker.end - s.span.begin);
+  bool only_marker = others.find_first_not_of(" \t\r\n/*:") == std::string::npos;
+  if (!only_marker) {
+    cut = s.marker;
+    while (cut.begin > s.span.begin + 2 && blank(cut.begin - 1)) --cut.begin;
+    return make_fix(rule, "remove", {{"what", "the suppression from the comment"}}, {{cut, ""}});
   }
   cut = s.span;
   // Trailing blanks before the comment go with it; a comment alone on its line takes the line.
-  while (cut.begin > 0 && (text[cut.begin - 1] == ' ' || text[cut.begin - 1] == '\t')) --cut.begin;
+  while (cut.begin > 0 && blank(cut.begin - 1)) --cut.begin;
   if (s.alone) {
     if (cut.end < text.size() && text[cut.end] == '\r') ++cut.end;
     if (cut.end < text.size() && text[cut.end] == '\n') ++cut.end;
@@ -217,7 +242,7 @@ void suppress(std::vector<Suppression>& sups, const Source& src, std::vector<Fin
     int line = src.position(f.span.begin).line;
     bool suppressed = false;
     for (Suppression& s : sups) {
-      if (s.rule == f.rule && (s.whole_file || s.line == line)) suppressed = s.used = true;
+      if ((s.rule.empty() || s.rule == f.rule) && (s.whole_file || s.line == line)) suppressed = s.used = true;
     }
     if (!suppressed) kept.push_back(std::move(f));
   }
@@ -233,9 +258,12 @@ void report_unused(const std::vector<Suppression>& sups, const SyntaxTree& tree,
     const RuleInfo* target = find_rule(s.rule);
     // A suppression of a rule that did not run this time is not known to be unused.
     if (target && (!options.enabled(target->id) || !target->applies_to(tree.lang))) continue;
-    std::string why = target ? fmt::format("no `{}` finding here to suppress", s.rule)
-                             : fmt::format("`{}` is not a lwcport rule", s.rule);
-    Finding f = make_finding(*unused, s.span, {{"rule", s.rule}, {"why", why}});
+    std::string why = s.rule.empty() ? "no finding here to suppress"
+                      : target       ? fmt::format("no `{}` finding here to suppress", s.rule)
+                                     : fmt::format("`{}` is not a lwcport rule", s.rule);
+    std::string what = s.rule.empty() ? "every rule" : "`" + s.rule + "`";
+    std::string removal = s.ids > 1 ? what + " from the comment" : "the suppression";
+    Finding f = make_finding(*unused, s.span, {{"suppressed", what}, {"removal", removal}, {"why", why}});
     f.fixes.push_back(remove_suppression(*unused, s, tree));
     findings.push_back(std::move(f));
   }
