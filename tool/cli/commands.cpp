@@ -21,6 +21,7 @@
 #include <sstream>
 #include <thread>
 
+#include "project/baseline.h"
 #include "project/config.h"
 #include "project/files.h"
 #include "project/includes.h"
@@ -30,6 +31,7 @@
 #include "lsp/server.h"
 #include "fix/apply.h"
 #include "fix/diff.h"
+#include "fix/suppress.h"
 #include "fix/scene.h"
 #include "rules/analyze.h"
 #include "rules/rule.h"
@@ -144,6 +146,30 @@ FileReport failed_file(const InputFile& file, const std::exception& e) {
                                                  "the other files were analysed; please report this with the file"))}};
 }
 
+// --add-suppressions: the lines of a file's findings, each with the rules to silence there.
+SuppressionSites suppression_sites(const Source& source, const AnalyzeOptions& options, const std::vector<Finding>& findings) {
+  std::optional<FileFormat> format = format_for(source, options);
+  bool script = format && format->container == Container::javascript;
+  const std::string& text = source.text();
+  SuppressionSites sites;
+  for (const Finding& f : findings) {
+    if (f.rule == kInputRule || f.rule == kUnusedSuppressionRule) continue;  // not code to silence
+    int line = source.position(f.span.begin).line;
+    sites.rules_by_line[line].insert(f.rule);
+    if (!script) continue;
+    // In a script the line may end outside the GLSL literal: the comment goes right after the
+    // finding (or its first word, when it spans lines), still inside.
+    size_t at = f.span.end;
+    if (source.position(f.span.end).line != line) {
+      at = f.span.begin;
+      while (at < text.size() && (std::isalnum(static_cast<unsigned char>(text[at])) || text[at] == '_')) ++at;
+    }
+    auto [it, fresh] = sites.inside_at.emplace(line, at);
+    if (!fresh) it->second = std::min(it->second, at);
+  }
+  return sites;
+}
+
 // `included`: another target includes it, so its summary is wanted.
 FileReport lint_file(const InputFile& file, const Options& o, IncludeSummaries& includes, bool included) {
   LoadedFile f = load(file, o, includes);
@@ -152,7 +178,25 @@ FileReport lint_file(const InputFile& file, const Options& o, IncludeSummaries& 
   report.has_code = holds_shader_code(*f.source, f.options);
   std::optional<FileSummary> own;
   if (included) f.options.summary_for_includers = &own;
-  for (const Finding& finding : analyze(*f.source, f.options)) report.findings.push_back(locate(*f.source, finding));
+  std::vector<Finding> findings = analyze(*f.source, f.options);
+  if (o.add_suppressions) {
+    // The comments are written, then the new text analysed again: what it still reports is the report.
+    SuppressionSites sites = suppression_sites(*f.source, f.options, findings);
+    std::string text = with_suppressions(f.source->text(), sites);
+    if (text != f.source->text()) {
+      std::string why = replace_file(file.path, f.source->text(), text, o.force);
+      if (!why.empty()) {
+        report.findings.push_back(locate(*f.source, input_finding(Severity::error, 0, "cannot write the suppressions: " + why,
+                                                                  "the other files were still written")));
+      } else {
+        report.added_suppressions = static_cast<int>(sites.rules_by_line.size());
+        f.source.emplace(file.display, std::move(text));
+        findings = analyze(*f.source, f.options);
+      }
+    }
+  }
+  for (const Finding& finding : findings) report.findings.push_back(locate(*f.source, finding));
+  add_fingerprints(report, *f.source, o.report.format == Format::sarif);
   if (auto lang = language_for(*f.source, f.options); own && lang) includes.offer(file.path, *lang, *file.config, std::move(*own));
   return report;
 }
@@ -301,16 +345,48 @@ struct CodeCounter {
   }
 };
 
+// What a baseline run says besides the report, on standard error: how many findings it hid, and
+// which of its entries no longer match (--prune-baseline drops them).
+void finish_baseline(const Options& o, Baseline& baseline, const std::set<std::string>& seen, size_t hidden, std::ostream& err) {
+  std::vector<Baseline::Entry> stale = baseline.stale(seen);
+  err << fmt::format("lwcport: baseline {}: {} known finding(s) not reported", o.baseline_file, hidden);
+  if (stale.empty()) {
+    err << ".\n";
+    return;
+  }
+  err << fmt::format("; {} no longer match{} (fixed, or the code changed){}\n", stale.size() == 1 ? "1 entry" : std::to_string(stale.size()) + " entries",
+                     stale.size() == 1 ? "es" : "", o.prune_baseline ? ", dropped:" : ":");
+  constexpr size_t kShown = 20;
+  for (size_t i = 0; i < stale.size() && i < kShown; ++i)
+    err << fmt::format("  {}: {}: `{}`\n", stale[i].path, stale[i].finding.rule, stale[i].finding.text.substr(0, 80));
+  if (stale.size() > kShown) err << fmt::format("  ... and {} more\n", stale.size() - kShown);
+  if (!o.prune_baseline) {
+    err << fmt::format("  (`lwcport lint --baseline {} --prune-baseline` drops them)\n", o.baseline_file);
+    return;
+  }
+  if (std::string why = Baseline::write(o.baseline_file, baseline.pruned(seen)); !why.empty())
+    throw std::runtime_error(fmt::format("{}: cannot write the baseline: {}", o.baseline_file, why));
+}
+
 int lint(const Options& o, std::ostream& out, std::ostream& err) {
   std::unique_ptr<ConfigFinder> configs = config_finder(o);
+  std::optional<Baseline> baseline;
+  if (!o.baseline_file.empty()) baseline = Baseline::read(o.baseline_file);
+  // --write-baseline: the entries are relative to the file being written, as --baseline reads them.
+  std::optional<Baseline> recording;
+  if (!o.write_baseline_file.empty()) recording = Baseline::at(o.write_baseline_file);
   std::vector<InputFile> files = input_files(o, *configs, err);
   ReportTarget target;
   ReportOptions ro;
   if (!open_target(o, *configs, out, err, target, ro)) return 2;
-  ReportWriter writer(*target.stream, ro);
+  std::ostringstream discarded;  // --write-baseline prints no report
+  ReportWriter writer(recording ? discarded : *target.stream, ro);
   IncludeSummaries includes;
   CodeCounter counter(files);
   LintOrder order = includes_first(files, includes);
+  std::set<std::string> seen;  // the files looked at, as the baseline names them
+  std::vector<Baseline::Entry> recorded;
+  size_t hidden = 0, suppressions = 0, suppressed_files = 0;
   run_in_order<FileReport>(
       files.size(), job_count(o),
       [&](size_t i) {
@@ -320,13 +396,37 @@ int lint(const Options& o, std::ostream& out, std::ostream& err) {
           return failed_file(files[i], e);
         }
       },
-      [&](const FileReport& r) {
+      [&](FileReport& r) {
         counter.add(r);
+        suppressions += r.added_suppressions;
+        suppressed_files += r.added_suppressions > 0;
+        if (recording) {
+          std::string path = recording->key(r.path);
+          for (const ReportedFinding& f : r.findings)
+            if (!f.fingerprint.empty()) recorded.push_back({path, {f.rule, f.text, f.occurrence, f.fingerprint}});
+        }
+        if (baseline) {
+          std::string path = baseline->key(r.path);
+          seen.insert(path);
+          hidden += std::erase_if(r.findings, [&](const ReportedFinding& f) { return !f.fingerprint.empty() && baseline->take(path, f.fingerprint); });
+        }
         writer.file(r);
       },
       &order.order);
   writer.finish();
   if (!every_argument_had_code(o, counter.with_code, err)) return 2;
+  if (recording) {
+    if (std::string why = Baseline::write(o.write_baseline_file, recorded); !why.empty())
+      throw std::runtime_error(fmt::format("{}: cannot write the baseline: {}", o.write_baseline_file, why));
+    err << fmt::format("Wrote a baseline of {} finding(s) to {}: `lwcport lint --baseline {}` reports only new ones.\n", recorded.size(),
+                       o.write_baseline_file, o.write_baseline_file);
+    return 0;
+  }
+  if (o.add_suppressions) {  // as writing a baseline: the point is to accept what is there
+    err << fmt::format("Added a suppression comment to {} line(s) in {} file(s).\n", suppressions, suppressed_files);
+    return 0;
+  }
+  if (baseline) finish_baseline(o, *baseline, seen, hidden, err);
   return o.fail_on && writer.failed(*o.fail_on) ? 1 : 0;
 }
 
@@ -711,6 +811,7 @@ FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& in
     out.report.findings.push_back(locate(result, input_finding(Severity::warning, 0, "fixes kept changing the file; stopped after 10 rounds",
                                                                 "please report this file: a fix should apply once")));
   }
+  add_fingerprints(out.report, result, o.report.format == Format::sarif);
   if (!out.changed) return out;
   std::optional<Lang> lang = language_for(source, f.options);
   if (verifier && lang) {

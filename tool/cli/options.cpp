@@ -102,6 +102,16 @@ const Flag kFlags[] = {
     {"--stdin-filename", nullptr, "lint fix", "NAME",
      "the name standing for standard input (`-`): its language, config and\nsuppressions come from NAME, and findings are reported under it",
      [](Options& o, const std::string& v) { o.stdin_filename = v; }},
+    {"--baseline", nullptr, "lint", "FILE",
+     "report only findings not recorded in FILE (the exit code comes from those\nalone) and list its entries that no longer match",
+     [](Options& o, const std::string& v) { o.baseline_file = v; }},
+    {"--write-baseline", nullptr, "lint", "FILE", "record the current findings in FILE (docs/baseline.md) and exit 0",
+     [](Options& o, const std::string& v) { o.write_baseline_file = v; }},
+    {"--prune-baseline", nullptr, "lint", nullptr, "with --baseline: rewrite FILE without the entries that no longer match",
+     [](Options& o, const std::string&) { o.prune_baseline = true; }},
+    {"--add-suppressions", nullptr, "lint", nullptr,
+     "write a `// lwcport-ignore: <id>` comment on the line of each current finding\n(the alternative to a baseline for teams who prefer them in code)",
+     [](Options& o, const std::string&) { o.add_suppressions = true; }},
     {"--config", nullptr, "lint fix verify parse", "FILE", "use this .lwcport.json for every file instead of the nearest one",
      [](Options& o, const std::string& v) { o.config_file = v; }},
     {"--isolated", nullptr, "lint fix verify parse", nullptr, "read no .lwcport.json: the built-in defaults",
@@ -305,6 +315,11 @@ Options parse_options(const std::vector<std::string>& args) {
   if (o.report.statistics && (o.report.format == Format::sarif || o.report.format == Format::github))
     throw UsageError("--statistics prints text or json", o.command);
   if (o.report.statistics && o.diff) throw UsageError("--statistics and --diff cannot be used together", o.command);
+  if (o.prune_baseline && o.baseline_file.empty()) throw UsageError("--prune-baseline needs --baseline FILE", o.command);
+  if (int modes = !o.baseline_file.empty() + !o.write_baseline_file.empty() + o.add_suppressions; modes > 1)
+    throw UsageError("--baseline, --write-baseline and --add-suppressions are separate ways to adopt lwcport: use one", o.command);
+  if (o.add_suppressions && !o.paths.empty() && o.paths[0] == "-")
+    throw UsageError("--add-suppressions writes into files; standard input has none", o.command);
   if (o.config_file.size() && o.isolated) throw UsageError("--config and --isolated cannot be used together", o.command);
   size_t from_stdin = std::count(o.paths.begin(), o.paths.end(), "-");
   if (from_stdin && o.command != "lint" && o.command != "fix")

@@ -42,6 +42,10 @@ struct Options {
   std::string stdin_filename;  // `-`: the name standing for standard input (language, config, suppressions)
   std::string config_file;  // every file uses this .lwcport.json instead of the nearest one
   bool isolated = false;  // no .lwcport.json at all: the built-in defaults
+  std::string baseline_file;        // lint: report only findings not in it
+  std::string write_baseline_file;  // lint: record the current findings there
+  bool prune_baseline = false;      // lint --baseline: drop the entries that no longer match
+  bool add_suppressions = false;    // lint: a suppression comment for each finding, written into the files
 };
 
 // Reads the command line; throws UsageError for anything it does not accept.

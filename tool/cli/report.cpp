@@ -6,6 +6,7 @@
 #include <map>
 
 #include "core/uri.h"
+#include "project/baseline.h"
 #include "fix/apply.h"
 #include "project/files.h"
 #include "rules/rule.h"
@@ -22,6 +23,8 @@ ReportedFinding locate(const Source& source, const Finding& f) {
   r.end = source.position(f.span.end);
   r.decision = f.decision;
   r.not_needed = f.not_needed;
+  if (f.span.begin <= f.span.end && f.span.end <= source.text().size())
+    r.text = normalised_text(std::string_view(source.text()).substr(f.span.begin, std::min<size_t>(f.span.end - f.span.begin, 4096)));
   if (!f.not_needed) r.withheld = f.withheld;
   // A long line is shown around the finding only: a finding's report never grows with its line.
   constexpr size_t kMaxLineShown = 240;
@@ -46,6 +49,19 @@ ReportedFinding locate(const Source& source, const Finding& f) {
     r.fix = std::move(rf);
   }
   return r;
+}
+
+void add_fingerprints(FileReport& report, const Source& source, bool with_line_hashes) {
+  std::vector<std::pair<std::string, std::string>> keys;
+  for (const ReportedFinding& f : report.findings) keys.emplace_back(f.rule, f.text);
+  std::vector<Fingerprinted> prints = fingerprint_all(keys);
+  std::vector<std::string> lines = with_line_hashes ? line_hashes(source.text()) : std::vector<std::string>{};
+  for (size_t i = 0; i < report.findings.size(); ++i) {
+    ReportedFinding& f = report.findings[i];
+    f.fingerprint = prints[i].fingerprint;
+    f.occurrence = prints[i].occurrence;
+    if (f.start.line >= 1 && static_cast<size_t>(f.start.line) <= lines.size()) f.line_hash = lines[f.start.line - 1];
+  }
 }
 
 namespace {
@@ -177,6 +193,10 @@ nlohmann::json sarif_result(const std::string& path, const ReportedFinding& f) {
                            {"level", sarif_level(f.severity)},
                            {"message", {{"text", sentence(f.message) + (f.hint.empty() ? "" : " Fix: " + sentence(f.hint))}}},
                            {"locations", {{{"physicalLocation", {{"artifactLocation", artifact_location(path)}, {"region", region}}}}}}};
+  if (!f.fingerprint.empty()) {
+    result["partialFingerprints"] = {{"lwcport/v1", f.fingerprint}};
+    if (!f.line_hash.empty()) result["partialFingerprints"]["primaryLocationLineHash"] = f.line_hash;
+  }
   if (f.fix) {
     nlohmann::json replacements = nlohmann::json::array();
     for (const ReportedEdit& e : f.fix->edits)
@@ -287,6 +307,7 @@ void ReportWriter::file(const FileReport& report) {
         if (options_.format == Format::json) {
           j = finding_json(f);
           j["path"] = report.path;
+          if (!f.fingerprint.empty()) j["fingerprint"] = f.fingerprint;
         } else {
           j = sarif_result(report.path, f);
         }

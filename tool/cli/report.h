@@ -46,15 +46,23 @@ struct ReportedFinding {
   std::string decision;
   bool not_needed = false;
   std::vector<std::string> withheld;  // rewrites not offered, each with why
+  std::string text;         // the span's text, blanks collapsed (project/baseline.h)
+  std::string fingerprint;  // its identity across edits (add_fingerprints)
+  int occurrence = 0;       // which finding of its rule and text in the file it is
+  std::string line_hash;    // GitHub's primaryLocationLineHash of its line, for SARIF
 };
 
 struct FileReport {
   std::string path;
   std::vector<ReportedFinding> findings;
   bool has_code = true;  // false: a script with no GLSL in it, not counted as a linted file
+  int added_suppressions = 0;  // lint --add-suppressions: lines given a suppression comment
 };
 
 ReportedFinding locate(const Source& source, const Finding& finding);
+// Gives each finding of a file its fingerprint (rule, text, occurrence) and, when asked, the
+// line hash GitHub code scanning computes for its start line.
+void add_fingerprints(FileReport& report, const Source& source, bool line_hashes);
 // The JSON form of one finding (docs/json-output.md), shared by --format json and the goldens.
 nlohmann::json finding_json(const ReportedFinding& f);
 
