@@ -169,7 +169,7 @@ TEST(VerifyCli, AMaterialIncludeIsVerifiedWithItsIncludersContext) {
               "\tfloat Angle = atan2(Packed.y, Packed.x) + float(asuint(Packed.w) & 1u);\n"
               "\tfloat3 Eye = LWCHackToFloat(PrimaryView.WorldCameraOrigin) - CameraOrigin();\n"
               "\treturn Parameters.WorldPosition_CamRelative + Eye * Angle + W / H;\n}\n");
-  test::Run r = test::run(test::binary() + " verify " + dir + " --fail-on none --color never 2>&1");
+  test::Run r = test::run(test::binary() + " verify " + dir + " --fail-on none 2>&1");
   EXPECT_EQ(r.exit_code, 0) << r.out;
   EXPECT_EQ(r.out.find("does not compile"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("no float64 reference"), std::string::npos) << r.out;
@@ -177,7 +177,7 @@ TEST(VerifyCli, AMaterialIncludeIsVerifiedWithItsIncludersContext) {
   EXPECT_NE(r.out.find("RayStart (reference: the original promoted to float64"), std::string::npos) << r.out;
   // Without the forced include the function cannot be built: the test is not vacuous.
   test::write(dir + "/.lwcport.json", R"({"unreal": "5.4", "virtual-roots": {"/Engine/": "engine/"}})");
-  test::Run bare = test::run(test::binary() + " verify " + dir + " --fail-on none --color never 2>&1");
+  test::Run bare = test::run(test::binary() + " verify " + dir + " --fail-on none 2>&1");
   EXPECT_NE(bare.out.find("'CameraOrigin' : no matching overloaded function found"), std::string::npos) << bare.out;
 }
 
@@ -189,7 +189,7 @@ TEST(VerifyCli, AMaterialIncludeIsVerifiedWithItsIncludersContext) {
 TEST(VerifyCli, InputRolesComeFromTheModelAndExplainSaysSo) {
   std::string corpus = test::source_dir() + "/corpus/";
   test::Run r = test::run(test::binary() + " verify " + corpus + "ue4/DeferredLightPixelShaders.usf " + corpus +
-                          "glsl/SunAndFog.frag --explain --fail-on none --color never 2>&1");
+                          "glsl/SunAndFog.frag --explain --fail-on none 2>&1");
   EXPECT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("  input `LightPositionAndInvRadius` (float4): an absolute world position (the object's point); by the "
                        "world-space model (kind absolute-position)"), std::string::npos) << r.out;
@@ -198,7 +198,7 @@ TEST(VerifyCli, InputRolesComeFromTheModelAndExplainSaysSo) {
   EXPECT_NE(r.out.find("SetupLightDataForStandardDeferred: original (float32) input-limited"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("DeferredLightPixelMain: original (float32) fail"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("SunAndFog.frag: main: original (float32) pass"), std::string::npos) << r.out;
-  test::Run plain = test::run(test::binary() + " verify " + corpus + "glsl/SunAndFog.frag --fail-on none --color never 2>&1");
+  test::Run plain = test::run(test::binary() + " verify " + corpus + "glsl/SunAndFog.frag --fail-on none 2>&1");
   EXPECT_EQ(plain.out.find("  input `"), std::string::npos) << plain.out;  // only with --explain
 }
 

@@ -22,6 +22,9 @@
 #include <thread>
 
 #include "project/baseline.h"
+#include "report/history.h"
+#include "report/migration.h"
+#include "core/embedded.h"
 #include "project/config.h"
 #include "project/files.h"
 #include "project/includes.h"
@@ -176,6 +179,7 @@ FileReport lint_file(const InputFile& file, const Options& o, IncludeSummaries& 
   if (f.problem) return std::move(*f.problem);
   FileReport report{file.display, {}};
   report.has_code = holds_shader_code(*f.source, f.options);
+  report.era = file_era(*f.source, f.options);
   std::optional<FileSummary> own;
   if (included) f.options.summary_for_includers = &own;
   std::vector<Finding> findings = analyze(*f.source, f.options);
@@ -1201,6 +1205,138 @@ int verify(const Options& o, std::ostream& out, std::ostream& err) {
   return accuracy.failed() ? 1 : 0;
 }
 
+// The scenes the report prices the port under: the bundled profiles and Unreal's full world.
+std::vector<Scene> report_scenes(const Options& o) {
+  std::vector<Scene> scenes{Scene{}};
+  for (const EmbeddedFile& f : embedded_scene_files()) scenes.push_back(parse_scene(f.text, std::string(f.name)));
+  if (o.scene && std::none_of(scenes.begin(), scenes.end(), [&](const Scene& s) { return s.name == o.scene->name; })) scenes.push_back(*o.scene);
+  return scenes;
+}
+
+// --history / --since: the counts at each commit, each distinct file content linted once.
+std::vector<HistoryPoint> report_history(const Options& o, ConfigFinder& configs, std::ostream& err) {
+  std::vector<std::string> args = o.paths.empty() ? std::vector<std::string>{"."} : o.paths;
+  fs::path top = git_top(fs::is_directory(args[0]) ? fs::path(args[0]) : fs::path(args[0]).parent_path().empty() ? fs::path(".") : fs::path(args[0]).parent_path());
+  std::vector<std::string> specs;
+  for (const std::string& a : args) {
+    std::string rel = fs::absolute(a).lexically_normal().lexically_relative(top).generic_string();
+    specs.push_back(rel.empty() || rel == "." ? "." : rel);
+  }
+  std::vector<CommitFiles> commits = git_history(top, specs, o.history, o.since);
+  // Each distinct (path, content) a shader: linted once, however many commits hold it.
+  std::map<std::pair<std::string, std::string>, std::pair<std::map<std::string, size_t>, size_t>> counts;
+  std::set<std::string> blobs;
+  for (const CommitFiles& c : commits)
+    for (const auto& [path, blob] : c.files) {
+      std::shared_ptr<const ProjectConfig> config = configs.for_dir((top / path).parent_path());
+      if (!config->formats.for_path(path) || config->excluded(top / path, false)) continue;
+      if (counts.emplace(std::pair{path, blob}, std::pair<std::map<std::string, size_t>, size_t>{}).second) blobs.insert(blob);
+    }
+  std::map<std::string, std::string> texts = git_blobs(top, blobs);
+  std::vector<std::pair<std::string, std::string>> work;
+  for (const auto& [key, value] : counts) work.push_back(key);
+  IncludeSummaries includes;
+  parallel_for(work.size(), job_count(o), [&](size_t i) {
+    const auto& [path, blob] = work[i];
+    auto& [by_rule, markers] = counts.at(work[i]);
+    try {
+      std::shared_ptr<const ProjectConfig> config = configs.for_dir((top / path).parent_path());
+      AnalyzeOptions a = analysis_options(*config);
+      a.lang = o.lang;
+      if (!o.select.empty()) a.select = o.select;
+      a.ignore.insert(o.ignore.begin(), o.ignore.end());
+      if (o.scene) a.scene = o.scene->for_path(path);
+      Source source(path, texts.count(blob) ? texts.at(blob) : std::string());
+      FileSummary summary;  // the includes as the working tree has them
+      if (source.text().find("include") != std::string::npos) {
+        summary = includes.for_file(top / path, source.text(), *config);
+        a.includes = &summary;
+      }
+      for (const Finding& f : analyze(source, a)) {
+        ++by_rule[f.rule];
+        markers += f.rule == "lwc-hack-marker";
+      }
+    } catch (const std::exception& e) {
+      ++by_rule[std::string(kInputRule)];
+    }
+  });
+  std::vector<HistoryPoint> out;
+  for (const CommitFiles& c : commits) {
+    HistoryPoint h{c.commit, c.date, c.subject, {}, 0, 0};
+    for (const auto& [path, blob] : c.files) {
+      auto it = counts.find({path, blob});
+      if (it == counts.end()) continue;
+      for (const auto& [rule, n] : it->second.first) h.by_rule[rule] += n, h.total += n;
+      h.markers += it->second.second;
+    }
+    out.push_back(std::move(h));
+  }
+  err << fmt::format("History: {} commit(s), {} distinct file version(s) linted.\n", commits.size(), work.size());
+  return out;
+}
+
+int report(const Options& o, std::ostream& out, std::ostream& err) {
+  std::unique_ptr<ConfigFinder> configs = config_finder(o);
+  std::vector<InputFile> files = input_files(o, *configs, err);
+  std::vector<Scene> scenes = report_scenes(o);
+  MigrationReport rep;
+  rep.scene = o.scene ? o.scene->name : Scene{}.name;
+  std::vector<std::optional<FileEntry>> entries(files.size());
+  std::vector<std::vector<FileEntry>> per_scene(scenes.size(), std::vector<FileEntry>(files.size()));
+  IncludeSummaries includes;
+  CodeCounter counter(files);
+  LintOrder order = includes_first(files, includes);
+  run_in_order<FileReport>(
+      files.size(), job_count(o),
+      [&](size_t i) {
+        FileReport r;
+        try {
+          r = lint_file(files[i], o, includes, order.included[i]);
+          for (size_t s = 0; s < scenes.size(); ++s) {
+            Options under = o;
+            under.scene = scenes[s];
+            FileReport p = lint_file(files[i], under, includes, false);
+            per_scene[s][i] = {p.path, p.era, std::move(p.findings)};
+          }
+        } catch (const std::exception& e) {
+          r = failed_file(files[i], e);
+        }
+        return r;
+      },
+      [&](FileReport& r) {
+        counter.add(r);
+        if (!r.has_code) return;
+        for (const ReportedFinding& f : r.findings)
+          if (f.rule == "lwc-hack-marker") rep.markers.push_back(marker_site(r.path, f));
+        rep.files.push_back({r.path, r.era, std::move(r.findings)});
+      },
+      &order.order);
+  if (!every_argument_had_code(o, counter.with_code, err)) return 2;
+  for (size_t s = 0; s < scenes.size(); ++s) rep.scenes.push_back(scene_cost(scenes[s].name, per_scene[s]));
+  if (o.history || !o.since.empty()) rep.history = report_history(o, *configs, err);
+  if (o.verify) {
+    Verifier verifier;
+    if (!start_verifier(o, verifier, err, job_count(o), true)) return 2;
+    Options as_json = o;
+    as_json.report.format = Format::json;
+    std::ostringstream json;
+    verify_functions(as_json, *configs, verifier, json, err);
+    rep.verification = nlohmann::json::parse(json.str()).at("functions");
+  }
+  std::error_code ec;
+  fs::create_directories(o.out_dir, ec);
+  for (const auto& [name, text] : {std::pair<std::string, std::string>{"report.html", report_html(rep)},
+                                   {"report.md", report_markdown(rep)},
+                                   {"report.json", json_text(report_json(rep), 1) + "\n"}}) {
+    fs::path path = fs::path(o.out_dir) / name;
+    std::string why = fs::exists(path, ec) ? replace_file(path, read_file(path, SIZE_MAX).text, text) : create_file(path, text);
+    if (!why.empty()) throw std::runtime_error(fmt::format("{}: cannot write: {}", path.string(), why));
+  }
+  out << fmt::format("Wrote {0}/report.html, {0}/report.md and {0}/report.json: {1} file(s), {2} finding(s), {3} marker(s).\n", o.out_dir,
+                     rep.files.size(), report_json(rep)["summary"]["findings"].get<size_t>(), rep.markers.size());
+  return 0;
+}
+
 // How a rule's fixes are labelled: "safe", "unsafe", "safe, unsafe", or "" when it has none.
 std::string fix_labels(const RuleInfo& r) {
   std::set<std::string> labels;
@@ -1268,6 +1404,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     if (o.command == "lsp") return run_language_server(std::cin, out, {o.log_file});
     if (o.command == "rules") return list_rules(o, out);
     if (o.command == "rule") return show_rule(o, out);
+    if (o.command == "report") return report(o, out, err);
     throw UsageError("unknown command '" + o.command + "'");
   } catch (const UsageError& e) {
     err << usage_error_line(e);

@@ -34,6 +34,10 @@ constexpr CommandInfo kCommands[] = {
      "--verbose, each error's position and the text around it"},
     {"rules", "[--format text|json]", "list the rules: id, severity, languages, whether lwcport fixes it, summary"},
     {"rule", "ID", "print a rule's page: what it finds, why, its fixes and examples"},
+    {"report", "[options] [PATHS...]",
+     "write a migration report (report.html, report.md, report.json): findings by\n"
+     "rule, era and folder, the marker ledger, effort, what each scene needs, and\n"
+     "with --history the burn-down over the tree's git history"},
     {"lsp", "[--log FILE]",
      "serve editors over the Language Server Protocol (stdio): diagnostics as\n"
      "you type, quick fixes, hover (docs/editors.md)"},
@@ -90,11 +94,11 @@ const Flag kFlags[] = {
        else if (parse_severity(f, s)) o.fail_on = s;
        else throw UsageError("--fail-on must be error, warning, note or none", o.command);
      }},
-    {"--select", nullptr, "lint fix verify", "IDS", "run only these rules (comma-separated)",
+    {"--select", nullptr, "lint fix verify report", "IDS", "run only these rules (comma-separated)",
      [](Options& o, const std::string& v) { o.select = rule_list(v, "--select"); }},
-    {"--ignore", nullptr, "lint fix verify", "IDS", "skip these rules (comma-separated)",
+    {"--ignore", nullptr, "lint fix verify report", "IDS", "skip these rules (comma-separated)",
      [](Options& o, const std::string& v) { o.ignore = rule_list(v, "--ignore"); }},
-    {"--lang", nullptr, "lint fix verify parse", "LANG", "hlsl|glsl: analyse every file as this language",
+    {"--lang", nullptr, "lint fix verify parse report", "LANG", "hlsl|glsl: analyse every file as this language",
      [](Options& o, const std::string& v) {
        o.lang = parse_lang(v);
        if (!o.lang) throw UsageError("--lang must be hlsl or glsl", o.command);
@@ -112,11 +116,11 @@ const Flag kFlags[] = {
     {"--add-suppressions", nullptr, "lint", nullptr,
      "write a `// lwcport-ignore: <id>` comment on the line of each current finding\n(the alternative to a baseline for teams who prefer them in code)",
      [](Options& o, const std::string&) { o.add_suppressions = true; }},
-    {"--config", nullptr, "lint fix verify parse", "FILE", "use this .lwcport.json for every file instead of the nearest one",
+    {"--config", nullptr, "lint fix verify parse report", "FILE", "use this .lwcport.json for every file instead of the nearest one",
      [](Options& o, const std::string& v) { o.config_file = v; }},
-    {"--isolated", nullptr, "lint fix verify parse", nullptr, "read no .lwcport.json: the built-in defaults",
+    {"--isolated", nullptr, "lint fix verify parse report", nullptr, "read no .lwcport.json: the built-in defaults",
      [](Options& o, const std::string&) { o.isolated = true; }},
-    {"--jobs", "-j", "lint fix verify parse", "N",
+    {"--jobs", "-j", "lint fix verify parse report", "N",
      "worker threads (default: all cores; verify: functions side by side, one\ndriver process each)",
      [](Options& o, const std::string& n) {
        char* end = nullptr;
@@ -126,7 +130,7 @@ const Flag kFlags[] = {
      }},
     {"--output", "-o", "lint fix verify", "FILE", "write the report to FILE instead of standard output",
      [](Options& o, const std::string& v) { o.output = v; }},
-    {"--scene", nullptr, "lint fix verify", "FILE",
+    {"--scene", nullptr, "lint fix verify report", "FILE",
      "the scene profile: world extent, view distance, precision (default:\nUnreal's full world, 2^43 cm, to 1/16 cm)",
      [](Options& o, const std::string& v) { o.scene = load_scene(v); }},
     {"--strategy", nullptr, "lint fix", "NAME",
@@ -139,13 +143,24 @@ const Flag kFlags[] = {
     {"--explain", nullptr, "lint fix verify", nullptr,
      "lint, fix: print each scene decision with its numbers; verify: each\nfunction's inputs, the role each is given and how it is filled",
      [](Options& o, const std::string&) { o.report.explain = true; }},
+    {"--out", nullptr, "report", "DIR", "where report.html, report.md and report.json go (default: lwcport-report)",
+     [](Options& o, const std::string& v) { o.out_dir = v; }},
+    {"--history", nullptr, "report", "N", "the counts at each of the last N commits (first parent) of the tree's git history",
+     [](Options& o, const std::string& n) {
+       char* end = nullptr;
+       long v = std::strtol(n.c_str(), &end, 10);
+       if (n.empty() || *end || v < 1 || v > 100000) throw UsageError("--history must be a number of commits from 1", o.command);
+       o.history = static_cast<int>(v);
+     }},
+    {"--since", nullptr, "report", "REV", "the counts at each commit after REV (a commit, tag or branch)",
+     [](Options& o, const std::string& v) { o.since = v; }},
     {"--diff", nullptr, "fix", nullptr,
      "print a unified diff of the fixes and write nothing (exit 1 when there\nis something to fix, unless --fail-on none)",
      [](Options& o, const std::string&) { o.diff = true; }},
     {"--unsafe-fixes", nullptr, "fix", nullptr, "apply the unsafe fixes too",
      [](Options& o, const std::string&) { o.unsafe_fixes = true; }},
-    {"--verify", nullptr, "fix", nullptr,
-     "run each fixed file's functions on the Vulkan device against the float64\nreference first; apply only the files whose rewrites all pass",
+    {"--verify", nullptr, "fix report", nullptr,
+     "fix: run each fixed file's functions on the Vulkan device against the\nfloat64 reference first; apply only the files whose rewrites all pass;\nreport: verify every function with a finding and plot its error against cost",
      [](Options& o, const std::string&) { o.verify = true; }},
     {"--check-build", nullptr, "fix", nullptr,
      "compile each file before and after fixing (glslang; Unreal code against\nits engine era's stub); a fix that breaks a file's build is held back",
@@ -155,7 +170,7 @@ const Flag kFlags[] = {
      [](Options& o, const std::string&) { o.force = true; }},
     {"--shaderlib", nullptr, "verify", nullptr, "check the DoubleFloat library itself against a double-double reference",
      [](Options& o, const std::string&) { o.shaderlib = true; }},
-    {"--timeout", nullptr, "verify", "SECONDS",
+    {"--timeout", nullptr, "verify report", "SECONDS",
      "stop a kernel that runs longer (default: 60); the driver process is\nrestarted and the other functions still run",
      [](Options& o, const std::string& n) {
        char* end = nullptr;
@@ -315,6 +330,7 @@ Options parse_options(const std::vector<std::string>& args) {
   if (o.report.statistics && (o.report.format == Format::sarif || o.report.format == Format::github))
     throw UsageError("--statistics prints text or json", o.command);
   if (o.report.statistics && o.diff) throw UsageError("--statistics and --diff cannot be used together", o.command);
+  if (o.history && !o.since.empty()) throw UsageError("--history and --since cannot be used together", o.command);
   if (o.prune_baseline && o.baseline_file.empty()) throw UsageError("--prune-baseline needs --baseline FILE", o.command);
   if (int modes = !o.baseline_file.empty() + !o.write_baseline_file.empty() + o.add_suppressions; modes > 1)
     throw UsageError("--baseline, --write-baseline and --add-suppressions are separate ways to adopt lwcport: use one", o.command);

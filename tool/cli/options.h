@@ -46,6 +46,9 @@ struct Options {
   std::string write_baseline_file;  // lint: record the current findings there
   bool prune_baseline = false;      // lint --baseline: drop the entries that no longer match
   bool add_suppressions = false;    // lint: a suppression comment for each finding, written into the files
+  std::string out_dir = "lwcport-report";  // report: where report.html, .md and .json go
+  int history = 0;                  // report: the counts at each of the last N commits
+  std::string since;                // report: ... or at each commit after REV
 };
 
 // Reads the command line; throws UsageError for anything it does not accept.

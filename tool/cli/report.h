@@ -57,6 +57,7 @@ struct FileReport {
   std::vector<ReportedFinding> findings;
   bool has_code = true;  // false: a script with no GLSL in it, not counted as a linted file
   int added_suppressions = 0;  // lint --add-suppressions: lines given a suppression comment
+  std::string era{};  // what its code is written for (rules/analyze.h: file_era)
 };
 
 ReportedFinding locate(const Source& source, const Finding& finding);

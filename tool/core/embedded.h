@@ -11,5 +11,7 @@ struct EmbeddedFile {
 // (docs/rules/*.md), and the shader library sources of tool/shaderlib.
 const std::vector<EmbeddedFile>& embedded_rule_files();
 const std::vector<EmbeddedFile>& embedded_rule_pages();
+// The bundled scene profiles (corpus/scenes/*.json), for the migration report's per-scene costs.
+const std::vector<EmbeddedFile>& embedded_scene_files();
 const std::vector<EmbeddedFile>& embedded_shaderlib_files();
 }  // namespace lwc

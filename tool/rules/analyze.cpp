@@ -64,6 +64,14 @@ const WorldData& world_data(Lang lang, const nlohmann::json& extra_sources) {
   return *slot;
 }
 
+std::string file_era(const Source& source, const AnalyzeOptions& options) {
+  std::optional<FileFormat> format = format_for(source, options);
+  if (!format) return "";
+  if (format->lang == Lang::glsl) return "GLSL";
+  if (!is_unreal_source(source.path(), source.text())) return "HLSL";
+  return std::string(era_name(infer_unreal_era(source.text())));
+}
+
 ModelContext model_context(const Source& source, Lang lang, const FileSummary* includes) {
   std::optional<UnrealEra> era;
   if (lang == Lang::hlsl && is_unreal_source(source.path(), source.text())) era = infer_unreal_era(source.text());
@@ -262,7 +270,7 @@ void report_unused(const std::vector<Suppression>& sups, const SyntaxTree& tree,
                       : target       ? fmt::format("no `{}` finding here to suppress", s.rule)
                                      : fmt::format("`{}` is not a lwcport rule", s.rule);
     std::string what = s.rule.empty() ? "every rule" : "`" + s.rule + "`";
-    std::string removal = s.ids > 1 ? what + " from the comment" : "the suppression";
+    std::string removal = s.rule.empty() ? "the suppression" : what + " from the comment";
     Finding f = make_finding(*unused, s.span, {{"suppressed", what}, {"removal", removal}, {"why", why}});
     f.fixes.push_back(remove_suppression(*unused, s, tree));
     findings.push_back(std::move(f));

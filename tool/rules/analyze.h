@@ -77,6 +77,10 @@ const WorldData& world_data(Lang lang, const nlohmann::json& extra_sources);
 // Unreal code written for UE4 (whatever engine it now builds against): UE5-era code says what is
 // large through the engine's large-world types.
 ModelContext model_context(const Source& source, Lang lang, const FileSummary* includes);
+// What a file's code is written for: "UE4", "UE 5.0-5.3" or "UE 5.4+" for Unreal code (inferred
+// from the code, whatever engine the project builds against), else "HLSL" or "GLSL"; "" when
+// it is not a shader lwcport knows.
+std::string file_era(const Source& source, const AnalyzeOptions& options);
 
 // The macros a file is read with: the built-in table, then what its includes define, then the
 // project's (each later one wins).

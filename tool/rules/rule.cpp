@@ -26,7 +26,7 @@ struct Loaded {
 RuleInfo parse_rule(std::string_view file, const nlohmann::json& j) {
   auto fail = [&](const std::string& what) { throw std::runtime_error("rules/" + std::string(file) + ": " + what); };
   RuleInfo r;
-  for (const char* key : {"id", "name", "severity", "languages", "summary", "message", "hint", "rationale", "examples"})
+  for (const char* key : {"id", "name", "severity", "languages", "summary", "message", "hint", "rationale", "effort", "examples"})
     if (!j.contains(key)) fail(std::string("missing \"") + key + "\"");
   r.id = j.at("id").get<std::string>();
   if (std::string(file) != r.id + ".json") fail("file name must be the rule id");
@@ -41,6 +41,11 @@ RuleInfo parse_rule(std::string_view file, const nlohmann::json& j) {
   r.message = j.at("message").get<std::string>();
   r.hint = j.at("hint").get<std::string>();
   r.rationale = j.at("rationale").get<std::string>();
+  const nlohmann::json& effort = j.at("effort");
+  if (!effort.contains("minutes") || !effort.at("minutes").is_number() || !effort.contains("by-hand"))
+    fail("\"effort\" needs \"minutes\" (per site fixed by hand) and \"by-hand\" (what that takes)");
+  r.effort_minutes = effort.at("minutes").get<double>();
+  r.effort_by_hand = effort.at("by-hand").get<std::string>();
   r.data = j.value("data", nlohmann::json::object());
   r.examples = j.at("examples");
   r.scene_dependent = j.value("scene-dependent", false);

@@ -23,6 +23,10 @@ struct RuleInfo {
   std::string message;    // a template: {name} placeholders filled by the check
   std::string hint;       // a template too
   std::string rationale;
+  // The migration report's estimate: minutes a rendering engineer needs to fix one site by hand,
+  // and what that work is (the basis the report states).
+  double effort_minutes = 0;
+  std::string effort_by_hand;
   nlohmann::json data;
   nlohmann::json examples;
   // The rule's rewrites by kind: {"title", "applicability", "reason"} templates.

@@ -1,0 +1,66 @@
+#pragma once
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/report.h"
+
+namespace lwc {
+
+// `lwcport report`: what a lead reads about a port (docs/report.md). The data is gathered by the
+// command from the same analysis `lint` runs; these functions only aggregate and write it.
+
+// A lossy shortcut left in the code (`LWCHackToFloat`, `DF*_Hack`, `LWC_HACK_TO_ZERO`).
+struct MarkerSite {
+  std::string path;
+  int line = 0, column = 0;
+  std::string marker;   // the name written
+  std::string demotes;  // the text it is applied to
+  std::string removal;  // whether lwcport removes it: "safe fix", "unsafe fix: why" or "by hand: why"
+};
+
+struct FileEntry {
+  std::string path;
+  std::string era;  // "UE4", "UE 5.0-5.3", "UE 5.4+", "HLSL", "GLSL"
+  std::vector<ReportedFinding> findings;
+};
+
+// What the port costs under one scene profile.
+struct SceneCost {
+  std::string name;
+  size_t needed = 0, not_needed = 0, safe = 0, unsafe = 0, by_hand = 0, translated = 0, df = 0;
+  double minutes = 0;
+};
+
+// The counts at one commit of the tree's history.
+struct HistoryPoint {
+  std::string commit, date, subject;
+  std::map<std::string, size_t> by_rule;
+  size_t total = 0, markers = 0;
+};
+
+struct MigrationReport {
+  std::string scene = "default";  // the profile the findings' fixes were planned for
+  std::vector<FileEntry> files;   // sorted by path
+  std::vector<MarkerSite> markers;
+  std::vector<SceneCost> scenes;      // one per bundled or given profile
+  std::vector<HistoryPoint> history;  // oldest first; empty without --history / --since
+  nlohmann::json verification;        // --verify: `lwcport verify --format json`'s functions; null without
+};
+
+// Minutes one finding costs by this estimate: none when the scene does not need it, one to review
+// a safe fix, five to review and test an unsafe one, else the rule's minutes by hand.
+double effort_minutes(const ReportedFinding& f);
+// The marker a lwc-hack-marker finding stands for, with the argument it demotes.
+MarkerSite marker_site(const std::string& path, const ReportedFinding& f);
+// What the findings of one analysis cost under a scene.
+SceneCost scene_cost(const std::string& name, const std::vector<FileEntry>& files);
+
+// report.json (docs/report.md), report.md and report.html: the same data in three forms.
+nlohmann::ordered_json report_json(const MigrationReport& report);
+std::string report_markdown(const MigrationReport& report);
+std::string report_html(const MigrationReport& report);
+
+}  // namespace lwc
