@@ -1327,7 +1327,7 @@ int report(const Options& o, std::ostream& out, std::ostream& err) {
   fs::create_directories(o.out_dir, ec);
   for (const auto& [name, text] : {std::pair<std::string, std::string>{"report.html", report_html(rep)},
                                    {"report.md", report_markdown(rep)},
-                                   {"report.json", json_text(report_json(rep), 1) + "\n"}}) {
+                                   {"report.json", report_json(rep).dump(1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n"}}) {
     fs::path path = fs::path(o.out_dir) / name;
     std::string why = fs::exists(path, ec) ? replace_file(path, read_file(path, SIZE_MAX).text, text) : create_file(path, text);
     if (!why.empty()) throw std::runtime_error(fmt::format("{}: cannot write: {}", path.string(), why));
