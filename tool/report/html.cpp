@@ -193,7 +193,7 @@ std::string report_html(const MigrationReport& r) {
            td(row["unsafe"], true) + td(row["by_hand"], true) + td(row["minutes"], true) + "</tr>";
   out += "</tbody></table>";
 
-  out += "<h2>Files by era</h2><table id=eras>" + th({{"era", false}, {"files", true}}) + "<tbody>";
+  out += "<h2>Files by era</h2><p class=basis>" + esc(kEraNote) + "</p><table id=eras>" + th({{"era", false}, {"files", true}}) + "<tbody>";
   for (const auto& [era, count] : s["eras"].items()) out += "<tr>" + td(era) + td(count, true) + "</tr>";
   out += "</tbody></table>";
 

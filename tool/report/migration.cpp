@@ -14,6 +14,15 @@ namespace {
 
 constexpr double kReviewSafe = 1, kReviewUnsafe = 5;
 
+}  // namespace
+
+const char* const kEraNote =
+    "What each file's code is written for, read from the code: `UE 5.4+` uses DoubleFloat names, `UE 5.0-5.3` tile/offset names, "
+    "`UE4` is Unreal code with neither (code written for UE4, or code that never needed a large-world type); `HLSL` and `GLSL` "
+    "are files outside Unreal.";
+
+namespace {
+
 // How a finding gets fixed: "safe" or "unsafe" (lwcport's fix), "by hand", or "not needed".
 std::string fix_kind(const ReportedFinding& f) {
   if (f.not_needed) return "not needed";
@@ -228,7 +237,7 @@ std::string report_markdown(const MigrationReport& r) {
   out += "## Findings by rule\n\n" + table({"rule", "findings", "error", "warning", "note", "safe fix", "unsafe fix", "by hand", "minutes"}, rows);
   rows.clear();
   for (const auto& [era, count] : s["eras"].items()) rows.push_back({era, num(count)});
-  out += "## Files by era\n\n" + table({"era", "files"}, rows);
+  out += "## Files by era\n\n" + std::string(kEraNote) + "\n\n" + table({"era", "files"}, rows);
   rows.clear();
   for (const auto& m : j["markers"])
     rows.push_back({m["path"].get<std::string>() + ":" + num(m["line"]), "`" + m["marker"].get<std::string>() + "`",

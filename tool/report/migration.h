@@ -58,6 +58,9 @@ MarkerSite marker_site(const std::string& path, const ReportedFinding& f);
 // What the findings of one analysis cost under a scene.
 SceneCost scene_cost(const std::string& name, const std::vector<FileEntry>& files);
 
+// What the era column means, for both written forms.
+extern const char* const kEraNote;
+
 // report.json (docs/report.md), report.md and report.html: the same data in three forms.
 nlohmann::ordered_json report_json(const MigrationReport& report);
 std::string report_markdown(const MigrationReport& report);
