@@ -69,7 +69,7 @@ std::set<std::string> rule_list(const std::string& value, const char* flag) {
 
 const Flag kFlags[] = {
     {"--format", nullptr, "lint fix verify rules", "FORMAT",
-     "text|json|sarif|github (verify and rules: text|json; default: text)",
+     "text|json|sarif|github (default: text)",
      [](Options& o, const std::string& f) {
        if (f == "text") o.report.format = Format::text;
        else if (f == "json") o.report.format = Format::json;
@@ -81,13 +81,13 @@ const Flag kFlags[] = {
     {"--statistics", nullptr, "lint fix", nullptr, "per rule: how many findings, and how many a fix covers, instead of each finding",
      [](Options& o, const std::string&) { o.report.statistics = true; }},
     {"--color", nullptr, "lint fix", "WHEN",
-     "auto|always|never: colour text output (default: auto; NO_COLOR, FORCE_COLOR and\nCLICOLOR_FORCE are honoured under auto)",
+     "auto|always|never: colour text output (default: auto; NO_COLOR, FORCE_COLOR and CLICOLOR_FORCE are honoured under auto)",
      [](Options& o, const std::string& v) {
        if (v != "auto" && v != "always" && v != "never") throw UsageError("--color must be auto, always or never", o.command);
        o.color = v;
      }},
     {"--fail-on", nullptr, "lint fix verify", "LEVEL",
-     "error|warning|note|none: exit 1 when a finding is at least this severe\n(default: warning; verify: none exits 0 when a rewrite fails)",
+     "error|warning|note|none: exit 1 when a finding is at least this severe (default: warning)",
      [](Options& o, const std::string& f) {
        Severity s;
        if (f == "none") o.fail_on.reset();
@@ -104,24 +104,24 @@ const Flag kFlags[] = {
        if (!o.lang) throw UsageError("--lang must be hlsl or glsl", o.command);
      }},
     {"--stdin-filename", nullptr, "lint fix", "NAME",
-     "the name standing for standard input (`-`): its language, config and\nsuppressions come from NAME, and findings are reported under it",
+     "the name standing for standard input (`-`): its language, config and suppressions come from NAME, and findings are reported under it",
      [](Options& o, const std::string& v) { o.stdin_filename = v; }},
     {"--baseline", nullptr, "lint", "FILE",
-     "report only findings not recorded in FILE (the exit code comes from those\nalone) and list its entries that no longer match",
+     "report only findings not recorded in FILE (the exit code comes from those alone) and list its entries that no longer match",
      [](Options& o, const std::string& v) { o.baseline_file = v; }},
     {"--write-baseline", nullptr, "lint", "FILE", "record the current findings in FILE (docs/baseline.md) and exit 0",
      [](Options& o, const std::string& v) { o.write_baseline_file = v; }},
     {"--prune-baseline", nullptr, "lint", nullptr, "with --baseline: rewrite FILE without the entries that no longer match",
      [](Options& o, const std::string&) { o.prune_baseline = true; }},
     {"--add-suppressions", nullptr, "lint", nullptr,
-     "write a `// lwcport-ignore: <id>` comment on the line of each current finding\n(the alternative to a baseline for teams who prefer them in code)",
+     "write a `// lwcport-ignore: <id>` comment on the line of each current finding (the alternative to a baseline for teams who prefer them in code)",
      [](Options& o, const std::string&) { o.add_suppressions = true; }},
     {"--config", nullptr, "lint fix verify parse report", "FILE", "use this .lwcport.json for every file instead of the nearest one",
      [](Options& o, const std::string& v) { o.config_file = v; }},
     {"--isolated", nullptr, "lint fix verify parse report", nullptr, "read no .lwcport.json: the built-in defaults",
      [](Options& o, const std::string&) { o.isolated = true; }},
     {"--jobs", "-j", "lint fix verify parse report", "N",
-     "worker threads (default: all cores; verify: functions side by side, one\ndriver process each)",
+     "worker threads (default: all cores)",
      [](Options& o, const std::string& n) {
        char* end = nullptr;
        long v = std::strtol(n.c_str(), &end, 10);
@@ -131,17 +131,17 @@ const Flag kFlags[] = {
     {"--output", "-o", "lint fix verify", "FILE", "write the report to FILE instead of standard output",
      [](Options& o, const std::string& v) { o.output = v; }},
     {"--scene", nullptr, "lint fix verify report", "FILE",
-     "the scene profile: world extent, view distance, precision (default:\nUnreal's full world, 2^43 cm, to 1/16 cm)",
+     "the scene profile: world extent, view distance, precision (default: Unreal's full world, 2^43 cm, to 1/16 cm)",
      [](Options& o, const std::string& v) { o.scene = load_scene(v); }},
     {"--strategy", nullptr, "lint fix", "NAME",
-     "auto|translated|df: rewrite to translated world, DoubleFloat, or per site\nfrom the scene profile (default: auto)",
+     "auto|translated|df: rewrite to translated world, DoubleFloat, or per site from the scene profile (default: auto)",
      [](Options& o, const std::string& v) {
        auto s = parse_strategy(v);
        if (!s) throw UsageError("--strategy must be auto, translated or df", o.command);
        o.strategy = *s;
      }},
     {"--explain", nullptr, "lint fix verify", nullptr,
-     "lint, fix: print each scene decision with its numbers; verify: each\nfunction's inputs, the role each is given and how it is filled",
+     "print each scene decision with its numbers",
      [](Options& o, const std::string&) { o.report.explain = true; }},
     {"--out", nullptr, "report", "DIR", "where report.html, report.md and report.json go (default: lwcport-report)",
      [](Options& o, const std::string& v) { o.out_dir = v; }},
@@ -155,23 +155,23 @@ const Flag kFlags[] = {
     {"--since", nullptr, "report", "REV", "the counts at each commit after REV (a commit, tag or branch)",
      [](Options& o, const std::string& v) { o.since = v; }},
     {"--diff", nullptr, "fix", nullptr,
-     "print a unified diff of the fixes and write nothing (exit 1 when there\nis something to fix, unless --fail-on none)",
+     "print a unified diff of the fixes and write nothing (exit 1 when there is something to fix, unless --fail-on none)",
      [](Options& o, const std::string&) { o.diff = true; }},
     {"--unsafe-fixes", nullptr, "fix", nullptr, "apply the unsafe fixes too",
      [](Options& o, const std::string&) { o.unsafe_fixes = true; }},
     {"--verify", nullptr, "fix report", nullptr,
-     "fix: run each fixed file's functions on the Vulkan device against the\nfloat64 reference first; apply only the files whose rewrites all pass;\nreport: verify every function with a finding and plot its error against cost",
+     "run each fixed file's functions on the Vulkan device against the float64 reference first; apply only the files whose rewrites all pass",
      [](Options& o, const std::string&) { o.verify = true; }},
     {"--check-build", nullptr, "fix", nullptr,
-     "compile each file before and after fixing (glslang; Unreal code against\nits engine era's stub); a fix that breaks a file's build is held back",
+     "compile each file before and after fixing (glslang; Unreal code against its engine era's stub); a fix that breaks a file's build is held back",
      [](Options& o, const std::string&) { o.check_build = true; }},
     {"--force", nullptr, "fix", nullptr,
-     "replace a file that has other hard links too (the other names keep the\nold content; without it such a file is left unchanged, with the reason)",
+     "replace a file that has other hard links too (the other names keep the old content; without it such a file is left unchanged, with the reason)",
      [](Options& o, const std::string&) { o.force = true; }},
     {"--shaderlib", nullptr, "verify", nullptr, "check the DoubleFloat library itself against a double-double reference",
      [](Options& o, const std::string&) { o.shaderlib = true; }},
     {"--timeout", nullptr, "verify report", "SECONDS",
-     "stop a kernel that runs longer (default: 60); the driver process is\nrestarted and the other functions still run",
+     "stop a kernel that runs longer (default: 60); the driver process is restarted and the other functions still run",
      [](Options& o, const std::string& n) {
        char* end = nullptr;
        double v = std::strtod(n.c_str(), &end);
@@ -184,6 +184,27 @@ const Flag kFlags[] = {
     {"--stdio", nullptr, "lsp", nullptr, "accepted for editors' clients: standard input and output are the only transport",
      [](Options&, const std::string&) {}},
 };
+
+// Where a flag means something of its own to one command, its help there.
+struct CommandHelp {
+  const char* flag;
+  const char* command;
+  const char* help;
+};
+constexpr CommandHelp kCommandHelp[] = {
+    {"--format", "verify", "text|json (default: text)"},
+    {"--format", "rules", "text|json (default: text)"},
+    {"--fail-on", "verify", "none: exit 0 even when a rewrite fails or does not compile"},
+    {"--jobs", "verify", "functions verified side by side, one driver process each (default: all cores)"},
+    {"--explain", "verify", "print each function's inputs: the role each is given (by the world-space model's kind, else its name) and how it is filled"},
+    {"--verify", "report", "verify every function with a finding on the Vulkan device and plot its error against its cost"},
+};
+
+const char* help_of(const Flag& flag, std::string_view command) {
+  for (const CommandHelp& h : kCommandHelp)
+    if (flag.name == std::string_view(h.flag) && command == h.command) return h.help;
+  return flag.help;
+}
 
 bool takes(const Flag& flag, std::string_view command) {
   std::string_view list = flag.commands;
@@ -229,6 +250,31 @@ std::string see_help(std::string_view command) {
   return command.empty() ? " (see `lwcport --help`)" : fmt::format(" (see `lwcport {} --help`)", command);
 }
 
+// Text wrapped to lines of at most 100 columns, continuation lines indented by `indent`.
+std::string wrapped(std::string_view text, size_t indent) {
+  std::string out, word;
+  size_t column = indent;
+  auto flush = [&] {
+    if (word.empty()) return;
+    if (column > indent && column + 1 + word.size() > 100) {
+      out += "\n" + std::string(indent, ' ');
+      column = indent;
+    } else if (column > indent) {
+      out += ' ';
+      ++column;
+    }
+    out += word;
+    column += word.size();
+    word.clear();
+  };
+  for (char c : text) {
+    if (c == ' ' || c == '\n') flush();
+    else word += c;
+  }
+  flush();
+  return out;
+}
+
 }  // namespace
 
 std::string usage(std::string_view command) {
@@ -250,9 +296,7 @@ std::string usage(std::string_view command) {
     if (!any) out += "\noptions:\n";
     any = true;
     std::string left = std::string(f.name) + (f.alias ? std::string(", ") + f.alias : "") + (f.value ? std::string(" ") + f.value : "");
-    std::string help = f.help;
-    for (size_t at = 0; (at = help.find('\n', at)) != std::string::npos; at += 31) help.replace(at, 1, "\n" + std::string(30, ' '));
-    out += fmt::format("  {:<27} {}\n", left, help);
+    out += fmt::format("  {:<27} {}\n", left, wrapped(help_of(f, command), 30));
   }
   out += fmt::format("  {:<27} {}\n", "--help, -h", "this text");
   return out;
