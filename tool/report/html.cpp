@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 #include "report/migration.h"
 
@@ -28,6 +29,16 @@ std::string esc(std::string_view s) {
   return out;
 }
 
+// Rule ids separated by spaces, as a row's data-rules attribute holds them.
+std::string joined(const std::vector<std::string>& ids) {
+  std::string out;
+  for (const std::string& id : ids) {
+    if (!out.empty()) out += ' ';
+    out += id;
+  }
+  return out;
+}
+
 std::string str(const json& v) { return v.is_string() ? v.get<std::string>() : v.is_number_float() ? fmt::format("{:g}", v.get<double>()) : v.dump(); }
 
 constexpr const char* kStyle = R"(
@@ -38,7 +49,7 @@ h1{font-size:1.6em}h2{margin-top:2em;border-bottom:1px solid #d7dce3;padding-bot
 table{border-collapse:collapse;width:100%;margin:.6em 0}th,td{border-bottom:1px solid #e3e7ec;padding:.25em .5em;text-align:left;vertical-align:top}
 th{background:#f3f5f8;cursor:pointer;user-select:none}td{overflow-wrap:anywhere}td.n,th.n{text-align:right}code{font-size:.92em}
 .basis{color:#4a5566;font-size:.92em}svg text{font:11px system-ui,sans-serif;fill:#1d2430}
-.safe{fill:#2f9e44}.unsafe{fill:#f08c00}.hand{fill:#c92a2a}.total{stroke:#1c7ed6;fill:none;stroke-width:2}
+.safe{fill:#2f9e44}.unsafe{fill:#f08c00}.hand{fill:#c92a2a}.nn{fill:#ced4da}.total{stroke:#1c7ed6;fill:none;stroke-width:2}
 .markers{stroke:#c92a2a;fill:none;stroke-width:2;stroke-dasharray:4 3}.front{stroke:#2f9e44;fill:none;stroke-width:1.5}
 )";
 
@@ -79,7 +90,7 @@ std::string rule_chart(const json& rules) {
   for (const auto& r : rules) {
     double x = left;
     out += fmt::format(R"(<text x=0 y={}>{}</text>)", y + 15, esc(r["rule"].get<std::string>()));
-    for (const auto& [key, cls] : {std::pair{"safe", "safe"}, {"unsafe", "unsafe"}, {"by_hand", "hand"}}) {
+    for (const auto& [key, cls] : {std::pair{"safe", "safe"}, {"unsafe", "unsafe"}, {"by_hand", "hand"}, {"not_needed", "nn"}}) {
       double w = width * r[key].get<double>() / most;
       if (w > 0) out += fmt::format(R"(<rect class={} x={:.1f} y={} width={:.1f} height=16><title>{} {}</title></rect>)", cls, x, y + 3, w, str(r[key]), key);
       x += w;
@@ -90,6 +101,7 @@ std::string rule_chart(const json& rules) {
   out += fmt::format(R"(<rect class=safe x={} y={} width=10 height=10></rect><text x={} y={}>safe fix</text>)", left, y + 8, left + 14, y + 17);
   out += fmt::format(R"(<rect class=unsafe x={} y={} width=10 height=10></rect><text x={} y={}>unsafe fix</text>)", left + 90, y + 8, left + 104, y + 17);
   out += fmt::format(R"(<rect class=hand x={} y={} width=10 height=10></rect><text x={} y={}>by hand</text>)", left + 190, y + 8, left + 204, y + 17);
+  out += fmt::format(R"(<rect class=nn x={} y={} width=10 height=10></rect><text x={} y={}>not needed</text>)", left + 280, y + 8, left + 294, y + 17);
   return out + "</svg>";
 }
 
@@ -98,8 +110,8 @@ std::string history_chart(const json& history) {
   if (history.empty()) return "<p>Run with <code>--history N</code> or <code>--since REV</code> for the counts over the tree's history.</p>";
   size_t most = 1;
   for (const auto& h : history) most = std::max({most, h["findings"].get<size_t>(), h["markers"].get<size_t>()});
-  int w = 900, h = 260, left = 50, bottom = 30;
-  double step = history.size() > 1 ? double(w - left - 20) / (history.size() - 1) : 0;
+  int w = 1100, h = 300, left = 50, bottom = 30;
+  double step = history.size() > 1 ? double(w - left - 230) / (history.size() - 1) : 0;
   auto y_of = [&](double v) { return (h - bottom) - v / most * (h - bottom - 20); };
   std::string total, markers;
   for (size_t i = 0; i < history.size(); ++i) {
@@ -111,6 +123,21 @@ std::string history_chart(const json& history) {
   out += fmt::format(R"(<line x1={} y1={} x2={} y2={} stroke=#999></line>)", left, h - bottom, w - 10, h - bottom);
   out += fmt::format(R"(<text x=0 y={}>{}</text><text x=0 y={}>0</text>)", y_of(most) + 4, most, h - bottom + 4);
   out += fmt::format(R"(<polyline class=total points="{}"></polyline><polyline class=markers points="{}"></polyline>)", total, markers);
+  // Each rule's own count, thin, in its own hue; the legend names them in order.
+  std::set<std::string> rules;
+  for (const auto& p : history)
+    for (const auto& [rule, n] : p["by_rule"].items()) rules.insert(rule);
+  int hue = 0, legend_y = 28;
+  for (const std::string& rule : rules) {
+    std::string pts;
+    for (size_t i = 0; i < history.size(); ++i)
+      pts += fmt::format("{}{:.1f},{:.1f}", i ? " " : "", left + i * step, y_of(history[i]["by_rule"].value(rule, 0.0)));
+    std::string colour = fmt::format("hsl({},55%,45%)", hue);
+    out += fmt::format(R"(<polyline class=rule points="{}" stroke="{}" fill=none stroke-width=1><title>{}</title></polyline>)", pts, colour, esc(rule));
+    out += fmt::format(R"(<text x={} y={} style="fill:{}">{}</text>)", w - 200, legend_y, colour, esc(rule));
+    legend_y += 13;
+    hue = (hue + 47) % 360;
+  }
   for (size_t i = 0; i < history.size(); ++i)
     out += fmt::format(R"(<circle cx={:.1f} cy={:.1f} r=3 fill=#1c7ed6><title>{} {}: {} findings, {} markers</title></circle>)", left + i * step,
                        y_of(history[i]["findings"].get<double>()), esc(history[i]["commit"].get<std::string>().substr(0, 10)),
@@ -118,7 +145,7 @@ std::string history_chart(const json& history) {
   out += fmt::format(R"(<text x={} y={}>{}</text><text x={} y={} text-anchor=end>{}</text>)", left, h - 8,
                      esc(history.front()["date"].get<std::string>().substr(0, 10)), w - 10, h - 8,
                      esc(history.back()["date"].get<std::string>().substr(0, 10)));
-  out += fmt::format(R"(<text x={} y=14 fill=#1c7ed6>findings</text><text x={} y=14>markers (dashed)</text>)", left + 10, left + 90);
+  out += fmt::format(R"(<text x={} y=14 style="fill:#1c7ed6">findings</text><text x={} y=14 style="fill:#c92a2a">markers (dashed)</text>)", left + 10, left + 90);
   return out + "</svg>";
 }
 
@@ -219,19 +246,38 @@ std::string report_html(const MigrationReport& r) {
 
   out += "<h2>Burn-down</h2>" + history_chart(j["history"]);
 
-  // The rule filter applies to the directory-free tables below.
+  std::vector<json> ranked(j["files"].begin(), j["files"].end());
+  std::stable_sort(ranked.begin(), ranked.end(), [](const json& a, const json& b) { return a["minutes"].get<double>() > b["minutes"].get<double>(); });
+  out += "<h2>Top offenders</h2><table id=offenders>" + th({{"file", false}, {"era", false}, {"findings", true}, {"by hand", true}, {"minutes", true}}) + "<tbody>";
+  for (size_t i = 0; i < ranked.size() && i < 10 && ranked[i]["findings"].get<size_t>() > 0; ++i)
+    out += "<tr>" + td(ranked[i]["path"]) + td(ranked[i]["era"]) + td(ranked[i]["findings"], true) + td(ranked[i]["by_hand"], true) +
+           td(ranked[i]["minutes"], true) + "</tr>";
+  out += "</tbody></table>";
+  size_t not_needed = s["not_needed"].get<size_t>();
+  if (not_needed) {
+    out += fmt::format("<h2>Not needed at scene <code>{}</code> ({})</h2><p>The scene's numbers show float32 is precise enough at these "
+                       "sites: they are reported as notes and cost nothing.</p><table id=not-needed>",
+                       esc(r.scene), not_needed) + th({{"where", false}, {"rule", false}, {"finding", false}}) + "<tbody>";
+    for (const auto& f : j["findings"])
+      if (f["fix"] == "not needed")
+        out += "<tr>" + td(f["path"].get<std::string>() + ":" + str(f["line"])) + "<td><code>" + esc(f["rule"].get<std::string>()) + "</code></td>" +
+               td(f["message"]) + "</tr>";
+    out += "</tbody></table>";
+  }
+
+  // The rule filter applies to the tables below.
   out += "<h2>Files</h2><p><label>Rule: <select id=rule><option value=\"\">every rule</option>";
   for (const auto& row : s["by_rule"]) out += "<option>" + esc(row["rule"].get<std::string>()) + "</option>";
   out += "</select></label> <span id=shown></span> finding(s) shown.</p>";
   out += "<table id=directories>" + th({{"directory", false}, {"files", true}, {"findings", true}, {"by hand", true}, {"minutes", true}}) + "<tbody>";
   for (const auto& d : j["directories"])
-    out += "<tr>" + td(d["path"]) + td(d["files"], true) + td(d["findings"], true) + td(d["by_hand"], true) + td(d["minutes"], true) + "</tr>";
+    out += "<tr data-rules=\"" + esc(joined(d["rules"])) + "\">" + td(d["path"]) + td(d["files"], true) + td(d["findings"], true) + td(d["by_hand"], true) + td(d["minutes"], true) + "</tr>";
   out += "</tbody></table>";
   out += "<table id=files>" + th({{"file", false}, {"era", false}, {"findings", true}, {"safe fix", true}, {"unsafe fix", true}, {"by hand", true}, {"minutes", true}}) + "<tbody>";
   for (const auto& f : j["files"]) {
-    std::string rules;
-    for (const auto& [rule, count] : f["by_rule"].items()) rules += (rules.empty() ? "" : " ") + rule;
-    out += "<tr data-rules=\"" + esc(rules) + "\">" + td(f["path"]) + td(f["era"]) + td(f["findings"], true) + td(f["safe"], true) + td(f["unsafe"], true) +
+    std::vector<std::string> rules;
+    for (const auto& [rule, count] : f["by_rule"].items()) rules.push_back(rule);
+    out += "<tr data-rules=\"" + esc(joined(rules)) + "\">" + td(f["path"]) + td(f["era"]) + td(f["findings"], true) + td(f["safe"], true) + td(f["unsafe"], true) +
            td(f["by_hand"], true) + td(f["minutes"], true) + "</tr>";
   }
   out += "</tbody></table>";

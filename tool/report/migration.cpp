@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <set>
 
 #include "rules/rule.h"
 
@@ -119,6 +120,7 @@ nlohmann::ordered_json report_json(const MigrationReport& r) {
   Tally all;
   std::map<std::string, Tally> by_rule, by_dir;
   std::map<std::string, size_t> eras, files_in_dir;
+  std::map<std::string, std::set<std::string>> rules_in_dir;
   json files = json::array(), findings = json::array();
   for (const FileEntry& file : r.files) {
     ++eras[file.era];
@@ -130,6 +132,7 @@ nlohmann::ordered_json report_json(const MigrationReport& r) {
       t.add(f);
       by_rule[f.rule].add(f);
       by_dir[directory_of(file.path)].add(f);
+      rules_in_dir[directory_of(file.path)].insert(f.rule);
       ++rules[f.rule];
       json one = {{"path", file.path}, {"line", f.start.line}, {"column", f.start.column}, {"rule", f.rule},
                   {"severity", severity_name(f.severity)}, {"message", f.message}, {"fix", fix_kind(f)},
@@ -151,6 +154,7 @@ nlohmann::ordered_json report_json(const MigrationReport& r) {
   for (const auto& [dir, count] : files_in_dir) {
     json row = {{"path", dir}, {"files", count}};
     (by_dir.count(dir) ? by_dir.at(dir) : Tally{}).into(row);
+    row["rules"] = rules_in_dir[dir];
     dirs.push_back(std::move(row));
   }
   json summary = {{"files", r.files.size()}};
@@ -262,6 +266,14 @@ std::string report_markdown(const MigrationReport& r) {
   if (!rows.empty())
     out += "## What each scene needs\n\n" +
            table({"scene", "needed", "not needed", "safe fix", "unsafe fix", "by hand", "translated", "DoubleFloat", "minutes"}, rows);
+  rows.clear();
+  for (const auto& f : j["findings"])
+    if (f["fix"] == "not needed")
+      rows.push_back({f["path"].get<std::string>() + ":" + num(f["line"]), "`" + f["rule"].get<std::string>() + "`", f["message"]});
+  if (!rows.empty())
+    out += fmt::format("## Not needed at scene `{}` ({})\n\nThe scene's numbers show float32 is precise enough at these sites: "
+                       "they are reported as notes and cost nothing.\n\n", r.scene, rows.size()) +
+           table({"where", "rule", "finding"}, rows);
   rows.clear();
   for (const auto& h : j["history"])
     rows.push_back({"`" + h["commit"].get<std::string>().substr(0, 10) + "`", h["date"], num(h["findings"]), num(h["markers"]), h["subject"]});
