@@ -1,5 +1,7 @@
 #include "lang/tokens.h"
 
+#include <set>
+
 namespace lwc {
 
 TokenText::TokenText(std::string_view t) : text(t), tokens(lex(t)->tokens) {}
@@ -37,6 +39,20 @@ std::string rename_identifiers(std::string_view text, const std::function<std::s
     if (t.ident(i))
       if (std::string name = rename(t[i]); !name.empty()) edits.push_back(t.replace(i, i, std::move(name)));
   return splice(text, edits);
+}
+
+std::set<std::string, std::less<>> identifiers(std::string_view text) {
+  std::set<std::string, std::less<>> out;
+  for (size_t i = 0; i < text.size();) {
+    if (!ident_start(text[i])) {
+      ++i;
+      continue;
+    }
+    size_t b = i;
+    while (i < text.size() && ident_char(text[i])) ++i;
+    out.emplace(text.substr(b, i - b));
+  }
+  return out;
 }
 
 }  // namespace lwc

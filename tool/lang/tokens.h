@@ -4,6 +4,7 @@
 // matcher recursed once per character a pattern matched: a long name or struct overflowed the
 // stack. Every operation here is one linear pass without recursion.
 #include <functional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -30,6 +31,9 @@ struct TokenText {
   // An edit replacing tokens [first, last] with `text`.
   Edit replace(size_t first, size_t last, std::string text) const { return {{tokens[first].begin, tokens[last].end}, std::move(text)}; }
 };
+
+// The identifier-shaped words of a text (comments and strings included), each once.
+std::set<std::string, std::less<>> identifiers(std::string_view text);
 
 // Each identifier token `rename` gives a new name for (empty: unchanged) renamed.
 std::string rename_identifiers(std::string_view text, const std::function<std::string(std::string_view)>& rename);

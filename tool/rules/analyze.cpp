@@ -10,6 +10,7 @@
 #include "lang/embedded.h"
 #include "lang/lexer.h"
 #include "lang/macros.h"
+#include "lang/tokens.h"
 #include "rules/rule.h"
 #include "shaderlib/shaderlib.h"
 #include "world/provenance.h"
@@ -374,20 +375,6 @@ class VariantMerge {
   std::vector<int> votes_;
   std::map<std::tuple<std::string, uint32_t, uint32_t>, size_t> index_;
 };
-
-std::set<std::string, std::less<>> identifiers(std::string_view text) {
-  std::set<std::string, std::less<>> out;
-  for (size_t i = 0; i < text.size();) {
-    if (!ident_start(text[i])) {
-      ++i;
-      continue;
-    }
-    size_t b = i;
-    while (i < text.size() && ident_char(text[i])) ++i;
-    out.emplace(text.substr(b, i - b));
-  }
-  return out;
-}
 
 std::string quoted_list(const std::vector<std::string>& names) {
   std::string out;

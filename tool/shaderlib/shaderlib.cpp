@@ -16,30 +16,13 @@ struct Block {
   std::string name;
   std::string text;                // instantiated for the language, every width
   std::set<std::string> defines;   // type and function names declared at the top level
-  std::set<std::string> uses;      // identifiers anywhere in the text
+  std::set<std::string, std::less<>> uses;  // identifiers anywhere in the text
 };
 
 std::string_view embedded(std::string_view name) {
   for (const EmbeddedFile& f : embedded_shaderlib_files())
     if (f.name == name) return f.text;
   throw std::logic_error("shader library file not embedded: " + std::string(name));
-}
-
-bool is_word_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
-
-std::set<std::string> identifiers(std::string_view text) {
-  std::set<std::string> out;
-  for (size_t i = 0; i < text.size();) {
-    if (std::isalpha(static_cast<unsigned char>(text[i])) || text[i] == '_') {
-      size_t j = i;
-      while (j < text.size() && is_word_char(text[j])) ++j;
-      out.emplace(text.substr(i, j - i));
-      i = j;
-    } else {
-      ++i;
-    }
-  }
-  return out;
 }
 
 void replace_all(std::string& text, std::string_view from, std::string_view to) {
@@ -50,8 +33,8 @@ void replace_all(std::string& text, std::string_view from, std::string_view to) 
 // Replaces whole words only.
 void replace_word(std::string& text, std::string_view from, std::string_view to) {
   for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at)) {
-    bool starts = at == 0 || !is_word_char(text[at - 1]);
-    bool ends = at + from.size() == text.size() || !is_word_char(text[at + from.size()]);
+    bool starts = at == 0 || !ident_char(text[at - 1]);
+    bool ends = at + from.size() == text.size() || !ident_char(text[at + from.size()]);
     if (starts && ends) {
       text.replace(at, from.size(), to);
       at += to.size();
@@ -88,14 +71,14 @@ std::set<std::string> declared_names(std::string_view text) {
     if (line.empty() || !std::isalpha(static_cast<unsigned char>(line[0]))) continue;
     if (line.rfind("struct ", 0) == 0) {
       size_t b = 7, e = b;
-      while (e < line.size() && is_word_char(line[e])) ++e;
+      while (e < line.size() && ident_char(line[e])) ++e;
       out.emplace(line.substr(b, e - b));
       continue;
     }
     size_t paren = line.find('(');
     if (paren == std::string_view::npos) continue;
     size_t e = paren, b = e;
-    while (b > 0 && is_word_char(line[b - 1])) --b;
+    while (b > 0 && ident_char(line[b - 1])) --b;
     if (b < e) out.emplace(line.substr(b, e - b));
   }
   return out;
@@ -207,7 +190,7 @@ std::string full_library_text(Lang lang) {
 
 std::set<std::string> library_names_used(Lang lang, std::string_view code) {
   std::set<std::string> used;
-  std::set<std::string> words = identifiers(code);
+  std::set<std::string, std::less<>> words = identifiers(code);
   for (const Block& b : blocks_for(lang))
     for (const std::string& d : b.defines)
       if (words.count(d)) used.insert(d);
