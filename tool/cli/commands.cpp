@@ -1216,7 +1216,7 @@ std::vector<Scene> report_scenes(const Options& o) {
 // --history / --since: the counts at each commit, each distinct file content linted once.
 std::vector<HistoryPoint> report_history(const Options& o, ConfigFinder& configs, std::ostream& err) {
   std::vector<std::string> args = o.paths.empty() ? std::vector<std::string>{"."} : o.paths;
-  fs::path top = git_top(fs::is_directory(args[0]) ? fs::path(args[0]) : fs::path(args[0]).parent_path().empty() ? fs::path(".") : fs::path(args[0]).parent_path());
+  fs::path top = git_top(fs::is_directory(args[0]) ? fs::path(args[0]) : fs::absolute(args[0]).parent_path());
   std::vector<std::string> specs;
   for (const std::string& a : args) {
     std::string rel = fs::absolute(a).lexically_normal().lexically_relative(top).generic_string();
@@ -1293,6 +1293,10 @@ int report(const Options& o, std::ostream& out, std::ostream& err) {
         try {
           r = lint_file(files[i], o, includes, order.included[i]);
           for (size_t s = 0; s < scenes.size(); ++s) {
+            if (scenes[s].name == rep.scene) {  // the report's own scene: its analysis is the one above
+              per_scene[s][i] = {r.path, r.era, r.findings};
+              continue;
+            }
             Options under = o;
             under.scene = scenes[s];
             FileReport p = lint_file(files[i], under, includes, false);
@@ -1325,15 +1329,16 @@ int report(const Options& o, std::ostream& out, std::ostream& err) {
   }
   std::error_code ec;
   fs::create_directories(o.out_dir, ec);
-  for (const auto& [name, text] : {std::pair<std::string, std::string>{"report.html", report_html(rep)},
-                                   {"report.md", report_markdown(rep)},
-                                   {"report.json", report_json(rep).dump(1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n"}}) {
+  nlohmann::ordered_json data = report_json(rep);
+  for (const auto& [name, text] : {std::pair<std::string, std::string>{"report.html", report_html(data)},
+                                   {"report.md", report_markdown(data)},
+                                   {"report.json", data.dump(1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n"}}) {
     fs::path path = fs::path(o.out_dir) / name;
     std::string why = fs::exists(path, ec) ? replace_file(path, read_file(path, SIZE_MAX).text, text) : create_file(path, text);
     if (!why.empty()) throw std::runtime_error(fmt::format("{}: cannot write: {}", path.string(), why));
   }
   out << fmt::format("Wrote {0}/report.html, {0}/report.md and {0}/report.json: {1} file(s), {2} finding(s), {3} marker(s).\n", o.out_dir,
-                     rep.files.size(), report_json(rep)["summary"]["findings"].get<size_t>(), rep.markers.size());
+                     rep.files.size(), data["summary"]["findings"].get<size_t>(), rep.markers.size());
   return 0;
 }
 
@@ -1341,12 +1346,7 @@ int report(const Options& o, std::ostream& out, std::ostream& err) {
 std::string fix_labels(const RuleInfo& r) {
   std::set<std::string> labels;
   for (const auto& [kind, fix] : r.fixes) labels.insert(fix.value("applicability", "unsafe"));
-  std::string out;
-  for (const std::string& l : labels) {
-    if (!out.empty()) out += ", ";
-    out += l;
-  }
-  return out;
+  return fmt::format("{}", fmt::join(labels, ", "));
 }
 
 int list_rules(const Options& o, std::ostream& out) {
@@ -1365,13 +1365,11 @@ int list_rules(const Options& o, std::ostream& out) {
   }
   out << fmt::format("{:<26} {:<8} {:<10} {:<13} {}\n", "RULE", "SEVERITY", "LANGUAGES", "FIX", "SUMMARY");
   for (const RuleInfo& r : all_rules()) {
-    std::string langs;
-    for (Lang l : r.languages) {
-      if (!langs.empty()) langs += ',';
-      langs += lang_name(l);
-    }
+    std::vector<std::string_view> langs;
+    for (Lang l : r.languages) langs.push_back(lang_name(l));
     std::string labels = fix_labels(r);
-    out << fmt::format("{:<26} {:<8} {:<10} {:<13} {}\n", r.id, severity_name(r.severity), langs, labels.empty() ? "-" : labels, r.summary);
+    out << fmt::format("{:<26} {:<8} {:<10} {:<13} {}\n", r.id, severity_name(r.severity), fmt::format("{}", fmt::join(langs, ",")),
+                       labels.empty() ? "-" : labels, r.summary);
   }
   out << "\n`lwcport rule ID` prints a rule's page.\n";
   return 0;

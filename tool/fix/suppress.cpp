@@ -1,24 +1,13 @@
 #include "fix/suppress.h"
 
-#include <cctype>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <vector>
 
+#include "rules/analyze.h"
+
 namespace lwc {
-
-namespace {
-
-std::string joined(const std::set<std::string>& ids) {
-  std::string out;
-  for (const std::string& id : ids) {
-    if (!out.empty()) out += ", ";
-    out += id;
-  }
-  return out;
-}
-
-bool id_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_'; }
-
-}  // namespace
 
 std::string with_suppressions(std::string_view text, const SuppressionSites& sites) {
   // Line starts, then each insertion as (offset, text), applied from the end.
@@ -28,34 +17,28 @@ std::string with_suppressions(std::string_view text, const SuppressionSites& sit
   std::vector<std::pair<size_t, std::string>> inserts;
   for (const auto& [line, ids] : sites.rules_by_line) {
     if (line < 1 || static_cast<size_t>(line) > starts.size() || ids.empty()) continue;
+    std::string list = fmt::format("{}", fmt::join(ids, ", "));
     size_t begin = starts[line - 1];
     size_t end = static_cast<size_t>(line) < starts.size() ? starts[line] - 1 : text.size();
     if (end > begin && text[end - 1] == '\r') --end;
     std::string_view content = text.substr(begin, end - begin);
     // A trailing `lwcport-ignore: a, b` on this line takes the new ids after its last one.
     if (size_t at = content.find("lwcport-ignore:"); at != std::string_view::npos) {
-      size_t i = at + 15, last = i;
-      while (i < content.size()) {
-        while (i < content.size() && (content[i] == ' ' || content[i] == ',' || content[i] == '\t')) ++i;
-        size_t b = i;
-        while (i < content.size() && id_char(content[i])) ++i;
-        if (i == b) break;
-        last = i;
-      }
-      inserts.emplace_back(begin + last, ", " + joined(ids));
+      std::vector<Span> listed = suppression_ids(content, at + 15);
+      inserts.emplace_back(begin + (listed.empty() ? at + 15 : listed.back().end), ", " + list);
       continue;
     }
     if (auto inside = sites.inside_at.find(line); inside != sites.inside_at.end()) {
-      inserts.emplace_back(inside->second, " /* lwcport-ignore: " + joined(ids) + " */");
+      inserts.emplace_back(inside->second, " /* lwcport-ignore: " + list + " */");
       continue;
     }
     size_t at = end;
     while (at > begin && (text[at - 1] == ' ' || text[at - 1] == '\t')) --at;
     if (at > begin && text[at - 1] == '\\') {  // a continued line: the comment must not swallow the backslash
-      inserts.emplace_back(at - 1, "/* lwcport-ignore: " + joined(ids) + " */ ");
+      inserts.emplace_back(at - 1, "/* lwcport-ignore: " + list + " */ ");
       continue;
     }
-    inserts.emplace_back(at, " // lwcport-ignore: " + joined(ids));
+    inserts.emplace_back(at, " // lwcport-ignore: " + list);
   }
   std::string out(text);
   for (auto it = inserts.rbegin(); it != inserts.rend(); ++it) out.insert(it->first, it->second);

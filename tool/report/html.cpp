@@ -1,6 +1,7 @@
 // report.html: one self-contained page (inline CSS, SVG charts drawn here, a little script to
 // sort and filter the tables). Nothing is fetched: it opens from a CI artifact or a mail.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -25,16 +26,6 @@ std::string esc(std::string_view s) {
       case '\'': out += "&#39;"; break;
       default: out += c;
     }
-  }
-  return out;
-}
-
-// Rule ids separated by spaces, as a row's data-rules attribute holds them.
-std::string joined(const std::vector<std::string>& ids) {
-  std::string out;
-  for (const std::string& id : ids) {
-    if (!out.empty()) out += ' ';
-    out += id;
   }
   return out;
 }
@@ -194,8 +185,8 @@ std::string verify_chart(const json& fn) {
 
 }  // namespace
 
-std::string report_html(const MigrationReport& r) {
-  json j = report_json(r);
+std::string report_html(const json& j) {
+  std::string scene = j["scene"];
   const json& s = j["summary"];
   std::string out = "<!DOCTYPE html><html lang=en><head><meta charset=utf-8><title>lwcport migration report</title><style>";
   out += kStyle;
@@ -208,7 +199,7 @@ std::string report_html(const MigrationReport& r) {
     out += "<div class=card><b>" + esc(value) + "</b>" + esc(label) + "</div>";
   out += "</div>";
   out += fmt::format("<p>{} error(s), {} warning(s), {} note(s); fixes planned for scene <code>{}</code>.</p>", str(s["error"]), str(s["warning"]),
-                     str(s["note"]), esc(r.scene));
+                     str(s["note"]), esc(scene));
   out += "<p class=basis>Effort: " + esc(j["effort"]["basis"].get<std::string>()) + ".</p>";
 
   out += "<h2>Findings by rule</h2>" + rule_chart(s["by_rule"]);
@@ -257,7 +248,7 @@ std::string report_html(const MigrationReport& r) {
   if (not_needed) {
     out += fmt::format("<h2>Not needed at scene <code>{}</code> ({})</h2><p>The scene's numbers show float32 is precise enough at these "
                        "sites: they are reported as notes and cost nothing.</p><table id=not-needed>",
-                       esc(r.scene), not_needed) + th({{"where", false}, {"rule", false}, {"finding", false}}) + "<tbody>";
+                       esc(scene), not_needed) + th({{"where", false}, {"rule", false}, {"finding", false}}) + "<tbody>";
     for (const auto& f : j["findings"])
       if (f["fix"] == "not needed")
         out += "<tr>" + td(f["path"].get<std::string>() + ":" + str(f["line"])) + "<td><code>" + esc(f["rule"].get<std::string>()) + "</code></td>" +
@@ -271,13 +262,13 @@ std::string report_html(const MigrationReport& r) {
   out += "</select></label> <span id=shown></span> finding(s) shown.</p>";
   out += "<table id=directories>" + th({{"directory", false}, {"files", true}, {"findings", true}, {"by hand", true}, {"minutes", true}}) + "<tbody>";
   for (const auto& d : j["directories"])
-    out += "<tr data-rules=\"" + esc(joined(d["rules"])) + "\">" + td(d["path"]) + td(d["files"], true) + td(d["findings"], true) + td(d["by_hand"], true) + td(d["minutes"], true) + "</tr>";
+    out += "<tr data-rules=\"" + esc(fmt::format("{}", fmt::join(d["rules"].get<std::vector<std::string>>(), " "))) + "\">" + td(d["path"]) + td(d["files"], true) + td(d["findings"], true) + td(d["by_hand"], true) + td(d["minutes"], true) + "</tr>";
   out += "</tbody></table>";
   out += "<table id=files>" + th({{"file", false}, {"era", false}, {"findings", true}, {"safe fix", true}, {"unsafe fix", true}, {"by hand", true}, {"minutes", true}}) + "<tbody>";
   for (const auto& f : j["files"]) {
     std::vector<std::string> rules;
     for (const auto& [rule, count] : f["by_rule"].items()) rules.push_back(rule);
-    out += "<tr data-rules=\"" + esc(joined(rules)) + "\">" + td(f["path"]) + td(f["era"]) + td(f["findings"], true) + td(f["safe"], true) + td(f["unsafe"], true) +
+    out += "<tr data-rules=\"" + esc(fmt::format("{}", fmt::join(rules, " "))) + "\">" + td(f["path"]) + td(f["era"]) + td(f["findings"], true) + td(f["safe"], true) + td(f["unsafe"], true) +
            td(f["by_hand"], true) + td(f["minutes"], true) + "</tr>";
   }
   out += "</tbody></table>";

@@ -146,7 +146,23 @@ struct Suppression {
   bool used = false;
 };
 
-bool id_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_'; }
+}  // namespace
+
+bool suppression_id_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_'; }
+
+std::vector<Span> suppression_ids(std::string_view text, size_t from) {
+  std::vector<Span> out;
+  for (size_t i = from; i < text.size();) {
+    while (i < text.size() && (text[i] == ' ' || text[i] == ',' || text[i] == '\t')) ++i;
+    size_t b = i;
+    while (i < text.size() && suppression_id_char(text[i])) ++i;
+    if (i == b) break;
+    out.push_back({static_cast<uint32_t>(b), static_cast<uint32_t>(i)});
+  }
+  return out;
+}
+
+namespace {
 
 // `lwcport-ignore[-file|-next-line][: ID[, ID...]]` in a comment. A comment alone on its line
 // covers the next line, a trailing one its own; `-next-line` always the next; `-file` the file.
@@ -158,12 +174,12 @@ std::vector<Suppression> find_suppressions(const SyntaxTree& tree) {
     if (!tree.is(id, "comment")) continue;
     std::string_view text = tree.text(id);
     size_t at = text.find(kMarker);
-    if (at == std::string_view::npos || (at > 0 && id_char(text[at - 1]))) continue;
+    if (at == std::string_view::npos || (at > 0 && suppression_id_char(text[at - 1]))) continue;
     size_t after = at + kMarker.size();
     bool whole_file = false, next_line = false;
     if (text.substr(after).starts_with("-file")) whole_file = true, after += 5;
     else if (text.substr(after).starts_with("-next-line")) next_line = true, after += 10;
-    if (after < text.size() && id_char(text[after])) continue;  // `lwcport-ignored`, `lwcport-ignore-all`: not ours
+    if (after < text.size() && suppression_id_char(text[after])) continue;  // `lwcport-ignored`, `lwcport-ignore-all`: not ours
     std::string_view rest;
     if (after < text.size() && text[after] == ':') rest = text.substr(++after);
     if (size_t end = rest.find("*/"); end != std::string_view::npos) rest = rest.substr(0, end);
@@ -173,14 +189,10 @@ std::vector<Suppression> find_suppressions(const SyntaxTree& tree) {
     int line = whole_file ? 0 : alone || next_line ? pos.line + 1 : pos.line;
     uint32_t begin = tree.at(id).begin;
     Span marker{begin + static_cast<uint32_t>(at), begin + static_cast<uint32_t>(after)};
-    size_t i = 0, first = out.size();
-    while (i < rest.size()) {
-      while (i < rest.size() && (rest[i] == ' ' || rest[i] == ',' || rest[i] == '\t')) ++i;
-      size_t b = i;
-      while (i < rest.size() && id_char(rest[i])) ++i;
-      if (i == b) break;
-      Span rule_span{begin + static_cast<uint32_t>(after + b), begin + static_cast<uint32_t>(after + i)};
-      out.push_back({tree.span(id), {}, line, whole_file, std::string(rest.substr(b, i - b)), rule_span});
+    size_t first = out.size();
+    for (Span ids : suppression_ids(rest, 0)) {
+      Span rule_span{begin + static_cast<uint32_t>(after) + ids.begin, begin + static_cast<uint32_t>(after) + ids.end};
+      out.push_back({tree.span(id), {}, line, whole_file, std::string(rest.substr(ids.begin, ids.end - ids.begin)), rule_span});
       marker.end = rule_span.end;
     }
     if (out.size() == first) out.push_back({tree.span(id), {}, line, whole_file, "", marker, 0});
@@ -217,7 +229,7 @@ Fix remove_suppression(const RuleInfo& rule, const Suppression& s, const SyntaxT
     // Take the separator after the id, or, for the last id, the one before it.
     uint32_t e = cut.end;
     while (e < s.span.end && (text[e] == ',' || blank(e))) ++e;
-    bool last = e >= s.span.end || text.compare(e, 2, "*/") == 0 || !id_char(text[e]);
+    bool last = e >= s.span.end || text.compare(e, 2, "*/") == 0 || !suppression_id_char(text[e]);
     if (!last) cut.end = e;
     else
       while (cut.begin > s.span.begin && (text[cut.begin - 1] == ',' || blank(cut.begin - 1))) --cut.begin;

@@ -91,6 +91,12 @@ MacroTable macro_table(Lang lang, const MacroTable* included, const MacroTable& 
 FileSummary include_summary(const Source& source, const SyntaxTree& tree, const nlohmann::json& world_sources,
                             const ModelContext& context);
 
+// The rule ids a `lwcport-ignore:` comment lists from `from` (just after the colon): each id's
+// span in `text`; blanks and commas separate them and anything else ends the list. The parser of
+// suppressions and `lint --add-suppressions` read the list the same way.
+std::vector<Span> suppression_ids(std::string_view text, size_t from);
+bool suppression_id_char(char c);
+
 // The paths a file #includes, in order, as written (a scan of its directive lines).
 std::vector<std::string> include_paths(std::string_view text);
 
