@@ -225,14 +225,14 @@ std::string num(const nlohmann::ordered_json& v) { return v.is_number_float() ? 
 
 }  // namespace
 
-std::string report_markdown(const MigrationReport& r) {
-  nlohmann::ordered_json j = report_json(r);
+std::string report_markdown(const nlohmann::ordered_json& j) {
+  std::string scene = j["scene"];
   const auto& s = j["summary"];
   std::string out = "# lwcport migration report\n\n";
   out += fmt::format("{} file(s), {} finding(s): {} error(s), {} warning(s), {} note(s). lwcport fixes {} safely and {} with an "
                      "unsafe fix; {} need a hand port; {} are not needed at scene `{}`. Estimated effort: **{} h** ({}).\n\n",
                      num(s["files"]), num(s["findings"]), num(s["error"]), num(s["warning"]), num(s["note"]), num(s["safe"]),
-                     num(s["unsafe"]), num(s["by_hand"]), num(s["not_needed"]), r.scene, num(j["effort"]["hours"]),
+                     num(s["unsafe"]), num(s["by_hand"]), num(s["not_needed"]), scene, num(j["effort"]["hours"]),
                      j["effort"]["basis"].get<std::string>());
   std::vector<std::vector<std::string>> rows;
   for (const auto& row : s["by_rule"])
@@ -272,7 +272,7 @@ std::string report_markdown(const MigrationReport& r) {
       rows.push_back({f["path"].get<std::string>() + ":" + num(f["line"]), "`" + f["rule"].get<std::string>() + "`", f["message"]});
   if (!rows.empty())
     out += fmt::format("## Not needed at scene `{}` ({})\n\nThe scene's numbers show float32 is precise enough at these sites: "
-                       "they are reported as notes and cost nothing.\n\n", r.scene, rows.size()) +
+                       "they are reported as notes and cost nothing.\n\n", scene, rows.size()) +
            table({"where", "rule", "finding"}, rows);
   rows.clear();
   for (const auto& h : j["history"])

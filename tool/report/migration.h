@@ -61,9 +61,10 @@ SceneCost scene_cost(const std::string& name, const std::vector<FileEntry>& file
 // What the era column means, for both written forms.
 extern const char* const kEraNote;
 
-// report.json (docs/report.md), report.md and report.html: the same data in three forms.
+// report.json (docs/report.md), and report.md and report.html written from it: the same data in
+// three forms.
 nlohmann::ordered_json report_json(const MigrationReport& report);
-std::string report_markdown(const MigrationReport& report);
-std::string report_html(const MigrationReport& report);
+std::string report_markdown(const nlohmann::ordered_json& report);
+std::string report_html(const nlohmann::ordered_json& report);
 
 }  // namespace lwc
