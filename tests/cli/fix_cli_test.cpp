@@ -115,6 +115,25 @@ TEST(FixCli, AnEditSavedWhileFixWritesIsNeverLost) {
   for (const auto& e : fs::directory_iterator(dir)) EXPECT_EQ(e.path().filename().string().find(".lwcport-"), std::string::npos) << e.path();
 }
 
+// A program holding the file open for writing could write into the old file after the swap: such
+// a file is left alone, and one only open for reading is not.
+TEST(FixCli, AFileOpenForWritingElsewhereIsNotReplaced) {
+  std::string path = test::scratch("fix-open") + "/a.usf";
+  test::write(path, "original\n");
+  int writer = ::open(path.c_str(), O_WRONLY);
+  ASSERT_GE(writer, 0);
+  EXPECT_EQ(replace_file(path, "original\n", "fixed\n"), "open for writing in another program; not changed (close it and run lwcport fix again)");
+  ASSERT_EQ(::ftruncate(writer, 0), 0);
+  EXPECT_EQ(::write(writer, "edited\n", 7), 7);
+  ::close(writer);
+  EXPECT_EQ(test::read(path), "edited\n");
+  int reader = ::open(path.c_str(), O_RDONLY);
+  ASSERT_GE(reader, 0);
+  EXPECT_EQ(replace_file(path, "edited\n", "fixed\n"), "");
+  ::close(reader);
+  EXPECT_EQ(test::read(path), "fixed\n");
+}
+
 // Interrupted at any moment, fix leaves no temporary file behind: each file is either the old or
 // the new text, whole.
 TEST(FixCli, AnInterruptedFixLeavesNoTemporaryFile) {

@@ -287,6 +287,25 @@ void remove_temporary_files_on_signals() {
   }
 }
 
+// A read lease on `fd` (open read-only): the kernel refuses it while the file is open for writing
+// anywhere, and breaks it when anyone opens the file for writing or truncates it, holding that
+// opener back until the lease is released. So while it is held, an edit cannot start unseen.
+enum class Lease { held, open_for_writing, unavailable };
+
+Lease take_read_lease(int fd) {
+  // A broken lease is announced with SIGIO, whose default action ends the process; we poll instead.
+  static const bool ignored = [] {
+    struct sigaction action {};
+    action.sa_handler = SIG_IGN;
+    return ::sigaction(SIGIO, &action, nullptr) == 0;
+  }();
+  if (!ignored) return Lease::unavailable;
+  if (::fcntl(fd, F_SETLEASE, F_RDLCK) == 0) return Lease::held;
+  // EAGAIN: open for writing elsewhere. EACCES (not the owner), EINVAL (file system, or leases
+  // off): no lease, and the swap below still checks the content.
+  return errno == EAGAIN ? Lease::open_for_writing : Lease::unavailable;
+}
+
 std::string replace_file(const fs::path& path, std::string_view expected, std::string_view text, bool split_links) {
   const std::string changed = "changed since it was read; not written (run lwcport fix again)";
   std::error_code ec;
@@ -297,7 +316,7 @@ std::string replace_file(const fs::path& path, std::string_view expected, std::s
   struct stat st;
   bool stat_ok = ::fstat(original, &st) == 0;
   auto done = [&](std::string why) {
-    ::close(original);
+    ::close(original);  // releases the lease, and lets a held-back opener go on
     return why;
   };
   if (!stat_ok) return done(std::strerror(errno));
@@ -308,15 +327,25 @@ std::string replace_file(const fs::path& path, std::string_view expected, std::s
   if (st.st_nlink > 1 && !split_links)
     return done(fmt::format("it has {} hard links and replacing it would split them; not changed (fix a copy, break the links, "
                             "or run with --force to replace this name only)", st.st_nlink));
-  if (read_file(target, SIZE_MAX).text != expected) return done(changed);
+  // A program holding the file open for writing could write to it after the swap, into the old file.
+  Lease lease = take_read_lease(original);
+  if (lease == Lease::open_for_writing) return done("open for writing in another program; not changed (close it and run lwcport fix again)");
+  // Opening it to read does not break a read lease; an opener for writing does.
+  auto unchanged = [&](const fs::path& at) {
+    return read_file(at, SIZE_MAX).text == expected && (lease != Lease::held || ::fcntl(original, F_GETLEASE) == F_RDLCK);
+  };
+  if (!unchanged(target)) return done(changed);
   TempFile temp;
   if (std::string why = write_temp_beside(target, text, 0, original, temp); !why.empty()) return done(why);
-  ::close(original);
   // The swap: the file as it is at this instant comes out at the temporary path and is checked
-  // there, so an edit saved at any moment before is caught and put back, never overwritten.
+  // there (content, and the lease not broken by an opener for writing), so an edit saved at any
+  // moment before is caught and put back, never overwritten.
   if (::renameat2(AT_FDCWD, temp.path.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) == 0) {
-    if (read_file(temp.path, SIZE_MAX).text == expected) return "";
+    // Left open: an opener that found the old file by name before the swap and reaches the
+    // lease only after this check (a few microseconds inside the kernel) writes to the old file.
+    if (unchanged(temp.path)) return done("");
     ::renameat2(AT_FDCWD, temp.path.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE);
+    ::close(original);  // a held-back editor now writes to the file at its own name
     // What is now at the temporary path should be our text; anything else is an edit made in
     // the moment between the two swaps: kept, and said where.
     if (read_file(temp.path, SIZE_MAX).text != text) {
@@ -325,12 +354,12 @@ std::string replace_file(const fs::path& path, std::string_view expected, std::s
     }
     return changed;
   }
-  if (errno != EINVAL && errno != ENOSYS && errno != ENOTSUP) return "cannot replace the file: " + std::string(std::strerror(errno));
+  if (errno != EINVAL && errno != ENOSYS && errno != ENOTSUP) return done("cannot replace the file: " + std::string(std::strerror(errno)));
   // A file system without the swap: check once more right before the rename.
-  if (read_file(target, SIZE_MAX).text != expected) return changed;
-  if (::rename(temp.path.c_str(), target.c_str()) != 0) return "cannot replace the file: " + std::string(std::strerror(errno));
+  if (!unchanged(target)) return done(changed);
+  if (::rename(temp.path.c_str(), target.c_str()) != 0) return done("cannot replace the file: " + std::string(std::strerror(errno)));
   temp.path.clear();
-  return "";
+  return done("");
 }
 
 std::string create_file(const fs::path& path, std::string_view text) {

@@ -51,8 +51,9 @@ namespace lwc {
 // swapped with it and the old content checked once more at that instant; a symlink is followed
 // and the target replaced. Refuses, with a reason and nothing written, a file marked read-only,
 // one with other hard links unless `split_links` (the rename gives this name the new content and
-// leaves the others the old), or one whose content is no longer `expected` (changed since it was
-// read, up to the swap). Returns "" on success, else the reason.
+// leaves the others the old), one open for writing elsewhere (where a lease can tell), or one whose
+// content is no longer `expected` (changed since it was read, up to the swap). Returns "" on
+// success, else the reason.
 std::string replace_file(const std::filesystem::path& path, std::string_view expected, std::string_view text, bool split_links = false);
 // Creates a file that does not exist yet, atomically (temporary file, then link), with the
 // umask's mode. Refuses, with a reason, if it exists. Returns "" on success, else the reason.
