@@ -4,12 +4,16 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <charconv>
 #include <chrono>
 #include <condition_variable>
+#include <cstring>
 #include <mutex>
 #include <cstdlib>
 #include <filesystem>
@@ -100,7 +104,9 @@ void run_in_order(size_t count, unsigned jobs, Work work, Emit emit, const std::
   for (auto& w : workers) w.join();
 }
 
+}  // namespace
 unsigned job_count(const Options& o) { return o.jobs ? o.jobs : std::max(1u, std::thread::hardware_concurrency()); }
+namespace {
 
 // A file read and ready to analyse, or the report of why it is not.
 struct LoadedFile {
@@ -248,13 +254,14 @@ LintOrder includes_first(const std::vector<InputFile>& files, IncludeSummaries& 
   return out;
 }
 
-// Where each file's settings come from: the nearest .lwcport.json, the one --config names, or
-// none (--isolated).
+}  // namespace
+
 std::unique_ptr<ConfigFinder> config_finder(const Options& o) {
   if (o.isolated) return std::make_unique<ConfigFinder>(std::make_shared<const ProjectConfig>());
   if (!o.config_file.empty()) return std::make_unique<ConfigFinder>(ConfigFinder::read(o.config_file));
   return std::make_unique<ConfigFinder>();
 }
+namespace {
 
 // Colour under --color auto: FORCE_COLOR or CLICOLOR_FORCE (set, not "0") force it, NO_COLOR
 // turns it off, else a terminal gets it.
@@ -272,10 +279,12 @@ bool colour(const Options& o) {
 
 // The report goes to standard output or --output; false (after an error message) if that file
 // cannot be opened.
+}  // namespace
 struct ReportTarget {
   std::ofstream file;
   std::ostream* stream = nullptr;
 };
+namespace {
 bool open_target(const Options& o, ConfigFinder& configs, std::ostream& out, std::ostream& err, ReportTarget& target, ReportOptions& ro) {
   ro = o.report;
   ro.color = colour(o);
@@ -372,25 +381,68 @@ void finish_baseline(const Options& o, Baseline& baseline, const std::set<std::s
     throw std::runtime_error(fmt::format("{}: cannot write the baseline: {}", o.baseline_file, why));
 }
 
+}  // namespace
+
+LintOutput::LintOutput(const Options& o, std::ostream& out, std::ostream& err) : o_(o), out_(out), err_(err) {
+  if (!o.baseline_file.empty()) baseline_ = Baseline::read(o.baseline_file);
+  // --write-baseline: the entries are relative to the file being written, as --baseline reads them.
+  if (!o.write_baseline_file.empty()) recording_ = Baseline::at(o.write_baseline_file);
+}
+
+LintOutput::~LintOutput() = default;
+
+bool LintOutput::open(ConfigFinder& configs) {
+  target_ = std::make_unique<ReportTarget>();
+  ReportOptions ro;
+  if (!open_target(o_, configs, out_, err_, *target_, ro)) return false;
+  writer_ = std::make_unique<ReportWriter>(recording_ ? discarded_ : *target_->stream, ro);  // --write-baseline prints no report
+  return true;
+}
+
+void LintOutput::file(FileReport& r) {
+  suppressions_ += r.added_suppressions;
+  suppressed_files_ += r.added_suppressions > 0;
+  if (recording_) {
+    std::string path = recording_->key(r.path);
+    for (const ReportedFinding& f : r.findings)
+      if (!f.fingerprint.empty()) recorded_.push_back({path, {f.rule, f.text, f.occurrence, f.fingerprint}});
+  }
+  if (baseline_) {
+    std::string path = baseline_->key(r.path);
+    seen_.insert(path);
+    hidden_ += std::erase_if(r.findings, [&](const ReportedFinding& f) { return !f.fingerprint.empty() && baseline_->take(path, f.fingerprint); });
+  }
+  writer_->file(r);
+}
+
+void LintOutput::close() { writer_->finish(); }
+
+int LintOutput::finish() {
+  if (recording_) {
+    if (std::string why = Baseline::write(o_.write_baseline_file, recorded_); !why.empty())
+      throw std::runtime_error(fmt::format("{}: cannot write the baseline: {}", o_.write_baseline_file, why));
+    err_ << fmt::format("Wrote a baseline of {} finding(s) to {}: `lwcport {} --baseline {}` reports only new ones.\n", recorded_.size(),
+                        o_.write_baseline_file, o_.command, o_.write_baseline_file);
+    return 0;
+  }
+  if (o_.add_suppressions) {  // as writing a baseline: the point is to accept what is there
+    err_ << fmt::format("Added a suppression comment to {} line(s) in {} file(s).\n", suppressions_, suppressed_files_);
+    return 0;
+  }
+  if (baseline_) finish_baseline(o_, *baseline_, seen_, hidden_, err_);
+  return o_.fail_on && writer_->failed(*o_.fail_on) ? 1 : 0;
+}
+
+namespace {
+
 int lint(const Options& o, std::ostream& out, std::ostream& err) {
   std::unique_ptr<ConfigFinder> configs = config_finder(o);
-  std::optional<Baseline> baseline;
-  if (!o.baseline_file.empty()) baseline = Baseline::read(o.baseline_file);
-  // --write-baseline: the entries are relative to the file being written, as --baseline reads them.
-  std::optional<Baseline> recording;
-  if (!o.write_baseline_file.empty()) recording = Baseline::at(o.write_baseline_file);
+  LintOutput output(o, out, err);
   std::vector<InputFile> files = input_files(o, *configs, err);
-  ReportTarget target;
-  ReportOptions ro;
-  if (!open_target(o, *configs, out, err, target, ro)) return 2;
-  std::ostringstream discarded;  // --write-baseline prints no report
-  ReportWriter writer(recording ? discarded : *target.stream, ro);
+  if (!output.open(*configs)) return 2;
   IncludeSummaries includes;
   CodeCounter counter(files);
   LintOrder order = includes_first(files, includes);
-  std::set<std::string> seen;  // the files looked at, as the baseline names them
-  std::vector<Baseline::Entry> recorded;
-  size_t hidden = 0, suppressions = 0, suppressed_files = 0;
   run_in_order<FileReport>(
       files.size(), job_count(o),
       [&](size_t i) {
@@ -402,36 +454,12 @@ int lint(const Options& o, std::ostream& out, std::ostream& err) {
       },
       [&](FileReport& r) {
         counter.add(r);
-        suppressions += r.added_suppressions;
-        suppressed_files += r.added_suppressions > 0;
-        if (recording) {
-          std::string path = recording->key(r.path);
-          for (const ReportedFinding& f : r.findings)
-            if (!f.fingerprint.empty()) recorded.push_back({path, {f.rule, f.text, f.occurrence, f.fingerprint}});
-        }
-        if (baseline) {
-          std::string path = baseline->key(r.path);
-          seen.insert(path);
-          hidden += std::erase_if(r.findings, [&](const ReportedFinding& f) { return !f.fingerprint.empty() && baseline->take(path, f.fingerprint); });
-        }
-        writer.file(r);
+        output.file(r);
       },
       &order.order);
-  writer.finish();
+  output.close();
   if (!every_argument_had_code(o, counter.with_code, err)) return 2;
-  if (recording) {
-    if (std::string why = Baseline::write(o.write_baseline_file, recorded); !why.empty())
-      throw std::runtime_error(fmt::format("{}: cannot write the baseline: {}", o.write_baseline_file, why));
-    err << fmt::format("Wrote a baseline of {} finding(s) to {}: `lwcport lint --baseline {}` reports only new ones.\n", recorded.size(),
-                       o.write_baseline_file, o.write_baseline_file);
-    return 0;
-  }
-  if (o.add_suppressions) {  // as writing a baseline: the point is to accept what is there
-    err << fmt::format("Added a suppression comment to {} line(s) in {} file(s).\n", suppressions, suppressed_files);
-    return 0;
-  }
-  if (baseline) finish_baseline(o, *baseline, seen, hidden, err);
-  return o.fail_on && writer.failed(*o.fail_on) ? 1 : 0;
+  return output.finish();
 }
 
 // The engine era an Unreal file was written for (its stub's LWCPORT_UE_VERSION).
@@ -1353,8 +1381,7 @@ int list_rules(const Options& o, std::ostream& out) {
   if (o.report.format == Format::json) {
     nlohmann::json rules = nlohmann::json::array();
     for (const RuleInfo& r : all_rules()) {
-      std::vector<std::string> langs;
-      for (Lang l : r.languages) langs.emplace_back(lang_name(l));
+      std::vector<std::string> langs = language_names(r);
       std::string labels = fix_labels(r);
       rules.push_back({{"id", r.id}, {"name", r.name}, {"severity", severity_name(r.severity)}, {"languages", langs},
                        {"fix", labels.empty() ? nlohmann::json(nullptr) : nlohmann::json(labels)}, {"summary", r.summary},
@@ -1365,8 +1392,7 @@ int list_rules(const Options& o, std::ostream& out) {
   }
   out << fmt::format("{:<26} {:<8} {:<10} {:<13} {}\n", "RULE", "SEVERITY", "LANGUAGES", "FIX", "SUMMARY");
   for (const RuleInfo& r : all_rules()) {
-    std::vector<std::string_view> langs;
-    for (Lang l : r.languages) langs.push_back(lang_name(l));
+    std::vector<std::string> langs = language_names(r);
     std::string labels = fix_labels(r);
     out << fmt::format("{:<26} {:<8} {:<10} {:<13} {}\n", r.id, severity_name(r.severity), fmt::format("{}", fmt::join(langs, ",")),
                        labels.empty() ? "-" : labels, r.summary);
@@ -1380,6 +1406,60 @@ int show_rule(const Options& o, std::ostream& out) {
   if (!find_rule(id)) throw UsageError(fmt::format("no rule '{}' (`lwcport rules` lists them)", id), "rule");
   out << rule_page(id);
   return 0;
+}
+
+}  // namespace
+
+HostCommand host_command = nullptr;
+
+namespace {
+
+// `lwcport host` from the lwcport program: lwcport-host beside it, its output passed through.
+int run_host_program(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  std::error_code ec;
+  fs::path program = fs::read_symlink("/proc/self/exe", ec).parent_path() / "lwcport-host";
+  if (ec || ::access(program.c_str(), X_OK) != 0)
+    throw std::runtime_error(fmt::format("`lwcport host` needs the lwcport-host program beside lwcport ({} is missing: it is built "
+                                         "with Clang 19's LibTooling; .ci/setup installs it)", program.string()));
+  int pipes[2][2];
+  if (::pipe2(pipes[0], O_CLOEXEC) != 0 || ::pipe2(pipes[1], O_CLOEXEC) != 0) throw std::runtime_error(std::strerror(errno));
+  std::vector<std::string> argv_text{program.string()};
+  argv_text.insert(argv_text.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : argv_text) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error(std::strerror(errno));
+  if (pid == 0) {
+    ::dup2(pipes[0][1], STDOUT_FILENO);
+    ::dup2(pipes[1][1], STDERR_FILENO);
+    ::execv(argv[0], argv.data());
+    _exit(127);
+  }
+  ::close(pipes[0][1]);
+  ::close(pipes[1][1]);
+  struct pollfd fds[2] = {{pipes[0][0], POLLIN, 0}, {pipes[1][0], POLLIN, 0}};
+  std::ostream* to[2] = {&out, &err};
+  for (int open = 2; open > 0;) {
+    if (::poll(fds, 2, -1) < 0 && errno != EINTR) break;
+    for (int i = 0; i < 2; ++i) {
+      if (fds[i].fd < 0 || !(fds[i].revents & (POLLIN | POLLHUP | POLLERR))) continue;
+      char buffer[65536];
+      ssize_t n = ::read(fds[i].fd, buffer, sizeof buffer);
+      if (n > 0) {
+        to[i]->write(buffer, n);
+        continue;
+      }
+      if (n < 0 && errno == EINTR) continue;
+      ::close(fds[i].fd);
+      fds[i].fd = -1;
+      --open;
+    }
+  }
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 2;
 }
 
 }  // namespace
@@ -1403,6 +1483,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     if (o.command == "rules") return list_rules(o, out);
     if (o.command == "rule") return show_rule(o, out);
     if (o.command == "report") return report(o, out, err);
+    if (o.command == "host") return host_command ? host_command(o, out, err) : run_host_program(args, out, err);
     throw UsageError("unknown command '" + o.command + "'");
   } catch (const UsageError& e) {
     err << usage_error_line(e);

@@ -32,6 +32,9 @@ constexpr CommandInfo kCommands[] = {
     {"parse", "[options] [PATHS...]",
      "parse only and count syntax errors (the benchmark's baseline); with\n"
      "--verbose, each error's position and the text around it"},
+    {"host", "[options] [PATHS...] [-- CLANG ARGS...]",
+     "report (and with --fix, fix) C++ host code that rounds world positions and\n"
+     "matrices to float before the GPU sees them, parsed with Clang (docs/host.md)"},
     {"rules", "[--format text|json]", "list the rules: id, severity, languages, whether lwcport fixes it, summary"},
     {"rule", "ID", "print a rule's page: what it finds, why, its fixes and examples"},
     {"report", "[options] [PATHS...]",
@@ -68,7 +71,7 @@ std::set<std::string> rule_list(const std::string& value, const char* flag) {
 }
 
 const Flag kFlags[] = {
-    {"--format", nullptr, "lint fix verify rules", "FORMAT",
+    {"--format", nullptr, "lint fix verify rules host", "FORMAT",
      "text|json|sarif|github (default: text)",
      [](Options& o, const std::string& f) {
        if (f == "text") o.report.format = Format::text;
@@ -78,15 +81,15 @@ const Flag kFlags[] = {
        else if (o.command == "verify" || o.command == "rules") throw UsageError("--format must be text or json", o.command);
        else throw UsageError("--format must be text, json, sarif or github", o.command);
      }},
-    {"--statistics", nullptr, "lint fix", nullptr, "per rule: how many findings, and how many a fix covers, instead of each finding",
+    {"--statistics", nullptr, "lint fix host", nullptr, "per rule: how many findings, and how many a fix covers, instead of each finding",
      [](Options& o, const std::string&) { o.report.statistics = true; }},
-    {"--color", nullptr, "lint fix", "WHEN",
+    {"--color", nullptr, "lint fix host", "WHEN",
      "auto|always|never: colour text output (default: auto; NO_COLOR, FORCE_COLOR and CLICOLOR_FORCE are honoured under auto)",
      [](Options& o, const std::string& v) {
        if (v != "auto" && v != "always" && v != "never") throw UsageError("--color must be auto, always or never", o.command);
        o.color = v;
      }},
-    {"--fail-on", nullptr, "lint fix verify", "LEVEL",
+    {"--fail-on", nullptr, "lint fix verify host", "LEVEL",
      "error|warning|note|none: exit 1 when a finding is at least this severe (default: warning)",
      [](Options& o, const std::string& f) {
        Severity s;
@@ -94,9 +97,9 @@ const Flag kFlags[] = {
        else if (parse_severity(f, s)) o.fail_on = s;
        else throw UsageError("--fail-on must be error, warning, note or none", o.command);
      }},
-    {"--select", nullptr, "lint fix verify report", "IDS", "run only these rules (comma-separated)",
+    {"--select", nullptr, "lint fix verify report host", "IDS", "run only these rules (comma-separated)",
      [](Options& o, const std::string& v) { o.select = rule_list(v, "--select"); }},
-    {"--ignore", nullptr, "lint fix verify report", "IDS", "skip these rules (comma-separated)",
+    {"--ignore", nullptr, "lint fix verify report host", "IDS", "skip these rules (comma-separated)",
      [](Options& o, const std::string& v) { o.ignore = rule_list(v, "--ignore"); }},
     {"--lang", nullptr, "lint fix verify parse report", "LANG", "hlsl|glsl: analyse every file as this language",
      [](Options& o, const std::string& v) {
@@ -106,21 +109,21 @@ const Flag kFlags[] = {
     {"--stdin-filename", nullptr, "lint fix", "NAME",
      "the name standing for standard input (`-`): its language, config and suppressions come from NAME, and findings are reported under it",
      [](Options& o, const std::string& v) { o.stdin_filename = v; }},
-    {"--baseline", nullptr, "lint", "FILE",
+    {"--baseline", nullptr, "lint host", "FILE",
      "report only findings not recorded in FILE (the exit code comes from those alone) and list its entries that no longer match",
      [](Options& o, const std::string& v) { o.baseline_file = v; }},
-    {"--write-baseline", nullptr, "lint", "FILE", "record the current findings in FILE (docs/baseline.md) and exit 0",
+    {"--write-baseline", nullptr, "lint host", "FILE", "record the current findings in FILE (docs/baseline.md) and exit 0",
      [](Options& o, const std::string& v) { o.write_baseline_file = v; }},
-    {"--prune-baseline", nullptr, "lint", nullptr, "with --baseline: rewrite FILE without the entries that no longer match",
+    {"--prune-baseline", nullptr, "lint host", nullptr, "with --baseline: rewrite FILE without the entries that no longer match",
      [](Options& o, const std::string&) { o.prune_baseline = true; }},
     {"--add-suppressions", nullptr, "lint", nullptr,
      "write a `// lwcport-ignore: <id>` comment on the line of each current finding (the alternative to a baseline for teams who prefer them in code)",
      [](Options& o, const std::string&) { o.add_suppressions = true; }},
-    {"--config", nullptr, "lint fix verify parse report", "FILE", "use this .lwcport.json for every file instead of the nearest one",
+    {"--config", nullptr, "lint fix verify parse report host", "FILE", "use this .lwcport.json for every file instead of the nearest one",
      [](Options& o, const std::string& v) { o.config_file = v; }},
-    {"--isolated", nullptr, "lint fix verify parse report", nullptr, "read no .lwcport.json: the built-in defaults",
+    {"--isolated", nullptr, "lint fix verify parse report host", nullptr, "read no .lwcport.json: the built-in defaults",
      [](Options& o, const std::string&) { o.isolated = true; }},
-    {"--jobs", "-j", "lint fix verify parse report", "N",
+    {"--jobs", "-j", "lint fix verify parse report host", "N",
      "worker threads (default: all cores)",
      [](Options& o, const std::string& n) {
        char* end = nullptr;
@@ -128,7 +131,7 @@ const Flag kFlags[] = {
        if (n.empty() || *end || v < 1 || v > 1024) throw UsageError("--jobs must be a number from 1 to 1024", o.command);
        o.jobs = static_cast<unsigned>(v);
      }},
-    {"--output", "-o", "lint fix verify", "FILE", "write the report to FILE instead of standard output",
+    {"--output", "-o", "lint fix verify host", "FILE", "write the report to FILE instead of standard output",
      [](Options& o, const std::string& v) { o.output = v; }},
     {"--scene", nullptr, "lint fix verify report", "FILE",
      "the scene profile: world extent, view distance, precision (default: Unreal's full world, 2^43 cm, to 1/16 cm)",
@@ -154,10 +157,14 @@ const Flag kFlags[] = {
      }},
     {"--since", nullptr, "report", "REV", "the counts at each commit after REV (a commit, tag or branch)",
      [](Options& o, const std::string& v) { o.since = v; }},
-    {"--diff", nullptr, "fix", nullptr,
+    {"--build-dir", "-p", "host", "DIR", "the build folder holding compile_commands.json (default: found upward from the paths)",
+     [](Options& o, const std::string& v) { o.build_dir = v; }},
+    {"--fix", nullptr, "host", nullptr, "apply the safe fixes in place (with --unsafe-fixes, the unsafe ones too)",
+     [](Options& o, const std::string&) { o.fix_in_place = true; }},
+    {"--diff", nullptr, "fix host", nullptr,
      "print a unified diff of the fixes and write nothing (exit 1 when there is something to fix, unless --fail-on none)",
      [](Options& o, const std::string&) { o.diff = true; }},
-    {"--unsafe-fixes", nullptr, "fix", nullptr, "apply the unsafe fixes too",
+    {"--unsafe-fixes", nullptr, "fix host", nullptr, "apply the unsafe fixes too",
      [](Options& o, const std::string&) { o.unsafe_fixes = true; }},
     {"--verify", nullptr, "fix report", nullptr,
      "run each fixed file's functions on the Vulkan device against the float64 reference first; apply only the files whose rewrites all pass",
@@ -326,9 +333,13 @@ Options parse_options(const std::vector<std::string>& args) {
     for (const CommandInfo& c : kCommands) names.push_back(c.name);
     throw UsageError(fmt::format("unknown command '{}'{}", o.command, suggestion(o.command, names)));
   }
-  bool only_paths = false;  // after `--`, every argument is a path
+  bool only_paths = false;  // after `--`, every argument is a path (for host, a compile flag)
   for (size_t i = first + 1; i < args.size(); ++i) {
     std::string a = args[i];
+    if (only_paths && o.command == "host") {
+      o.clang_args.push_back(a);
+      continue;
+    }
     if (only_paths || a == "-" || a.empty() || a[0] != '-') {
       o.paths.push_back(a);
       continue;
@@ -373,6 +384,7 @@ Options parse_options(const std::vector<std::string>& args) {
     throw UsageError(fmt::format("`lwcport {}` takes no paths", o.command), o.command);
   if (o.report.statistics && (o.report.format == Format::sarif || o.report.format == Format::github))
     throw UsageError("--statistics prints text or json", o.command);
+  if (o.fix_in_place && o.diff) throw UsageError("--fix writes the fixes and --diff prints them: use one", o.command);
   if (o.report.statistics && o.diff) throw UsageError("--statistics and --diff cannot be used together", o.command);
   if (o.history && !o.since.empty()) throw UsageError("--history and --since cannot be used together", o.command);
   if (o.prune_baseline && o.baseline_file.empty()) throw UsageError("--prune-baseline needs --baseline FILE", o.command);

@@ -19,7 +19,7 @@ struct UsageError : std::runtime_error {
 };
 
 struct Options {
-  std::string command;  // lint, fix, verify, parse, rules, rule, lsp, help, version
+  std::string command;  // lint, fix, verify, parse, host, rules, rule, report, lsp, help, version
   std::string help_for;  // help: the command asked about ("" for the overview)
   std::vector<std::string> paths;  // "-" is standard input
   ReportOptions report;
@@ -49,6 +49,9 @@ struct Options {
   std::string out_dir = "lwcport-report";  // report: where report.html, .md and .json go
   int history = 0;                  // report: the counts at each of the last N commits
   std::string since;                // report: ... or at each commit after REV
+  std::string build_dir;            // host -p: the folder holding compile_commands.json
+  std::vector<std::string> clang_args;  // host: after `--`, the compile flags when there is no database
+  bool fix_in_place = false;        // host --fix: apply the fixes (the safe ones; --unsafe-fixes for the rest)
 };
 
 // Reads the command line; throws UsageError for anything it does not accept.

@@ -89,7 +89,7 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
     if (!find_rule(id)) fail(fmt::format("unknown rule id \"{}\"", id));
   };
   for (const auto& item : j.items()) {
-    static const char* known[] = {"severity", "select", "ignore", "include-dirs", "virtual-roots", "exclude", "world-sources", "max-file-bytes", "max-parse-seconds", "macros", "unreal", "library-definitions", "extensions", "defines", "overrides", "force-includes", "help-uri-base"};
+    static const char* known[] = {"severity", "select", "ignore", "include-dirs", "virtual-roots", "exclude", "world-sources", "max-file-bytes", "max-parse-seconds", "macros", "unreal", "library-definitions", "extensions", "defines", "overrides", "force-includes", "help-uri-base", "host"};
     const std::string& key = item.key();
     if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) == std::end(known))
       fail(fmt::format("unknown key \"{}\"", key));
@@ -188,6 +188,10 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
     if (c.help_uri_base.back() != '/') c.help_uri_base += '/';
   }
   if (j.contains("macros")) add_macros(j.at("macros"), file.string(), c.macros);
+  if (j.contains("host")) {
+    if (!j.at("host").is_object()) fail("\"host\" must be an object (additions to rules/host-world.json: docs/host.md)");
+    c.host = j.at("host");
+  }
   if (j.contains("unreal")) {
     const auto& u = j.at("unreal");
     c.unreal = u.is_string() ? parse_unreal_era(u.get<std::string>()) : std::nullopt;

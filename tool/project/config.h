@@ -33,6 +33,7 @@ struct ProjectConfig {
   FormatTable formats = FormatTable::defaults();  // which extensions are shaders, and how
   bool lint_library = false;        // report inside the LWC libraries' own definitions
   std::string help_uri_base;  // where the rule pages are published (ends in '/'); "" for the installed pages
+  nlohmann::json host = nlohmann::json::object();  // lwcport host: additions to rules/host-world.json
   // Macros the build defines (Unreal's ModifyCompilationEnvironment, -D flags), for where lwcport
   // compiles code: verify, fix --verify and --check-build. Name -> value, in order.
   using Defines = std::vector<std::pair<std::string, std::string>>;

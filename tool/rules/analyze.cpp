@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <functional>
 #include <mutex>
 #include <set>
 #include <tuple>
@@ -166,13 +167,11 @@ namespace {
 
 // `lwcport-ignore[-file|-next-line][: ID[, ID...]]` in a comment. A comment alone on its line
 // covers the next line, a trailing one its own; `-next-line` always the next; `-file` the file.
-std::vector<Suppression> find_suppressions(const SyntaxTree& tree) {
+std::vector<Suppression> find_suppressions(const Source& src, const std::vector<Span>& comments) {
   std::vector<Suppression> out;
-  const Source& src = *tree.source;
   constexpr std::string_view kMarker = "lwcport-ignore";
-  for (int id = 0; id < static_cast<int>(tree.nodes.size()); ++id) {
-    if (!tree.is(id, "comment")) continue;
-    std::string_view text = tree.text(id);
+  for (Span comment : comments) {
+    std::string_view text = src.slice(comment);
     size_t at = text.find(kMarker);
     if (at == std::string_view::npos || (at > 0 && suppression_id_char(text[at - 1]))) continue;
     size_t after = at + kMarker.size();
@@ -183,19 +182,19 @@ std::vector<Suppression> find_suppressions(const SyntaxTree& tree) {
     std::string_view rest;
     if (after < text.size() && text[after] == ':') rest = text.substr(++after);
     if (size_t end = rest.find("*/"); end != std::string_view::npos) rest = rest.substr(0, end);
-    Position pos = src.position(tree.at(id).begin);
+    Position pos = src.position(comment.begin);
     std::string_view before = src.line_text(pos.line).substr(0, src.offset(pos) - src.offset({pos.line, 1}));
     bool alone = before.find_first_not_of(" \t") == std::string_view::npos;
     int line = whole_file ? 0 : alone || next_line ? pos.line + 1 : pos.line;
-    uint32_t begin = tree.at(id).begin;
+    uint32_t begin = comment.begin;
     Span marker{begin + static_cast<uint32_t>(at), begin + static_cast<uint32_t>(after)};
     size_t first = out.size();
     for (Span ids : suppression_ids(rest, 0)) {
       Span rule_span{begin + static_cast<uint32_t>(after) + ids.begin, begin + static_cast<uint32_t>(after) + ids.end};
-      out.push_back({tree.span(id), {}, line, whole_file, std::string(rest.substr(ids.begin, ids.end - ids.begin)), rule_span});
+      out.push_back({comment, {}, line, whole_file, std::string(rest.substr(ids.begin, ids.end - ids.begin)), rule_span});
       marker.end = rule_span.end;
     }
-    if (out.size() == first) out.push_back({tree.span(id), {}, line, whole_file, "", marker, 0});
+    if (out.size() == first) out.push_back({comment, {}, line, whole_file, "", marker, 0});
     for (size_t k = first; k < out.size(); ++k) {
       out[k].marker = marker;
       out[k].alone = alone;
@@ -221,8 +220,7 @@ const std::vector<std::pair<const RuleInfo*, std::unique_ptr<Check>>>& checks() 
 // The fix for a stale suppression: the id and its separator when the comment names others; else
 // the marker and its ids when the comment says something more, else the whole comment (and its
 // line, when the comment is alone on it). No other word of the comment is lost.
-Fix remove_suppression(const RuleInfo& rule, const Suppression& s, const SyntaxTree& tree) {
-  const std::string& text = tree.source->text();
+Fix remove_suppression(const RuleInfo& rule, const Suppression& s, const std::string& text) {
   auto blank = [&](uint32_t i) { return text[i] == ' ' || text[i] == '\t'; };
   Span cut = s.rule_span;
   if (s.ids > 1) {
@@ -270,22 +268,22 @@ void suppress(std::vector<Suppression>& sups, const Source& src, std::vector<Fin
   findings = std::move(kept);
 }
 
-void report_unused(const std::vector<Suppression>& sups, const SyntaxTree& tree, const AnalyzeOptions& options,
+// `ran`: whether a rule ran on this file (a suppression of a rule that did not is not known to be unused).
+void report_unused(const std::vector<Suppression>& sups, const Source& src, const std::function<bool(const RuleInfo&)>& ran,
                    std::vector<Finding>& findings) {
   const RuleInfo* unused = find_rule(kUnusedSuppressionRule);
-  if (!unused || !options.enabled(unused->id)) return;
+  if (!unused || !ran(*unused)) return;
   for (const Suppression& s : sups) {
     if (s.used) continue;
     const RuleInfo* target = find_rule(s.rule);
-    // A suppression of a rule that did not run this time is not known to be unused.
-    if (target && (!options.enabled(target->id) || !target->applies_to(tree.lang))) continue;
+    if (target && !ran(*target)) continue;
     std::string why = s.rule.empty() ? "no finding here to suppress"
                       : target       ? fmt::format("no `{}` finding here to suppress", s.rule)
                                      : fmt::format("`{}` is not a lwcport rule", s.rule);
     std::string what = s.rule.empty() ? "every rule" : "`" + s.rule + "`";
     std::string removal = s.rule.empty() ? "the suppression" : what + " from the comment";
     Finding f = make_finding(*unused, s.span, {{"suppressed", what}, {"removal", removal}, {"why", why}});
-    f.fixes.push_back(remove_suppression(*unused, s, tree));
+    f.fixes.push_back(remove_suppression(*unused, s, src.text()));
     findings.push_back(std::move(f));
   }
 }
@@ -515,7 +513,10 @@ void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, co
     if (variant == 0) {
       if (options.summary_for_includers && !literal)
         *options.summary_for_includers = include_summary(code, tree, options.world_sources, {nullptr, context.names_as_evidence, context.plain_names, context.era});
-      sups = find_suppressions(tree);
+      std::vector<Span> comments;
+      for (int id = 0; id < static_cast<int>(tree.nodes.size()); ++id)
+        if (tree.is(id, "comment")) comments.push_back(tree.span(id));
+      sups = find_suppressions(code, comments);
       merge.emplace(tree.resolved_conditionals);
     }
     suppress(sups, code, found);
@@ -551,10 +552,18 @@ void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, co
                                      fmt::format("expression nested too deeply to analyse ({} place(s)); it was skipped", too_deep),
                                      "split the expression"));
   }
-  report_unused(sups, *first, options, findings);
+  report_unused(sups, code, [&](const RuleInfo& r) { return options.enabled(r.id) && (r.id == kUnusedSuppressionRule || r.applies_to(lang)); },
+                findings);
 }
 
 }  // namespace
+
+void apply_suppressions(const Source& source, const std::vector<Span>& comments, const std::function<bool(const RuleInfo&)>& ran,
+                        std::vector<Finding>& findings) {
+  std::vector<Suppression> sups = find_suppressions(source, comments);
+  suppress(sups, source, findings);
+  report_unused(sups, source, ran, findings);
+}
 
 std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options) {
   // The library lwcport writes beside fixed files is its own tested code, not the user's.

@@ -1,4 +1,5 @@
 #pragma once
+#include <functional>
 #include <map>
 #include <optional>
 #include <set>
@@ -15,6 +16,8 @@
 #include "world/model.h"
 
 namespace lwc {
+
+struct RuleInfo;
 
 struct AnalyzeOptions {
   std::optional<Lang> lang;              // overrides the extension
@@ -95,6 +98,11 @@ FileSummary include_summary(const Source& source, const SyntaxTree& tree, const 
 // span in `text`; blanks and commas separate them and anything else ends the list. The parser of
 // suppressions and `lint --add-suppressions` read the list the same way.
 std::vector<Span> suppression_ids(std::string_view text, size_t from);
+// The `lwcport-ignore` comments among a file's comments applied to its findings from another
+// front end (lwcport host): suppressed ones dropped, unused suppressions reported (when `ran`
+// says lwc-unused-suppression, and the rule a suppression names, ran on the file).
+void apply_suppressions(const Source& source, const std::vector<Span>& comments, const std::function<bool(const RuleInfo&)>& ran,
+                        std::vector<Finding>& findings);
 bool suppression_id_char(char c);
 
 // The paths a file #includes, in order, as written (a scan of its directive lines).

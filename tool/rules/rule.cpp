@@ -21,6 +21,7 @@ namespace {
 struct Loaded {
   std::vector<RuleInfo> rules;
   nlohmann::json world_space;
+  nlohmann::json host_world;
 };
 
 RuleInfo parse_rule(std::string_view file, const nlohmann::json& j) {
@@ -33,6 +34,10 @@ RuleInfo parse_rule(std::string_view file, const nlohmann::json& j) {
   r.name = j.at("name").get<std::string>();
   if (!parse_severity(j.at("severity").get<std::string>(), r.severity)) fail("bad severity");
   for (const auto& l : j.at("languages")) {
+    if (l == "c++") {
+      r.host = true;
+      continue;
+    }
     auto lang = parse_lang(l.get<std::string>());
     if (!lang) fail("unknown language " + l.dump());
     r.languages.push_back(*lang);
@@ -66,6 +71,7 @@ const Loaded& loaded() {
     for (const EmbeddedFile& f : embedded_rule_files()) {
       nlohmann::json j = nlohmann::json::parse(f.text);
       if (j.contains("world-space")) l.world_space = j.at("world-space");
+      else if (j.contains("host-world")) l.host_world = j.at("host-world");
       else if (j.contains("macros")) continue;  // lang/macros.cpp reads it
       else l.rules.push_back(parse_rule(f.name, j));
     }
@@ -86,6 +92,14 @@ const RuleInfo* find_rule(std::string_view id) {
 }
 
 const nlohmann::json& world_space_data() { return loaded().world_space; }
+const nlohmann::json& host_world_data() { return loaded().host_world; }
+
+std::vector<std::string> language_names(const RuleInfo& rule) {
+  std::vector<std::string> out;
+  for (Lang l : rule.languages) out.emplace_back(lang_name(l));
+  if (rule.host) out.emplace_back("c++");
+  return out;
+}
 
 // Appends a value quoted in a message, at most kMaxQuoted bytes: the start and the end of a longer one
 // around an ellipsis (cut at UTF-8 boundaries), so a finding's text never grows with its line.

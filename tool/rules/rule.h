@@ -18,7 +18,8 @@ struct RuleInfo {
   std::string id;
   std::string name;
   Severity severity = Severity::warning;
-  std::vector<Lang> languages;
+  std::vector<Lang> languages;  // the shader languages it checks; none for a host rule
+  bool host = false;            // checks C++ host code ("c++"; lwcport host, tool/host)
   std::string summary;
   std::string message;    // a template: {name} placeholders filled by the check
   std::string hint;       // a template too
@@ -50,6 +51,10 @@ std::string_view rule_page(std::string_view id);
 const RuleInfo* find_rule(std::string_view id);
 // The "world-space" object of rules/world-space.json.
 const nlohmann::json& world_space_data();
+// The "host-world" object of rules/host-world.json: what the host rules know of C++ code.
+const nlohmann::json& host_world_data();
+// "hlsl, glsl" or "c++": the languages a rule checks, for listings.
+std::vector<std::string> language_names(const RuleInfo& rule);
 
 using Vars = std::map<std::string, std::string>;
 // Replaces each {key} in a template with its value; unknown keys stay as written.

@@ -1,0 +1,12 @@
+// The few OpenGL entry points the host corpus calls, declared for lwcport's corpus (no GL headers needed).
+#pragma once
+typedef int GLint;
+typedef int GLsizei;
+typedef float GLfloat;
+typedef unsigned char GLboolean;
+#define GL_FALSE 0
+extern "C" {
+void glUniform3f(GLint location, GLfloat v0, GLfloat v1, GLfloat v2);
+void glUniform3fv(GLint location, GLsizei count, const GLfloat* value);
+void glUniformMatrix4fv(GLint location, GLsizei count, GLboolean transpose, const GLfloat* value);
+}

@@ -1,0 +1,47 @@
+// A small OpenGL scene renderer on glm, with positions kept in double on the CPU.
+#include <glm/glm.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "gl_mini.h"
+
+struct SceneNode {
+  glm::dvec3 position;
+  glm::dmat4 modelMatrix;
+  glm::dvec3 lightDirection;
+};
+
+struct Camera {
+  glm::dvec3 position;
+  glm::dmat4 view;
+  glm::dmat4 projection;
+};
+
+struct SceneUniforms {
+  glm::vec3 cameraPosition;
+  float time;
+  glm::mat4 viewProjection;
+};
+
+struct Locations {
+  GLint nodePosition, camera, model, modelView, light;
+};
+
+void DrawNode(const SceneNode& node, const Camera& camera, const Locations& at)
+{
+  glUniform3fv(at.nodePosition, 1, glm::value_ptr(glm::vec3(node.position)));
+  glUniform3f(at.camera, (float)camera.position.x, (float)camera.position.y, (float)camera.position.z);
+  glUniformMatrix4fv(at.model, 1, GL_FALSE, glm::value_ptr(glm::mat4(node.modelMatrix)));
+  // Right: the model-view product is computed in double, where the two translations cancel.
+  glUniformMatrix4fv(at.modelView, 1, GL_FALSE, glm::value_ptr(glm::mat4(camera.view * node.modelMatrix)));
+  // Right: relative to the eye, in double.
+  glUniform3fv(at.nodePosition, 1, glm::value_ptr(glm::vec3(node.position - camera.position)));
+  // A direction is not a position.
+  glUniform3fv(at.light, 1, glm::value_ptr(glm::vec3(node.lightDirection)));
+}
+
+void FillUniforms(SceneUniforms& uniforms, const Camera& camera, float time)
+{
+  uniforms.cameraPosition = glm::vec3(camera.position);
+  uniforms.time = time;
+  uniforms.viewProjection = glm::mat4(camera.projection * camera.view);
+}

@@ -1,0 +1,45 @@
+// Shader parameters filled on the render thread, UE 5 style: world positions and matrices are
+// double (FVector, FMatrix) and the GPU takes float (FVector3f, FMatrix44f).
+#include "ue_mini.h"
+
+void SetActorParameters(FParameters& Parameters, const AActor* Actor, const FViewInfo& View)
+{
+	Parameters.ActorPosition = FVector3f(Actor->GetActorLocation());
+	const FVector Center = Actor->GetRootComponent()->GetComponentLocation();
+	Parameters.BoundsOrigin = FVector3f(Center);
+}
+
+void SetPrimitiveParameters(FParameters* Parameters, const FPrimitiveSceneProxy& Proxy, const FSceneView* View)
+{
+	Parameters->LocalToWorld = FMatrix44f(Proxy.GetLocalToWorld());
+	Parameters->WorldToClip = FMatrix44f(View->ViewMatrices.GetViewProjectionMatrix());
+	Parameters->LightPositionAndRadius = FVector4f(Proxy.GetBounds().Origin, 50.0f);
+	Parameters->Height = Proxy.GetBounds().Origin.Z;
+}
+
+// No view here: the finding stands, without a rewrite.
+void SetWithoutView(FParameters& Parameters, const USceneComponent& Component)
+{
+	FVector3f Position(Component.GetComponentTransform().GetTranslation());
+	Parameters.ActorPosition = Position;
+}
+
+// Already right: camera-relative in double, then narrowed.
+void SetTranslated(FParameters& Parameters, const AActor* Actor, const FViewInfo& View)
+{
+	const FVector Location = Actor->GetActorLocation();
+	Parameters.ActorPosition = FVector3f(Location + View.ViewMatrices.GetPreViewTranslation());
+	Parameters.BoundsOrigin = FVector3f(Location - View.ViewMatrices.GetViewOrigin());
+	Parameters.WorldToClip = FMatrix44f(View.ViewMatrices.GetTranslatedViewProjectionMatrix());
+	Parameters.LocalToWorld = FMatrix44f(FMatrix().ConcatTranslation(View.ViewMatrices.GetPreViewTranslation()));
+}
+
+// Not world space: a direction, a local value, and a float that stays on the CPU.
+void SetOthers(FParameters& Parameters, const FVector& WindDirection, const AActor* Actor)
+{
+	Parameters.WindDirection = FVector3f(WindDirection);
+	const FVector LocalOffset(0, 0, 100);
+	Parameters.BoundsOrigin = FVector3f(LocalOffset);
+	FVector3f ForTheLog(Actor->GetActorLocation());
+	(void)ForTheLog;
+}

@@ -1,0 +1,218 @@
+#include "host/checks/narrowing.h"
+
+#include <clang/AST/ExprCXX.h>
+#include <clang/ASTMatchers/ASTMatchers.h>
+#include <clang/Lex/Lexer.h>
+
+namespace lwc::host {
+
+using namespace clang;
+using namespace clang::ast_matchers;
+
+void register_narrowings(MatchFinder& finder, MatchFinder::MatchCallback* callback) {
+  auto project = unless(isExpansionInSystemHeader());
+  // A construction inside a cast is the cast's match.
+  finder.addMatcher(cxxConstructExpr(project, unless(hasParent(explicitCastExpr()))).bind("narrowing"), callback);
+  finder.addMatcher(explicitCastExpr(project).bind("narrowing"), callback);
+  finder.addMatcher(implicitCastExpr(project, hasCastKind(CK_FloatingCast)).bind("narrowing"), callback);
+}
+
+namespace {
+
+// The conversion inside `(float)X` or `static_cast<float>(X)` is the cast's match.
+bool inside_explicit_cast(const Expr* e) {
+  auto* implicit = dyn_cast<ImplicitCastExpr>(e);
+  return implicit && implicit->isPartOfExplicitCast();
+}
+
+const Stmt* parent_of(ASTContext& context, const DynTypedNode& node, const Decl** decl = nullptr) {
+  auto parents = context.getParents(node);
+  if (parents.empty()) return nullptr;
+  if (decl) *decl = parents[0].get<Decl>();
+  return parents[0].get<Stmt>();
+}
+
+// A member declared through one of the shader-parameter macros, or of a struct named like a GPU block.
+bool gpu_field(const FieldDecl* field, ASTContext& context, const Tables& tables) {
+  const SourceManager& sm = context.getSourceManager();
+  for (SourceLocation at = field->getLocation(); at.isMacroID(); at = sm.getImmediateMacroCallerLoc(at))
+    if (tables.gpu_macros.match(Lexer::getImmediateMacroName(at, sm, context.getLangOpts()).str())) return true;
+  const RecordDecl* record = field->getParent();
+  return record && record->getIdentifier() && tables.gpu_structs.match(record->getName().str());
+}
+
+std::string where(const FieldDecl* field) {
+  const RecordDecl* record = field->getParent();
+  std::string of = record && record->getIdentifier() ? " of `" + record->getNameAsString() + "`" : "";
+  return "`" + field->getNameAsString() + "`" + of;
+}
+
+struct Sink {
+  std::string what, field;
+};
+
+// The GPU member an assignment's left side names.
+std::optional<Sink> assigned_to(const Expr* lhs, ASTContext& context, const Tables& tables) {
+  lhs = lhs->IgnoreParenImpCasts();
+  if (auto* sub = dyn_cast<ArraySubscriptExpr>(lhs)) lhs = sub->getBase()->IgnoreParenImpCasts();
+  if (auto* op = dyn_cast<CXXOperatorCallExpr>(lhs); op && op->getOperator() == OO_Subscript) lhs = op->getArg(0)->IgnoreParenImpCasts();
+  auto* member = dyn_cast<MemberExpr>(lhs);
+  if (!member) return std::nullopt;
+  // `Params.Position.X = ...`: the component of a GPU member.
+  if (auto* inner = dyn_cast<MemberExpr>(member->getBase()->IgnoreParenImpCasts()))
+    if (auto* outer = dyn_cast<FieldDecl>(inner->getMemberDecl()); outer && gpu_field(outer, context, tables))
+      return Sink{"shader parameter " + where(outer), outer->getNameAsString()};
+  auto* field = dyn_cast<FieldDecl>(member->getMemberDecl());
+  if (!field || !gpu_field(field, context, tables)) return std::nullopt;
+  return Sink{"shader parameter " + where(field), field->getNameAsString()};
+}
+
+std::optional<Sink> sink_of(const Expr* e, ASTContext& context, const Tables& tables, int hops);
+
+// Where a local's value goes: the first use of it that reaches a sink.
+std::optional<Sink> through_local(const VarDecl* var, const Expr* from, ASTContext& context, const Tables& tables, int hops) {
+  if (hops > 0 || !var->isLocalVarDecl()) return std::nullopt;
+  const Stmt* body = nullptr;
+  for (DynTypedNode node = DynTypedNode::create(*from);;) {
+    auto parents = context.getParents(node);
+    if (parents.empty()) return std::nullopt;
+    node = parents[0];
+    if (auto* f = node.get<FunctionDecl>()) {
+      body = f->getBody();
+      break;
+    }
+    if (auto* l = node.get<LambdaExpr>()) {
+      body = l->getBody();
+      break;
+    }
+  }
+  if (!body) return std::nullopt;
+  for (const BoundNodes& use : match(findAll(declRefExpr(to(varDecl(equalsNode(var)))).bind("use")), *body, context))
+    if (auto sink = sink_of(use.getNodeAs<Expr>("use"), context, tables, hops + 1)) {
+      sink->what += " through `" + var->getNameAsString() + "`";
+      return sink;
+    }
+  return std::nullopt;
+}
+
+std::optional<Sink> sink_of(const Expr* e, ASTContext& context, const Tables& tables, int hops) {
+  const Stmt* current = e;
+  for (int step = 0; step < 16; ++step) {
+    const Decl* decl = nullptr;
+    const Stmt* parent = parent_of(context, DynTypedNode::create(*current), &decl);
+    if (!parent) {
+      if (auto* var = dyn_cast_or_null<VarDecl>(decl)) return through_local(var, e, context, tables, hops);
+      return std::nullopt;
+    }
+    if (isa<ParenExpr, ImplicitCastExpr, MaterializeTemporaryExpr, CXXBindTemporaryExpr, ExprWithCleanups, CXXFunctionalCastExpr,
+            CXXConstructExpr, ExplicitCastExpr>(parent)) {
+      current = parent;
+      continue;
+    }
+    if (auto* unary = dyn_cast<UnaryOperator>(parent); unary && (unary->getOpcode() == UO_AddrOf || unary->getOpcode() == UO_Minus)) {
+      current = parent;
+      continue;
+    }
+    if (auto* bin = dyn_cast<BinaryOperator>(parent)) {
+      if (bin->isAssignmentOp()) return bin->getRHS() == current ? assigned_to(bin->getLHS(), context, tables) : std::nullopt;
+      if (bin->isMultiplicativeOp() || bin->isAdditiveOp()) {
+        current = parent;
+        continue;
+      }
+      return std::nullopt;
+    }
+    if (auto* op = dyn_cast<CXXOperatorCallExpr>(parent)) {
+      if (op->isAssignmentOp()) return op->getNumArgs() == 2 && op->getArg(1) == current ? assigned_to(op->getArg(0), context, tables) : std::nullopt;
+      OverloadedOperatorKind o = op->getOperator();
+      if (o == OO_Plus || o == OO_Minus || o == OO_Star || o == OO_Slash) {
+        current = parent;
+        continue;
+      }
+      return std::nullopt;
+    }
+    if (auto* call = dyn_cast<CallExpr>(parent)) {
+      const FunctionDecl* callee = call->getDirectCallee();
+      std::string name = callee && callee->getIdentifier() ? callee->getName().str() : "";
+      if (name.empty()) return std::nullopt;
+      if (tables.upload_calls.match(name)) return Sink{"the upload call `" + name + "`", ""};
+      if (tables.address_calls.match(name)) {
+        current = parent;
+        continue;
+      }
+      return std::nullopt;
+    }
+    if (auto* list = dyn_cast<InitListExpr>(parent)) {
+      const RecordDecl* record = list->getType()->getAsRecordDecl();
+      if (!record) return std::nullopt;
+      unsigned index = 0;
+      for (; index < list->getNumInits() && list->getInit(index) != current; ++index) {
+      }
+      unsigned at = 0;
+      for (const FieldDecl* field : record->fields())
+        if (at++ == index) return gpu_field(field, context, tables) ? std::optional<Sink>(Sink{"shader parameter " + where(field), field->getNameAsString()}) : std::nullopt;
+      return std::nullopt;
+    }
+    return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<Upload> find_upload(const MatchFinder::MatchResult& match, const Tables& tables, Kind kind) {
+  const Expr* narrowing = match.Nodes.getNodeAs<Expr>("narrowing");
+  if (!narrowing || inside_explicit_cast(narrowing)) return std::nullopt;
+  ASTContext& context = *match.Context;
+  World world(tables, context);
+  if (world.scalar(narrowing->getType()) != 'f') return std::nullopt;
+  // `FVector3f(V)`, `static_cast<float>(X)`, `(float)X`, an implicit conversion; a cast to a
+  // class type holds the construction that converts.
+  const Expr* converted = narrowing;
+  if (auto* cast = dyn_cast<CastExpr>(narrowing)) converted = cast->getSubExpr()->IgnoreImplicit();
+  const Expr* value = converted;
+  if (auto* construct = dyn_cast<CXXConstructExpr>(converted)) {
+    if (construct->getNumArgs() == 0 || construct->getConstructor()->isCopyOrMoveConstructor()) return std::nullopt;
+    value = construct->getArg(0);
+  } else if (converted == narrowing) {
+    return std::nullopt;
+  }
+  if (!value || world.scalar(value->IgnoreParenImpCasts()->getType()) != 'd') return std::nullopt;
+  // A vector built from a matrix, or the reverse, is neither rule's.
+  if ((kind == Kind::matrix) != world.is_matrix_type(narrowing->getType())) return std::nullopt;
+  Value what = world.classify(value);
+  if (what.kind != kind) return std::nullopt;
+  std::optional<Sink> sink = sink_of(narrowing, context, tables, 0);
+  if (!sink) return std::nullopt;
+  return Upload{narrowing, value, what, World::type_name(narrowing->getType()), sink->what, sink->field};
+}
+
+std::string preview_translation(const Expr* e, ASTContext& context, const Tables& tables) {
+  const FunctionDecl* function = nullptr;
+  for (DynTypedNode node = DynTypedNode::create(*e); !function;) {
+    auto parents = context.getParents(node);
+    if (parents.empty()) return "";
+    node = parents[0];
+    function = node.get<FunctionDecl>();
+  }
+  std::vector<const VarDecl*> candidates(function->param_begin(), function->param_end());
+  if (function->getBody())
+    for (const BoundNodes& b : match(findAll(varDecl().bind("v")), *function->getBody(), context)) {
+      const VarDecl* v = b.getNodeAs<VarDecl>("v");
+      if (context.getSourceManager().isBeforeInTranslationUnit(v->getLocation(), e->getBeginLoc())) candidates.push_back(v);
+    }
+  for (const VarDecl* v : candidates) {
+    if (!v->getIdentifier()) continue;
+    std::string type = World::type_name(v->getType());
+    for (const auto& [types, pattern] : tables.views) {
+      if (!types.match(type)) continue;
+      bool pointer = v->getType().getNonReferenceType()->isPointerType();
+      std::string out = pattern;
+      std::string name = v->getNameAsString() + (pointer ? "->" : ".");
+      if (size_t at = out.find("{view}."); at != std::string::npos) out.replace(at, 7, name);
+      return out;
+    }
+  }
+  return "";
+}
+
+}  // namespace lwc::host

@@ -1,0 +1,33 @@
+#pragma once
+#include <optional>
+#include <string>
+
+#include <clang/ASTMatchers/ASTMatchFinder.h>
+
+#include "host/world.h"
+
+namespace lwc::host {
+
+// A double world value narrowed to float on its way to the GPU: what lwc-host-narrowed-world-upload
+// (positions) and lwc-host-narrowed-world-matrix (matrices) report.
+struct Upload {
+  const clang::Expr* narrowing = nullptr;  // the float value: the cast or the construction
+  const clang::Expr* value_expr = nullptr;  // the double value it narrows
+  Value value;
+  std::string narrowing_type;  // `FVector3f`, `float`, `vec`
+  std::string sink;            // where it goes, e.g. "shader parameter `ActorPosition` of `FParameters`"
+  std::string field;           // the GPU member it is stored in ("" for an upload call)
+};
+
+// The matchers of every narrowing: conversions to a float vector or matrix type, casts to float,
+// implicit double-to-float conversions. Each match is bound to "narrowing".
+void register_narrowings(clang::ast_matchers::MatchFinder& finder, clang::ast_matchers::MatchFinder::MatchCallback* callback);
+
+// The upload a match is, when its value is a world value of `kind` and it reaches a GPU sink.
+std::optional<Upload> find_upload(const clang::ast_matchers::MatchFinder::MatchResult& match, const Tables& tables, Kind kind);
+
+// How the function holding `e` reaches the view's PreViewTranslation (a parameter or local of a
+// view type), e.g. `View.ViewMatrices.GetPreViewTranslation()`; "" when no view is in scope.
+std::string preview_translation(const clang::Expr* e, clang::ASTContext& context, const Tables& tables);
+
+}  // namespace lwc::host

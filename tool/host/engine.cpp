@@ -1,0 +1,290 @@
+// Drives Clang over the translation units: compile commands, one parse per unit on a pool of
+// threads, the checks' matchers, and the findings gathered per file.
+#include <clang/Basic/Diagnostic.h>
+#include <clang/Frontend/CompilerInstance.h>
+#include <clang/Frontend/FrontendAction.h>
+#include <clang/Lex/Lexer.h>
+#include <clang/Lex/Preprocessor.h>
+#include <clang/Tooling/ArgumentsAdjusters.h>
+#include <clang/Tooling/CompilationDatabase.h>
+#include <clang/Tooling/Tooling.h>
+#include <fmt/format.h>
+
+#include <atomic>
+#include <filesystem>
+#include <mutex>
+#include <thread>
+
+#include "host/check.h"
+#include "host/host.h"
+#include "project/files.h"
+#include "rules/analyze.h"
+
+namespace lwc {
+
+namespace fs = std::filesystem;
+using namespace clang;
+
+bool HostOptions::enabled(const std::string& rule) const {
+  return (select.empty() || select.count(rule)) && !ignore.count(rule);
+}
+
+namespace host {
+
+Finding* Reporter::report(const RuleInfo& rule, const SourceManager& sm, const LangOptions& lang, SourceRange range, const Vars& vars) {
+  auto at = place(sm, lang, CharSourceRange::getTokenRange(range));
+  if (!at) return nullptr;
+  File& file = files_[at->first];
+  file.findings.push_back(make_finding(rule, at->second, vars));
+  return &file.findings.back();
+}
+
+Fix* Reporter::fix(Finding& finding, const RuleInfo& rule, std::string_view kind, const Vars& vars, const std::vector<Change>& changes,
+                   const SourceManager& sm, const LangOptions& lang) {
+  std::vector<Edit> edits;
+  std::string path;
+  for (const Change& c : changes) {
+    auto at = place(sm, lang, c.range);
+    if (!at || (!path.empty() && at->first != path)) return nullptr;  // a rewrite stays in one file
+    path = at->first;
+    edits.push_back({at->second, c.text});
+  }
+  std::sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) { return a.span.begin < b.span.begin; });
+  finding.fixes.push_back(make_fix(rule, kind, vars, std::move(edits)));
+  return &finding.fixes.back();
+}
+
+void Reporter::comment(const SourceManager& sm, SourceRange range) {
+  FileID id = sm.getFileID(range.getBegin());
+  if (!range.getBegin().isFileID() || !file_of(sm, id)) return;
+  files_[paths_[id.getHashValue()]].comments.push_back(
+      {sm.getFileOffset(range.getBegin()), sm.getFileOffset(range.getEnd())});
+}
+
+Reporter::File* Reporter::file_of(const SourceManager& sm, FileID id) {
+  auto [it, fresh] = paths_.emplace(id.getHashValue(), "");
+  if (fresh) {
+    OptionalFileEntryRef entry = sm.getFileEntryRefForID(id);
+    if (entry && !sm.isInSystemHeader(sm.getLocForStartOfFile(id))) {
+      std::error_code ec;
+      fs::path path = fs::weakly_canonical(fs::absolute(entry->getName().str()), ec);
+      if (!ec && reported_(path.string())) {
+        it->second = path.string();
+        File& file = files_[it->second];
+        if (file.text.empty()) file.text = sm.getBufferData(id).str();
+      }
+    }
+  }
+  return it->second.empty() ? nullptr : &files_[it->second];
+}
+
+std::optional<std::pair<std::string, Span>> Reporter::place(const SourceManager& sm, const LangOptions& lang, CharSourceRange range) {
+  // Code a macro wrote is reported where the macro is used.
+  if (range.getBegin().isMacroID() || range.getEnd().isMacroID()) {
+    CharSourceRange file_range = Lexer::makeFileCharRange(range, sm, lang);
+    if (file_range.isInvalid()) {
+      SourceLocation at = sm.getExpansionLoc(range.getBegin());
+      file_range = CharSourceRange::getCharRange(at, Lexer::getLocForEndOfToken(at, 0, sm, lang));
+    }
+    range = file_range;
+  } else if (range.isTokenRange()) {
+    range = CharSourceRange::getCharRange(range.getBegin(), Lexer::getLocForEndOfToken(range.getEnd(), 0, sm, lang));
+  }
+  if (range.isInvalid()) return std::nullopt;
+  FileID id = sm.getFileID(range.getBegin());
+  if (id != sm.getFileID(range.getEnd()) || !file_of(sm, id)) return std::nullopt;
+  unsigned begin = sm.getFileOffset(range.getBegin()), end = sm.getFileOffset(range.getEnd());
+  if (end < begin) return std::nullopt;
+  return std::make_pair(paths_[id.getHashValue()], Span{begin, end});
+}
+
+namespace {
+
+// Keeps Clang's diagnostics: the first error of a unit becomes that file's input finding.
+class Diagnostics : public DiagnosticConsumer {
+ public:
+  void HandleDiagnostic(DiagnosticsEngine::Level level, const Diagnostic& info) override {
+    DiagnosticConsumer::HandleDiagnostic(level, info);
+    if (level < DiagnosticsEngine::Error || !first.empty()) return;
+    llvm::SmallString<200> message;
+    info.FormatDiagnostic(message);
+    first = message.str().str();
+    if (info.hasSourceManager() && info.getLocation().isValid()) {
+      PresumedLoc at = info.getSourceManager().getPresumedLoc(info.getLocation());
+      if (at.isValid()) first = fmt::format("{}:{}:{}: {}", at.getFilename(), at.getLine(), at.getColumn(), first);
+    }
+  }
+  std::string first;
+};
+
+class CommentCollector : public CommentHandler {
+ public:
+  explicit CommentCollector(Reporter& out) : out_(out) {}
+  bool HandleComment(Preprocessor& pp, SourceRange range) override {
+    out_.comment(pp.getSourceManager(), range);
+    return false;
+  }
+
+ private:
+  Reporter& out_;
+};
+
+class Action : public ASTFrontendAction {
+ public:
+  Action(ast_matchers::MatchFinder& finder, Reporter& out) : finder_(finder), comments_(out) {}
+  std::unique_ptr<ASTConsumer> CreateASTConsumer(CompilerInstance& ci, StringRef) override {
+    ci.getPreprocessor().addCommentHandler(&comments_);
+    return finder_.newASTConsumer();
+  }
+
+ private:
+  ast_matchers::MatchFinder& finder_;
+  CommentCollector comments_;
+};
+
+class ActionFactory : public tooling::FrontendActionFactory {
+ public:
+  ActionFactory(ast_matchers::MatchFinder& finder, Reporter& out) : finder_(finder), out_(out) {}
+  std::unique_ptr<FrontendAction> create() override { return std::make_unique<Action>(finder_, out_); }
+
+ private:
+  ast_matchers::MatchFinder& finder_;
+  Reporter& out_;
+};
+
+bool is_source(const fs::path& p) {
+  static const std::set<std::string> kSources = {".cpp", ".cc", ".cxx", ".c++", ".C", ".mm"};
+  return kSources.count(p.extension().string()) > 0;
+}
+
+bool under(const std::string& path, const std::string& folder) {
+  return path.size() > folder.size() && path.compare(0, folder.size(), folder) == 0 && (folder.back() == '/' || path[folder.size()] == '/');
+}
+
+std::string shown(const std::string& absolute, const fs::path& cwd) {
+  if (under(absolute, cwd.string())) return fs::path(absolute).lexically_relative(cwd).string();
+  return absolute;
+}
+
+}  // namespace
+}  // namespace host
+
+HostResult analyze_host(const HostOptions& options) {
+  HostResult result;
+  std::error_code ec;
+  fs::path cwd = fs::current_path(ec);
+  std::string error;
+  std::unique_ptr<tooling::CompilationDatabase> db;
+  if (!options.build_dir.empty()) {
+    db = tooling::CompilationDatabase::loadFromDirectory(options.build_dir, error);
+    if (!db) {
+      result.errors.push_back(fmt::format("{}: no compile_commands.json here ({})", options.build_dir, error));
+      return result;
+    }
+  } else if (!options.clang_args.empty()) {
+    db = std::make_unique<tooling::FixedCompilationDatabase>(".", options.clang_args);
+  } else {
+    for (const std::string& p : options.paths.empty() ? std::vector<std::string>{"."} : options.paths)
+      if ((db = tooling::CompilationDatabase::autoDetectFromDirectory(fs::is_directory(p) ? p : fs::path(p).parent_path().string(), error)))
+        break;
+    if (!db) db = std::make_unique<tooling::FixedCompilationDatabase>(".", std::vector<std::string>{"-std=c++20"});
+  }
+  // A header or a file the database does not list gets the command of its nearest neighbour.
+  db = tooling::inferMissingCompileCommands(std::move(db));
+
+  // The sources: files as named; folders give the database's files under them, else their C++ sources.
+  std::vector<std::string> sources;
+  std::vector<std::string> roots;  // folders whose headers are reported
+  std::set<std::string> seen;
+  auto add = [&](const fs::path& p) {
+    std::string abs = fs::weakly_canonical(fs::absolute(p), ec).string();
+    if (seen.insert(abs).second) sources.push_back(abs);
+  };
+  std::vector<std::string> listed = db->getAllFiles();
+  for (const std::string& p : options.paths.empty() ? std::vector<std::string>{"."} : options.paths) {
+    if (!fs::exists(p, ec)) {
+      result.errors.push_back(fmt::format("{}: no such file or folder", p));
+      continue;
+    }
+    if (!fs::is_directory(p, ec)) {
+      add(p);
+      continue;
+    }
+    std::string folder = fs::weakly_canonical(fs::absolute(p), ec).string();
+    roots.push_back(folder);
+    size_t before = sources.size();
+    for (const std::string& f : listed)
+      if (host::under(fs::weakly_canonical(f, ec).string(), folder)) add(f);
+    if (sources.size() == before)
+      for (auto it = fs::recursive_directory_iterator(p, fs::directory_options::skip_permission_denied, ec); !ec && it != fs::recursive_directory_iterator();
+           it.increment(ec))
+        if (it->is_regular_file(ec) && host::is_source(it->path())) add(it->path());
+  }
+  std::sort(sources.begin(), sources.end());
+  if (!cwd.empty()) roots.push_back(cwd.string());
+  auto reported = [&, sources_set = std::set<std::string>(sources.begin(), sources.end())](const std::string& path) {
+    if (sources_set.count(path)) return true;
+    return std::any_of(roots.begin(), roots.end(), [&](const std::string& r) { return host::under(path, r); });
+  };
+
+  host::Tables tables = host::Tables::load(options.tables);
+  std::mutex merge;
+  std::map<std::string, HostFile> files;
+  std::atomic<size_t> next = 0;
+  auto work = [&] {
+    for (size_t i; (i = next++) < sources.size();) {
+      host::Reporter out(reported);
+      std::vector<std::unique_ptr<host::Check>> checks;
+      ast_matchers::MatchFinder finder;
+      for (const RuleInfo& rule : all_rules()) {
+        auto factory = host::check_factories().find(rule.id);
+        if (!rule.host || !options.enabled(rule.id) || factory == host::check_factories().end()) continue;
+        checks.push_back(factory->second(rule, tables, out));
+        checks.back()->register_matchers(finder);
+      }
+      tooling::ClangTool tool(*db, {sources[i]});
+      tool.appendArgumentsAdjuster(tooling::getInsertArgumentAdjuster("-resource-dir=" LWCPORT_CLANG_RESOURCE_DIR,
+                                                                      tooling::ArgumentInsertPosition::END));
+      host::Diagnostics diagnostics;
+      tool.setDiagnosticConsumer(&diagnostics);
+      host::ActionFactory factory(finder, out);
+      int status = tool.run(&factory);
+      std::lock_guard lock(merge);
+      ++result.units;
+      if (status != 0 || !diagnostics.first.empty()) {
+        HostFile& main = files[sources[i]];
+        if (main.text.empty()) main.text = read_file(sources[i], SIZE_MAX).text;
+        main.findings.push_back(input_finding(Severity::error, 0,
+                                              "Clang could not compile this translation unit: " +
+                                                  (diagnostics.first.empty() ? std::string("no compile command") : diagnostics.first),
+                                              "give its compile flags: -p BUILD_DIR (compile_commands.json) or after `--`; "
+                                              "findings in the code Clang could read are still reported"));
+      }
+      for (auto& [path, f] : out.files()) {
+        HostFile& into = files[path];
+        if (into.text.empty()) into.text = f.text;
+        // A header included by several units: each finding once.
+        for (Finding& finding : f.findings) {
+          bool known = std::any_of(into.findings.begin(), into.findings.end(), [&](const Finding& g) {
+            return g.rule == finding.rule && g.span == finding.span && g.message == finding.message;
+          });
+          if (!known) into.findings.push_back(std::move(finding));
+        }
+        if (into.comments.empty()) into.comments = std::move(f.comments);
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < std::max(1u, options.jobs); ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
+  if (sources.empty() && result.errors.empty()) result.errors.push_back("no C++ sources to analyse");
+  for (auto& [path, f] : files) {
+    f.path = host::shown(path, cwd);
+    sort_findings(f.findings);
+    result.files.push_back(std::move(f));
+  }
+  return result;
+}
+
+}  // namespace lwc

@@ -1,0 +1,272 @@
+#include "host/world.h"
+
+#include <clang/AST/DeclCXX.h>
+#include <clang/AST/DeclTemplate.h>
+#include <clang/AST/ExprCXX.h>
+#include <clang/Lex/Lexer.h>
+
+#include <algorithm>
+
+#include "rules/rule.h"
+#include "world/pattern.h"
+
+namespace lwc::host {
+
+using namespace clang;
+
+bool Names::match(std::string_view name) const {
+  return std::any_of(globs.begin(), globs.end(), [&](const std::string& g) { return glob_match(g, name); });
+}
+
+namespace {
+
+// A list at `path` (keys separated by '/') of the built-in tables, and the same list of the additions.
+Names names_at(const nlohmann::json& builtin, const nlohmann::json& additions, const std::string& path) {
+  Names out;
+  auto add = [&](const nlohmann::json& root) {
+    const nlohmann::json* at = &root;
+    for (size_t from = 0; from <= path.size();) {
+      size_t slash = std::min(path.find('/', from), path.size());
+      std::string key = path.substr(from, slash - from);
+      if (!at->is_object() || !at->contains(key)) return;
+      at = &at->at(key);
+      from = slash + 1;
+    }
+    if (!at->is_array()) throw std::runtime_error("host." + path + " must be a list of names");
+    for (const auto& g : *at) out.globs.push_back(g.get<std::string>());
+  };
+  add(builtin);
+  add(additions);
+  return out;
+}
+
+Names alternatives(const std::string& globs) {
+  Names out;
+  for (size_t from = 0; from <= globs.size();) {
+    size_t bar = std::min(globs.find('|', from), globs.size());
+    out.globs.push_back(globs.substr(from, bar - from));
+    from = bar + 1;
+  }
+  return out;
+}
+
+}  // namespace
+
+Tables Tables::load(const nlohmann::json& additions) {
+  const nlohmann::json& b = host_world_data();
+  Tables t;
+  auto n = [&](const char* path) { return names_at(b, additions, path); };
+  t.position_calls = n("world-positions/calls");
+  t.position_names = n("world-positions/names");
+  t.position_not = n("world-positions/not-names");
+  t.position_from_matrix = n("world-positions/from-matrix-calls");
+  t.matrix_calls = n("world-matrices/calls");
+  t.matrix_names = n("world-matrices/names");
+  t.matrix_not = n("world-matrices/not-names");
+  t.matrix_keep = n("world-matrices/keep-calls");
+  t.matrix_inverse = n("world-matrices/inverse-calls");
+  t.from_world_calls = n("world-matrices/from-world-calls");
+  t.from_world_names = n("world-matrices/from-world-names");
+  t.offset_calls = n("camera-offsets/calls");
+  t.offset_names = n("camera-offsets/names");
+  t.double_scalars = n("double-scalars");
+  t.float_scalars = n("float-scalars");
+  t.matrix_types = n("matrix-types");
+  t.gpu_macros = n("gpu-struct-macros");
+  t.gpu_structs = n("gpu-struct-names");
+  t.upload_calls = n("upload-calls");
+  t.address_calls = n("address-calls");
+  for (const nlohmann::json* root : {&b, &additions}) {
+    if (root->contains("world-positions") && root->at("world-positions").contains("members-of"))
+      for (const auto& m : root->at("world-positions").at("members-of"))
+        t.position_members.emplace_back(m.at("member").get<std::string>(), alternatives(m.at("type").get<std::string>()));
+    if (root->contains("views"))
+      for (const auto& v : root->at("views"))
+        t.views.emplace_back(alternatives(v.at("type").get<std::string>()), v.at("preview-translation").get<std::string>());
+  }
+  return t;
+}
+
+const Expr* strip(const Expr* e) {
+  while (e) {
+    const Expr* next = e->IgnoreParenImpCasts();
+    if (auto* c = dyn_cast<ExprWithCleanups>(next)) next = c->getSubExpr();
+    else if (auto* m = dyn_cast<MaterializeTemporaryExpr>(next)) next = m->getSubExpr();
+    else if (auto* b = dyn_cast<CXXBindTemporaryExpr>(next)) next = b->getSubExpr();
+    else if (auto* k = dyn_cast<CXXConstructExpr>(next); k && k->getNumArgs() == 1 && k->getConstructor()->isCopyOrMoveConstructor())
+      next = k->getArg(0);
+    if (next == e) return e;
+    e = next;
+  }
+  return e;
+}
+
+std::string World::type_name(QualType type) {
+  type = type.getNonReferenceType();
+  if (type->isPointerType()) type = type->getPointeeType();
+  type = type.getCanonicalType().getUnqualifiedType();
+  if (auto* record = type->getAsCXXRecordDecl()) return record->getNameAsString();
+  if (auto* builtin = type->getAs<BuiltinType>()) return builtin->getName(PrintingPolicy(LangOptions())).str();
+  return type.getAsString();
+}
+
+char World::scalar(QualType type) const {
+  for (int depth = 0; depth < 6; ++depth) {
+    type = type.getNonReferenceType().getCanonicalType();
+    if (auto* array = dyn_cast<ConstantArrayType>(type.getTypePtr())) {
+      type = array->getElementType();
+      continue;
+    }
+    if (auto* builtin = type->getAs<BuiltinType>()) {
+      if (builtin->getKind() == BuiltinType::Double || builtin->getKind() == BuiltinType::LongDouble) return 'd';
+      if (builtin->getKind() == BuiltinType::Float || builtin->getKind() == BuiltinType::Half || builtin->getKind() == BuiltinType::Float16)
+        return 'f';
+      return 0;
+    }
+    const CXXRecordDecl* record = type->getAsCXXRecordDecl();
+    if (!record || !record->hasDefinition()) {
+      std::string name = type_name(type);
+      return tables_.double_scalars.match(name) ? 'd' : tables_.float_scalars.match(name) ? 'f' : 0;
+    }
+    std::string name = record->getNameAsString();
+    if (tables_.double_scalars.match(name)) return 'd';
+    if (tables_.float_scalars.match(name)) return 'f';
+    // A template over its scalar (UE's TVector<double>, glm's vec<3, double>, Eigen's Matrix<double, 3, 1>).
+    if (auto* spec = dyn_cast<ClassTemplateSpecializationDecl>(record)) {
+      bool found = false;
+      for (const TemplateArgument& arg : spec->getTemplateArgs().asArray())
+        if (arg.getKind() == TemplateArgument::Type) {
+          type = arg.getAsType();
+          found = true;
+          break;
+        }
+      if (found) continue;
+    }
+    // Else its first data member (a struct of doubles, a matrix of double rows).
+    auto field = record->getDefinition()->field_begin();
+    if (field == record->getDefinition()->field_end()) return 0;
+    type = field->getType();
+  }
+  return 0;
+}
+
+bool World::is_matrix_type(QualType type) const { return tables_.matrix_types.match(type_name(type)); }
+
+std::string World::text(SourceRange range) const {
+  const SourceManager& sm = context_.getSourceManager();
+  CharSourceRange chars = Lexer::makeFileCharRange(CharSourceRange::getTokenRange(range), sm, context_.getLangOpts());
+  if (chars.isInvalid()) return "";
+  return Lexer::getSourceText(chars, sm, context_.getLangOpts()).str();
+}
+
+Value World::by_name(const NamedDecl* decl, QualType type, const Expr* e) const {
+  if (!decl || !decl->getIdentifier()) return {};
+  std::string name = decl->getName().str();
+  std::string source = text(e->getSourceRange());
+  if (tables_.offset_names.match(name)) return {Kind::camera_offset, source};
+  if (is_matrix_type(type)) {
+    if (tables_.matrix_not.match(name)) return {};
+    if (tables_.matrix_names.match(name)) return {Kind::matrix, source};
+    if (tables_.from_world_names.match(name)) return {Kind::matrix, source, true};
+    return {};
+  }
+  if (tables_.position_names.match(name) && !tables_.position_not.match(name)) return {Kind::position, source};
+  return {};
+}
+
+Value World::classify(const Expr* e, int depth) const {
+  e = strip(e);
+  if (!e || depth > 6) return {};
+  std::string source = text(e->getSourceRange());
+  // A conversion to another vector or matrix type keeps what the value is (FVector(FVector3f), glm::dvec3(v)).
+  if (auto* cast = dyn_cast<CXXFunctionalCastExpr>(e)) return classify(cast->getSubExpr(), depth + 1);
+  if (auto* construct = dyn_cast<CXXConstructExpr>(e); construct && construct->getNumArgs() >= 1 && !isa<CXXTemporaryObjectExpr>(e))
+    return construct->getNumArgs() == 1 ? classify(construct->getArg(0), depth + 1) : Value{};
+  if (auto* op = dyn_cast<CXXOperatorCallExpr>(e)) {
+    OverloadedOperatorKind o = op->getOperator();
+    if ((o == OO_Plus || o == OO_Minus || o == OO_Star) && op->getNumArgs() == 2) {
+      Value a = classify(op->getArg(0), depth + 1), b = classify(op->getArg(1), depth + 1);
+      // A product keeps the world translation of its world matrix (model * view is camera-relative:
+      // the translations cancel in double).
+      if (o == OO_Star) {
+        if (a.kind == Kind::matrix && b.kind == Kind::matrix && a.from_world != b.from_world) return {};
+        Value product = a.kind == Kind::matrix ? a : b.kind == Kind::matrix ? b : Value{};
+        if (product.kind != Kind::none) product.source = source;
+        return product;
+      }
+      if (a.kind == Kind::position && b.kind == Kind::position && o == OO_Minus) return {Kind::relative, source};
+      if ((a.kind == Kind::position && b.kind == Kind::camera_offset) || (a.kind == Kind::camera_offset && b.kind == Kind::position))
+        return {Kind::relative, source};
+      if (a.kind == Kind::position) return {Kind::position, source};
+      if (b.kind == Kind::position && o == OO_Plus) return {Kind::position, source};
+      return {};
+    }
+    if (o == OO_Subscript && op->getNumArgs() == 2) {
+      Value base = classify(op->getArg(0), depth + 1);
+      return base.kind == Kind::position ? Value{Kind::position, source} : Value{};
+    }
+    return {};
+  }
+  if (auto* bin = dyn_cast<BinaryOperator>(e)) {
+    if (bin->getOpcode() != BO_Add && bin->getOpcode() != BO_Sub) return {};
+    Value a = classify(bin->getLHS(), depth + 1), b = classify(bin->getRHS(), depth + 1);
+    if (a.kind == Kind::position && b.kind == Kind::position && bin->getOpcode() == BO_Sub) return {Kind::relative, source};
+    if ((a.kind == Kind::position && b.kind == Kind::camera_offset) || (a.kind == Kind::camera_offset && b.kind == Kind::position))
+      return {Kind::relative, source};
+    if (a.kind == Kind::position || (b.kind == Kind::position && bin->getOpcode() == BO_Add)) return {Kind::position, source};
+    return {};
+  }
+  if (auto* cond = dyn_cast<ConditionalOperator>(e)) {
+    Value a = classify(cond->getTrueExpr(), depth + 1);
+    return a.kind != Kind::none ? a : classify(cond->getFalseExpr(), depth + 1);
+  }
+  if (auto* call = dyn_cast<CallExpr>(e)) {
+    const FunctionDecl* callee = call->getDirectCallee();
+    if (!callee || !callee->getIdentifier()) return {};
+    std::string name = callee->getName().str();
+    if (tables_.offset_calls.match(name)) return {Kind::camera_offset, source};
+    if (tables_.position_calls.match(name) && !is_matrix_type(call->getType())) return {Kind::position, source};
+    if (tables_.matrix_calls.match(name) && is_matrix_type(call->getType())) return {Kind::matrix, source};
+    if (tables_.from_world_calls.match(name) && is_matrix_type(call->getType())) return {Kind::matrix, source, true};
+    if (auto* member = dyn_cast<CXXMemberCallExpr>(call)) {
+      Value object = classify(member->getImplicitObjectArgument(), depth + 1);
+      if (object.kind == Kind::matrix && tables_.position_from_matrix.match(name)) return {Kind::position, source};
+      if (object.kind == Kind::matrix && tables_.matrix_keep.match(name)) return {Kind::matrix, source, object.from_world};
+      if (object.kind == Kind::matrix && tables_.matrix_inverse.match(name)) return {Kind::matrix, source, !object.from_world};
+    } else if (call->getNumArgs() == 1 && (tables_.matrix_keep.match(name) || tables_.matrix_inverse.match(name))) {  // glm::inverse(M)
+      Value arg = classify(call->getArg(0), depth + 1);
+      if (arg.kind == Kind::matrix) return {Kind::matrix, source, arg.from_world != tables_.matrix_inverse.match(name)};
+    }
+    return {};
+  }
+  if (auto* member = dyn_cast<MemberExpr>(e)) {
+    const ValueDecl* decl = member->getMemberDecl();
+    std::string name = decl->getIdentifier() ? decl->getName().str() : "";
+    Value base = classify(member->getBase(), depth + 1);
+    // A component of a position is a position (its X is as large as it is).
+    if (base.kind == Kind::position && !isa<CXXMethodDecl>(decl)) return {Kind::position, source};
+    std::string base_type = type_name(member->getBase()->getType());
+    for (const auto& [m, types] : tables_.position_members)
+      if (m == name && types.match(base_type)) return {Kind::position, source};
+    return by_name(decl, member->getType(), e);
+  }
+  if (auto* ref = dyn_cast<DeclRefExpr>(e)) {
+    const ValueDecl* decl = ref->getDecl();
+    Value named = by_name(decl, ref->getType(), e);
+    if (named.kind != Kind::none) return named;
+    // A local initialised once: what it was initialised with.
+    if (auto* var = dyn_cast<VarDecl>(decl); var && var->isLocalVarDecl() && var->getInit()) {
+      Value init = classify(var->getInit(), depth + 1);
+      if (init.kind != Kind::none) init.source = source;
+      return init;
+    }
+    return {};
+  }
+  if (auto* sub = dyn_cast<ArraySubscriptExpr>(e)) {
+    Value base = classify(sub->getBase(), depth + 1);
+    return base.kind == Kind::position ? Value{Kind::position, source} : Value{};
+  }
+  return {};
+}
+
+}  // namespace lwc::host

@@ -1,0 +1,74 @@
+#pragma once
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <clang/AST/ASTContext.h>
+#include <clang/AST/Expr.h>
+#include <nlohmann/json.hpp>
+
+namespace lwc::host {
+
+// A list of name globs (rules/host-world.json), with the project's additions.
+struct Names {
+  std::vector<std::string> globs;
+  bool match(std::string_view name) const;
+};
+
+// rules/host-world.json with the project's "host" additions: what is world space in C++ code.
+struct Tables {
+  Names position_calls, position_names, position_not, position_from_matrix;
+  std::vector<std::pair<std::string, Names>> position_members;  // member name, the types it is a world position of
+  Names matrix_calls, matrix_names, matrix_not, matrix_keep, matrix_inverse;
+  Names from_world_calls, from_world_names;  // matrices that take world positions in (view, view-projection)
+  Names offset_calls, offset_names;
+  Names double_scalars, float_scalars, matrix_types;
+  Names gpu_macros, gpu_structs, upload_calls, address_calls;
+  std::vector<std::pair<Names, std::string>> views;  // view types, and how a view of one gives PreViewTranslation
+
+  // The built-in tables with a project's additions (each list under the same key extends the built-in one).
+  static Tables load(const nlohmann::json& additions);
+};
+
+// What a C++ expression holds, as far as the host rules care.
+enum class Kind {
+  none,
+  position,       // an absolute world position (or one of its components)
+  matrix,         // a matrix or transform with the world translation in it
+  camera_offset,  // the view's PreViewTranslation (minus the camera position)
+  relative,       // a difference of positions, or a position already made camera-relative
+};
+
+struct Value {
+  Kind kind = Kind::none;
+  std::string source;  // the code it comes from, e.g. `Actor->GetActorLocation()`
+  bool from_world = false;  // a matrix that takes world positions in (world to view or clip), not one that gives them
+};
+
+class World {
+ public:
+  World(const Tables& tables, clang::ASTContext& context) : tables_(tables), context_(context) {}
+
+  // What `e` holds: followed through locals' initialisers, member access and + and -.
+  Value classify(const clang::Expr* e, int depth = 0) const;
+  // 'd' when the type's scalars are double (double, FVector, glm::dvec3, Eigen::Vector3d, a
+  // struct of doubles), 'f' for float, 0 for anything else.
+  char scalar(clang::QualType type) const;
+  bool is_matrix_type(clang::QualType type) const;
+  // The type's name without qualifiers, namespace or template arguments (`FVector3f`, `vec`).
+  static std::string type_name(clang::QualType type);
+  // The source text of a range, as written.
+  std::string text(clang::SourceRange range) const;
+  const Tables& tables() const { return tables_; }
+  clang::ASTContext& context() const { return context_; }
+
+ private:
+  Value by_name(const clang::NamedDecl* decl, clang::QualType type, const clang::Expr* e) const;
+  const Tables& tables_;
+  clang::ASTContext& context_;
+};
+
+// Skips what does not change a value: parentheses, implicit casts, temporaries, copies.
+const clang::Expr* strip(const clang::Expr* e);
+
+}  // namespace lwc::host
