@@ -245,6 +245,10 @@ HostResult analyze_host(const HostOptions& options) {
       tooling::ClangTool tool(*db, {sources[i]});
       tool.appendArgumentsAdjuster(tooling::getInsertArgumentAdjuster("-resource-dir=" LWCPORT_CLANG_RESOURCE_DIR,
                                                                       tooling::ArgumentInsertPosition::END));
+      // Our finding reports a unit's first error: no caret diagnostics, no "N errors generated", no
+      // "Error while processing".
+      tool.appendArgumentsAdjuster(tooling::getInsertArgumentAdjuster("-fno-caret-diagnostics", tooling::ArgumentInsertPosition::END));
+      tool.setPrintErrorMessage(false);
       host::Diagnostics diagnostics;
       tool.setDiagnosticConsumer(&diagnostics);
       host::ActionFactory factory(finder, out);

@@ -1,0 +1,197 @@
+// lwcport host: the rules' examples, the host corpus and its fixes (each compiled by Clang), the
+// check registry, and the command through the lwcport program.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "cli/report.h"
+#include "fix/apply.h"
+#include "host/check.h"
+#include "host/host.h"
+#include "rules/rule.h"
+#include "support.h"
+
+namespace lwc {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string include_flag() { return "-I" + test::source_dir() + "/corpus/host/include"; }
+
+HostResult analyze_file(const std::string& path) {
+  HostOptions options;
+  options.paths = {path};
+  options.clang_args = {"-std=c++20", include_flag()};
+  return analyze_host(options);
+}
+
+const HostFile* file_named(const HostResult& r, const std::string& path) {
+  for (const HostFile& f : r.files)
+    if (fs::weakly_canonical(f.path) == fs::weakly_canonical(path)) return &f;
+  return nullptr;
+}
+
+// Clang's verdict on a text: "" when it compiles, else its errors.
+std::string compile_errors(const std::string& path) {
+  test::Run r = test::run(std::string(LWCPORT_CLANG) + " -fsyntax-only -std=c++20 -x c++ " + include_flag() + " " + path + " 2>&1");
+  return r.exit_code == 0 ? "" : r.out.empty() ? "clang failed" : r.out;
+}
+
+std::string fixed_text(const HostFile& file, bool unsafe) {
+  std::vector<Edit> edits;
+  for (const Fix* fix : choose_fixes(file.findings, unsafe)) edits.insert(edits.end(), fix->edits.begin(), fix->edits.end());
+  return apply_edits(Source(file.path, file.text), edits);
+}
+
+std::vector<std::string> host_rules() {
+  std::vector<std::string> ids;
+  for (const RuleInfo& r : all_rules())
+    if (r.host) ids.push_back(r.id);
+  return ids;
+}
+
+class HostRuleExamples : public ::testing::TestWithParam<std::string> {};
+
+// Bad examples are found exactly where "expect" says, good ones not at all; a "fixed" example is
+// what the fix writes, it compiles, and the rule no longer fires on it.
+TEST_P(HostRuleExamples, AreFoundWhereTheySayAndTheirFixesCompileClean) {
+  const RuleInfo* rule = find_rule(GetParam());
+  ASSERT_NE(rule, nullptr);
+  std::string dir = test::scratch("host-example-" + rule->id);
+  bool has_bad = false, has_good = false, has_fixed = false;
+  int n = 0;
+  for (const auto& ex : rule->examples) {
+    ASSERT_EQ(ex.at("language"), "c++");
+    bool bad = ex.contains("bad");
+    std::string code = ex.at(bad ? "bad" : "good").get<std::string>();
+    std::string path = dir + "/example" + std::to_string(n++) + ".cpp";
+    test::write(path, code);
+    ASSERT_EQ(compile_errors(path), "") << "the example itself must compile:\n" << code;
+    HostResult result = analyze_file(path);
+    const HostFile* file = file_named(result, path);
+    std::vector<std::pair<int, int>> got, want;
+    if (file)
+      for (const Finding& f : file->findings) {
+        EXPECT_TRUE(f.rule == rule->id || f.rule == kUnusedSuppressionRule) << f.rule << ": " << f.message;
+        Position p = Source(path, file->text).position(f.span.begin);
+        if (f.rule == rule->id) got.emplace_back(p.line, p.column);
+      }
+    if (bad)
+      for (const auto& pos : ex.at("expect")) want.emplace_back(pos.at(0).get<int>(), pos.at(1).get<int>());
+    EXPECT_EQ(got, want) << rule->id << (bad ? " bad" : " good") << " example:\n" << code;
+    (bad ? has_bad : has_good) = true;
+    if (!ex.contains("fixed")) continue;
+    has_fixed = true;
+    ASSERT_NE(file, nullptr);
+    std::string fixed = fixed_text(*file, ex.value("unsafe", false));
+    EXPECT_EQ(fixed, ex.at("fixed").get<std::string>()) << rule->id;
+    test::write(path, fixed);
+    EXPECT_EQ(compile_errors(path), "") << fixed;
+    HostResult again = analyze_file(path);
+    if (const HostFile* f = file_named(again, path))
+      for (const Finding& finding : f->findings) EXPECT_NE(finding.rule, rule->id) << "still: " << finding.message;
+  }
+  EXPECT_TRUE(has_bad && has_good) << rule->id << " needs a bad and a good example";
+  if (!rule->fixes.empty()) EXPECT_TRUE(has_fixed) << rule->id << " has fixes but no example of one";
+}
+
+INSTANTIATE_TEST_SUITE_P(HostRules, HostRuleExamples, ::testing::ValuesIn(host_rules()), [](const auto& info) {
+  std::string name = info.param;
+  for (char& c : name)
+    if (c == '-') c = '_';
+  return name;
+});
+
+TEST(HostRegistry, EveryHostRuleHasACheckAndADocsPageAndEveryCheckItsRule) {
+  for (const std::string& id : host_rules()) {
+    EXPECT_EQ(host::check_factories().count(id), 1u) << id;
+    EXPECT_TRUE(fs::exists(test::source_dir() + "/docs/rules/" + id + ".md")) << id;
+  }
+  for (const auto& [id, factory] : host::check_factories()) {
+    const RuleInfo* rule = find_rule(id);
+    ASSERT_NE(rule, nullptr) << id << " has no rule data";
+    EXPECT_TRUE(rule->host) << id << " must say \"languages\": [\"c++\"]";
+  }
+}
+
+// corpus/host/<dir>/<name>.cpp: the findings <name>.cpp.expected.json lists (LWCPORT_UPDATE_GOLDEN=1
+// rewrites them; review the diff), and with every fix applied, <name>.cpp.fixed, which compiles.
+TEST(HostCorpus, FindingsAndFixedFilesAreTheGoldenOnesAndCompile) {
+  std::string root = test::source_dir() + "/corpus/host";
+  bool update = std::getenv("LWCPORT_UPDATE_GOLDEN") != nullptr;
+  int files = 0;
+  for (const auto& e : fs::recursive_directory_iterator(root)) {
+    if (e.path().extension() != ".cpp") continue;
+    ++files;
+    std::string path = e.path().string();
+    ASSERT_EQ(compile_errors(path), "") << path;
+    HostOptions options;
+    options.paths = {path};  // compile_flags.txt beside the corpus gives the flags
+    HostResult result = analyze_host(options);
+    ASSERT_TRUE(result.errors.empty()) << result.errors.front();
+    const HostFile* file = file_named(result, path);
+    ASSERT_NE(file, nullptr) << path;
+    nlohmann::json findings = nlohmann::json::array();
+    Source source(path, file->text);
+    for (const Finding& f : file->findings) findings.push_back(finding_json(locate(source, f)));
+    std::string got = nlohmann::json{{"findings", findings}}.dump(2) + "\n";
+    std::string fixed = fixed_text(*file, true);
+    if (update) {
+      test::write(path + ".expected.json", got);
+      test::write(path + ".fixed", fixed);
+    }
+    EXPECT_EQ(got, test::read(path + ".expected.json")) << path;
+    EXPECT_EQ(fixed, test::read(path + ".fixed")) << path;
+    EXPECT_EQ(compile_errors(path + ".fixed"), "") << path << ".fixed";
+  }
+  EXPECT_GE(files, 2);
+}
+
+// Through the lwcport program (which runs lwcport-host): every output format, the exit code, and
+// a compile error reported on its file with the run going on.
+TEST(HostCli, RunsThroughLwcportWithLintsOutputsAndReportsWhatClangCannotCompile) {
+  std::string corpus = test::source_dir() + "/corpus/host";
+  test::Run json = test::run("cd " + corpus + " && " + test::binary() + " host . --format json");
+  EXPECT_EQ(json.exit_code, 1);
+  nlohmann::json parsed = nlohmann::json::parse(json.out);
+  size_t count = 0;
+  for (const auto& finding : parsed.at("findings")) count += finding.at("rule").get<std::string>().rfind("lwc-host-", 0) == 0;
+  EXPECT_EQ(count, 14u);
+  test::Run sarif = test::run("cd " + corpus + " && " + test::binary() + " host . --format sarif");
+  nlohmann::json log = nlohmann::json::parse(sarif.out);
+  std::set<std::string> rules;
+  for (const auto& r : log.at("runs").at(0).at("tool").at("driver").at("rules")) rules.insert(r.at("id").get<std::string>());
+  EXPECT_TRUE(rules.count("lwc-host-narrowed-world-upload") && rules.count("lwc-host-narrowed-world-matrix"));
+  EXPECT_EQ(log.at("runs").at(0).at("results").size(), 14u);
+
+  std::string dir = test::scratch("host-broken");
+  test::write(dir + "/broken.cpp", "#include \"ue_mini.h\"\nvoid F(FParameters& P, const AActor* A)\n{\n\tP.ActorPosition = FVector3f(A->GetActorLocation());\n\tundeclared();\n}\n");
+  test::Run broken = test::run("cd " + dir + " && " + test::binary() + " host broken.cpp -- -std=c++20 " + include_flag());
+  EXPECT_EQ(broken.exit_code, 1);
+  EXPECT_NE(broken.out.find("broken.cpp:1:1: error: Clang could not compile this translation unit: "), std::string::npos) << broken.out;
+  EXPECT_NE(broken.out.find("broken.cpp:5:2: use of undeclared identifier 'undeclared'"), std::string::npos) << broken.out;
+  EXPECT_NE(broken.out.find("broken.cpp:4:20: warning: `FVector3f(A->GetActorLocation())`"), std::string::npos) << broken.out;
+}
+
+// A suppression comment silences a host finding like a shader one; a stale one is reported.
+TEST(HostCli, SuppressionsAndBaselinesWorkAsForShaders) {
+  std::string dir = test::scratch("host-suppress");
+  test::write(dir + "/a.cpp",
+              "#include \"ue_mini.h\"\nvoid F(FParameters& P, const AActor* A)\n{\n"
+              "\tP.ActorPosition = FVector3f(A->GetActorLocation());  // lwcport-ignore: lwc-host-narrowed-world-upload\n"
+              "\tP.BoundsOrigin = FVector3f(A->GetActorLocation());\n"
+              "\tP.Height = 1;  // lwcport-ignore: lwc-host-narrowed-world-upload\n}\n");
+  std::string host = "cd " + dir + " && " + test::binary() + " host a.cpp";
+  std::string flags = " -- -std=c++20 " + include_flag();
+  test::Run r = test::run(host + " --format json" + flags);
+  nlohmann::json j = nlohmann::json::parse(r.out);
+  std::vector<std::pair<std::string, int>> got;
+  for (const auto& f : j.at("findings")) got.emplace_back(f.at("rule"), f.at("start").at("line"));
+  EXPECT_EQ(got, (std::vector<std::pair<std::string, int>>{{"lwc-host-narrowed-world-upload", 5}, {"lwc-unused-suppression", 6}}));
+  EXPECT_EQ(test::run(host + " --write-baseline base.json" + flags).exit_code, 0);
+  EXPECT_EQ(test::run(host + " --baseline base.json" + flags).exit_code, 0);
+}
+
+}  // namespace
+}  // namespace lwc
