@@ -158,6 +158,12 @@ TEST(HostCli, RunsThroughLwcportWithLintsOutputsAndReportsWhatClangCannotCompile
   size_t count = 0;
   for (const auto& finding : parsed.at("findings")) count += finding.at("rule").get<std::string>().rfind("lwc-host-", 0) == 0;
   EXPECT_EQ(count, 14u);
+  // Every message, hint and fix text filled in: no `{name}` of a template left.
+  for (const auto& finding : parsed.at("findings")) {
+    std::string text = finding.dump();
+    for (size_t at = text.find('{', 1); at != std::string::npos; at = text.find('{', at + 1))
+      EXPECT_FALSE(std::isalpha(static_cast<unsigned char>(text[at + 1])) && text.find('}', at) < text.find(' ', at)) << text;
+  }
   test::Run sarif = test::run("cd " + corpus + " && " + test::binary() + " host . --format sarif");
   nlohmann::json log = nlohmann::json::parse(sarif.out);
   std::set<std::string> rules;
