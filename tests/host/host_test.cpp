@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "cli/report.h"
@@ -19,10 +20,21 @@ namespace fs = std::filesystem;
 
 std::string include_flag() { return "-I" + test::source_dir() + "/corpus/host/include"; }
 
+// An example's own compile flags: a first line `// lwcport-test-flags: -ffast-math ...`.
+std::vector<std::string> example_flags(const std::string& code) {
+  const std::string marker = "// lwcport-test-flags:";
+  std::vector<std::string> out;
+  if (code.rfind(marker, 0) != 0) return out;
+  std::istringstream words(code.substr(marker.size(), code.find('\n') - marker.size()));
+  for (std::string w; words >> w;) out.push_back(w);
+  return out;
+}
+
 HostResult analyze_file(const std::string& path) {
   HostOptions options;
   options.paths = {path};
   options.clang_args = {"-std=c++20", include_flag()};
+  for (const std::string& f : example_flags(test::read(path))) options.clang_args.push_back(f);
   return analyze_host(options);
 }
 
@@ -157,7 +169,7 @@ TEST(HostCli, RunsThroughLwcportWithLintsOutputsAndReportsWhatClangCannotCompile
   nlohmann::json parsed = nlohmann::json::parse(json.out);
   size_t count = 0;
   for (const auto& finding : parsed.at("findings")) count += finding.at("rule").get<std::string>().rfind("lwc-host-", 0) == 0;
-  EXPECT_EQ(count, 14u);
+  EXPECT_EQ(count, 15u);
   // Every message, hint and fix text filled in: no `{name}` of a template left.
   for (const auto& finding : parsed.at("findings")) {
     std::string text = finding.dump();
@@ -169,7 +181,7 @@ TEST(HostCli, RunsThroughLwcportWithLintsOutputsAndReportsWhatClangCannotCompile
   std::set<std::string> rules;
   for (const auto& r : log.at("runs").at(0).at("tool").at("driver").at("rules")) rules.insert(r.at("id").get<std::string>());
   EXPECT_TRUE(rules.count("lwc-host-narrowed-world-upload") && rules.count("lwc-host-narrowed-world-matrix"));
-  EXPECT_EQ(log.at("runs").at(0).at("results").size(), 14u);
+  EXPECT_EQ(log.at("runs").at(0).at("results").size(), 15u);
 
   std::string dir = test::scratch("host-broken");
   test::write(dir + "/broken.cpp", "#include \"ue_mini.h\"\nvoid F(FParameters& P, const AActor* A)\n{\n\tP.ActorPosition = FVector3f(A->GetActorLocation());\n\tundeclared();\n}\n");

@@ -1390,11 +1390,13 @@ int list_rules(const Options& o, std::ostream& out) {
     out << json_text(rules, 1) << '\n';
     return 0;
   }
-  out << fmt::format("{:<26} {:<8} {:<10} {:<13} {}\n", "RULE", "SEVERITY", "LANGUAGES", "FIX", "SUMMARY");
+  size_t width = 4;
+  for (const RuleInfo& r : all_rules()) width = std::max(width, r.id.size());
+  out << fmt::format("{:<{}} {:<8} {:<10} {:<13} {}\n", "RULE", width, "SEVERITY", "LANGUAGES", "FIX", "SUMMARY");
   for (const RuleInfo& r : all_rules()) {
     std::vector<std::string> langs = language_names(r);
     std::string labels = fix_labels(r);
-    out << fmt::format("{:<26} {:<8} {:<10} {:<13} {}\n", r.id, severity_name(r.severity), fmt::format("{}", fmt::join(langs, ",")),
+    out << fmt::format("{:<{}} {:<8} {:<10} {:<13} {}\n", r.id, width, severity_name(r.severity), fmt::format("{}", fmt::join(langs, ",")),
                        labels.empty() ? "-" : labels, r.summary);
   }
   out << "\n`lwcport rule ID` prints a rule's page.\n";

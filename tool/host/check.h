@@ -41,6 +41,8 @@ class Reporter {
   // Records a comment, for the lwcport-ignore comments.
   void comment(const clang::SourceManager& sm, clang::SourceRange range);
   std::map<std::string, File>& files() { return files_; }
+  // The unit's compile command (its arguments), for checks that read compiler settings.
+  std::vector<std::string> command;
 
  private:
   // The file and byte span of a range, if it is in a reported file.

@@ -234,6 +234,7 @@ HostResult analyze_host(const HostOptions& options) {
   auto work = [&] {
     for (size_t i; (i = next++) < sources.size();) {
       host::Reporter out(reported);
+      for (const tooling::CompileCommand& c : db->getCompileCommands(sources[i])) out.command = c.CommandLine;
       std::vector<std::unique_ptr<host::Check>> checks;
       ast_matchers::MatchFinder finder;
       for (const RuleInfo& rule : all_rules()) {
@@ -264,6 +265,8 @@ HostResult analyze_host(const HostOptions& options) {
                                               "give its compile flags: -p BUILD_DIR (compile_commands.json) or after `--`; "
                                               "findings in the code Clang could read are still reported"));
       }
+      // Every unit's own file is reported on (and counted), findings or not.
+      if (!out.files().count(sources[i]) && !files.count(sources[i])) files[sources[i]].text = read_file(sources[i], SIZE_MAX).text;
       for (auto& [path, f] : out.files()) {
         HostFile& into = files[path];
         if (into.text.empty()) into.text = f.text;

@@ -76,6 +76,8 @@ Tables Tables::load(const nlohmann::json& additions) {
   t.gpu_structs = n("gpu-struct-names");
   t.upload_calls = n("upload-calls");
   t.address_calls = n("address-calls");
+  t.high_names = n("splits/high-names");
+  t.low_names = n("splits/low-names");
   for (const nlohmann::json* root : {&b, &additions}) {
     if (root->contains("world-positions") && root->at("world-positions").contains("members-of"))
       for (const auto& m : root->at("world-positions").at("members-of"))
@@ -189,7 +191,8 @@ Value World::classify(const Expr* e, int depth) const {
       // A product keeps the world translation of its world matrix (model * view is camera-relative:
       // the translations cancel in double).
       if (o == OO_Star) {
-        if (a.kind == Kind::matrix && b.kind == Kind::matrix && a.from_world != b.from_world) return {};
+        if (a.kind == Kind::matrix && b.kind == Kind::matrix && a.from_world != b.from_world) return {Kind::model_view, source};
+        if (a.kind == Kind::model_view || b.kind == Kind::model_view) return {Kind::model_view, source};
         Value product = a.kind == Kind::matrix ? a : b.kind == Kind::matrix ? b : Value{};
         if (product.kind != Kind::none) product.source = source;
         return product;
@@ -209,6 +212,11 @@ Value World::classify(const Expr* e, int depth) const {
   }
   if (auto* bin = dyn_cast<BinaryOperator>(e)) {
     if (bin->getOpcode() != BO_Add && bin->getOpcode() != BO_Sub) return {};
+    // `x - hi`: the low part of a split, small by construction.
+    if (bin->getOpcode() == BO_Sub)
+      if (auto* ref = dyn_cast<DeclRefExpr>(strip(bin->getRHS())); ref && ref->getDecl()->getIdentifier() &&
+                                                                   tables_.high_names.match(ref->getDecl()->getName().str()))
+        return {Kind::relative, source};
     Value a = classify(bin->getLHS(), depth + 1), b = classify(bin->getRHS(), depth + 1);
     if (a.kind == Kind::position && b.kind == Kind::position && bin->getOpcode() == BO_Sub) return {Kind::relative, source};
     if ((a.kind == Kind::position && b.kind == Kind::camera_offset) || (a.kind == Kind::camera_offset && b.kind == Kind::position))
@@ -254,6 +262,10 @@ Value World::classify(const Expr* e, int depth) const {
     const ValueDecl* decl = ref->getDecl();
     Value named = by_name(decl, ref->getType(), e);
     if (named.kind != Kind::none) return named;
+    // A name that says local, relative or translated is the author's word that it was made so
+    // (perhaps after its initialiser): not followed.
+    std::string name = decl->getIdentifier() ? decl->getName().str() : "";
+    if ((is_matrix_type(ref->getType()) ? tables_.matrix_not : tables_.position_not).match(name)) return {};
     // A local initialised once: what it was initialised with.
     if (auto* var = dyn_cast<VarDecl>(decl); var && var->isLocalVarDecl() && var->getInit()) {
       Value init = classify(var->getInit(), depth + 1);

@@ -24,6 +24,7 @@ struct Tables {
   Names offset_calls, offset_names;
   Names double_scalars, float_scalars, matrix_types;
   Names gpu_macros, gpu_structs, upload_calls, address_calls;
+  Names high_names, low_names;  // the two halves of a high/low split
   std::vector<std::pair<Names, std::string>> views;  // view types, and how a view of one gives PreViewTranslation
 
   // The built-in tables with a project's additions (each list under the same key extends the built-in one).
@@ -37,6 +38,7 @@ enum class Kind {
   matrix,         // a matrix or transform with the world translation in it
   camera_offset,  // the view's PreViewTranslation (minus the camera position)
   relative,       // a difference of positions, or a position already made camera-relative
+  model_view,     // a world matrix times a world-to-view one: camera-relative, and camera-dependent
 };
 
 struct Value {

@@ -17,7 +17,7 @@ class NarrowedWorldUpload : public Check {
 
   void run(const ast_matchers::MatchFinder::MatchResult& match) override {
     std::optional<Upload> up = find_upload(match, tables_, Kind::position);
-    if (!up) return;
+    if (!up || !up->gpu) return;
     const SourceManager& sm = *match.SourceManager;
     const LangOptions& lang = match.Context->getLangOpts();
     World world(tables_, *match.Context);

@@ -49,6 +49,8 @@ std::string where(const FieldDecl* field) {
 
 struct Sink {
   std::string what, field;
+  bool gpu = true;  // false: a member of a struct the GPU does not read (scene data on the CPU)
+  std::string through = "";  // the local it went through, if any
 };
 
 // The GPU member an assignment's left side names.
@@ -63,7 +65,8 @@ std::optional<Sink> assigned_to(const Expr* lhs, ASTContext& context, const Tabl
     if (auto* outer = dyn_cast<FieldDecl>(inner->getMemberDecl()); outer && gpu_field(outer, context, tables))
       return Sink{"shader parameter " + where(outer), outer->getNameAsString()};
   auto* field = dyn_cast<FieldDecl>(member->getMemberDecl());
-  if (!field || !gpu_field(field, context, tables)) return std::nullopt;
+  if (!field) return std::nullopt;
+  if (!gpu_field(field, context, tables)) return Sink{"member " + where(field), field->getNameAsString(), false};
   return Sink{"shader parameter " + where(field), field->getNameAsString()};
 }
 
@@ -90,6 +93,7 @@ std::optional<Sink> through_local(const VarDecl* var, const Expr* from, ASTConte
   for (const BoundNodes& use : match(findAll(declRefExpr(to(varDecl(equalsNode(var)))).bind("use")), *body, context))
     if (auto sink = sink_of(use.getNodeAs<Expr>("use"), context, tables, hops + 1)) {
       sink->what += " through `" + var->getNameAsString() + "`";
+      sink->through = var->getNameAsString();
       return sink;
     }
   return std::nullopt;
@@ -178,12 +182,15 @@ std::optional<Upload> find_upload(const MatchFinder::MatchResult& match, const T
   }
   if (!value || world.scalar(value->IgnoreParenImpCasts()->getType()) != 'd') return std::nullopt;
   // A vector built from a matrix, or the reverse, is neither rule's.
-  if ((kind == Kind::matrix) != world.is_matrix_type(narrowing->getType())) return std::nullopt;
+  if ((kind == Kind::matrix || kind == Kind::model_view) != world.is_matrix_type(narrowing->getType())) return std::nullopt;
   Value what = world.classify(value);
   if (what.kind != kind) return std::nullopt;
   std::optional<Sink> sink = sink_of(narrowing, context, tables, 0);
   if (!sink) return std::nullopt;
-  return Upload{narrowing, value, what, World::type_name(narrowing->getType()), sink->what, sink->field};
+  // The halves of a high/low split are narrowed on purpose (lwc-host-broken-split checks them).
+  auto half = [&](const std::string& name) { return tables.high_names.match(name) || tables.low_names.match(name); };
+  if (half(sink->field) || half(sink->through)) return std::nullopt;
+  return Upload{narrowing, value, what, World::type_name(narrowing->getType()), sink->what, sink->field, sink->gpu};
 }
 
 std::string preview_translation(const Expr* e, ASTContext& context, const Tables& tables) {

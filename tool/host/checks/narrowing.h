@@ -16,14 +16,16 @@ struct Upload {
   Value value;
   std::string narrowing_type;  // `FVector3f`, `float`, `vec`
   std::string sink;            // where it goes, e.g. "shader parameter `ActorPosition` of `FParameters`"
-  std::string field;           // the GPU member it is stored in ("" for an upload call)
+  std::string field;           // the member it is stored in ("" for an upload call)
+  bool gpu = true;             // false: stored in a member of CPU-side data (lwc-host-float-world-storage)
 };
 
 // The matchers of every narrowing: conversions to a float vector or matrix type, casts to float,
 // implicit double-to-float conversions. Each match is bound to "narrowing".
 void register_narrowings(clang::ast_matchers::MatchFinder& finder, clang::ast_matchers::MatchFinder::MatchCallback* callback);
 
-// The upload a match is, when its value is a world value of `kind` and it reaches a GPU sink.
+// The upload a match is, when its value is a world value of `kind` and it reaches a GPU sink or
+// a member of CPU-side data (`gpu` says which).
 std::optional<Upload> find_upload(const clang::ast_matchers::MatchFinder::MatchResult& match, const Tables& tables, Kind kind);
 
 // How the function holding `e` reaches the view's PreViewTranslation (a parameter or local of a
