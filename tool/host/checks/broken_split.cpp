@@ -70,6 +70,34 @@ std::string initialised_from(const Expr* e) {
   return name_of(init);
 }
 
+// The name that says which half a store is: the first high or low name along `cb.PositionLow.y`.
+std::string half_name(const Expr* e, const Tables& tables) {
+  for (e = strip(e); e;) {
+    std::string name = name_of(e);
+    if (tables.high_names.match(name) || tables.low_names.match(name)) return name;
+    if (auto* member = dyn_cast<MemberExpr>(e)) e = strip(member->getBase());
+    else if (auto* sub = dyn_cast<ArraySubscriptExpr>(e)) e = strip(sub->getBase());
+    else break;
+  }
+  return name_of(e);
+}
+
+// A local made as one half of a split: a high part narrowed from a double, or a low part that
+// subtracts a high one.
+bool made_as_half(const Expr* e, const World& world) {
+  auto* ref = dyn_cast<DeclRefExpr>(strip(e));
+  auto* var = ref ? dyn_cast<VarDecl>(ref->getDecl()) : nullptr;
+  if (!var || !var->getInit()) return false;
+  const Expr* init = strip(var->getInit());
+  if (const Expr* from = narrowed_from(init, world)) {
+    const Expr *left = nullptr, *right = nullptr;
+    if (!subtraction(from, left, right)) return true;  // `hi = (float)x`
+    init = from;
+  }
+  const Expr *left = nullptr, *right = nullptr;
+  return subtraction(init, left, right) && world.tables().high_names.match(name_of(right));
+}
+
 class BrokenSplit : public Check {
  public:
   using Check::Check;
@@ -91,10 +119,10 @@ class BrokenSplit : public Check {
       type = var->getType();
     } else if (auto* bin = match.Nodes.getNodeAs<BinaryOperator>("assign")) {
       if (bin->getOpcode() != BO_Assign) return;
-      target = name_of(bin->getLHS()), value = bin->getRHS(), type = bin->getLHS()->getType();
+      target = half_name(bin->getLHS(), tables_), value = bin->getRHS(), type = bin->getLHS()->getType();
     } else if (auto* op = match.Nodes.getNodeAs<CXXOperatorCallExpr>("assign")) {
       if (op->getOperator() != OO_Equal || op->getNumArgs() != 2) return;
-      target = name_of(op->getArg(0)), value = op->getArg(1), type = op->getArg(0)->getType();
+      target = half_name(op->getArg(0), tables_), value = op->getArg(1), type = op->getArg(0)->getType();
     }
     bool member_target = false;
     if (auto* bin = match.Nodes.getNodeAs<BinaryOperator>("assign")) member_target = isa<MemberExpr>(bin->getLHS()->IgnoreParenImpCasts());
@@ -105,7 +133,7 @@ class BrokenSplit : public Check {
     // Swapped: a high part stored from the low one of the same value, or the reverse.
     std::string source = name_of(value);
     bool opposite = (low && tables_.high_names.match(source)) || (high && tables_.low_names.match(source));
-    if (member_target && !source.empty() && opposite && stem(source) == stem(target)) {
+    if (member_target && !source.empty() && opposite && (stem(source) == stem(target) || made_as_half(value, world))) {
       report(match, value, "swapped", {{"target", target}, {"source", source}});
       return;
     }

@@ -15,6 +15,8 @@ void register_narrowings(MatchFinder& finder, MatchFinder::MatchCallback* callba
   finder.addMatcher(cxxConstructExpr(project, unless(hasParent(explicitCastExpr()))).bind("narrowing"), callback);
   finder.addMatcher(explicitCastExpr(project).bind("narrowing"), callback);
   finder.addMatcher(implicitCastExpr(project, hasCastKind(CK_FloatingCast)).bind("narrowing"), callback);
+  // A conversion helper: a free function from a double vector or matrix to its float twin (`ToFloat3(v)`).
+  finder.addMatcher(callExpr(project, unless(cxxOperatorCallExpr()), unless(cxxMemberCallExpr()), argumentCountIs(1)).bind("narrowing"), callback);
 }
 
 namespace {
@@ -174,7 +176,15 @@ std::optional<Upload> find_upload(const MatchFinder::MatchResult& match, const T
   const Expr* converted = narrowing;
   if (auto* cast = dyn_cast<CastExpr>(narrowing)) converted = cast->getSubExpr()->IgnoreImplicit();
   const Expr* value = converted;
-  if (auto* construct = dyn_cast<CXXConstructExpr>(converted)) {
+  if (auto* call = dyn_cast<CallExpr>(converted)) {
+    const FunctionDecl* callee = call->getDirectCallee();
+    // Same shape in and out (a vector to a vector, not a length), and a name that does not say
+    // it makes the value relative (`ToCameraRelative(P)`).
+    if (!callee || !callee->getIdentifier() || tables.position_not.match(callee->getName().str()) ||
+        call->getType()->isBuiltinType() != call->getArg(0)->getType()->isBuiltinType())
+      return std::nullopt;
+    value = call->getArg(0);
+  } else if (auto* construct = dyn_cast<CXXConstructExpr>(converted)) {
     if (construct->getNumArgs() == 0 || construct->getConstructor()->isCopyOrMoveConstructor()) return std::nullopt;
     value = construct->getArg(0);
   } else if (converted == narrowing) {
