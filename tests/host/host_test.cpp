@@ -215,5 +215,34 @@ TEST(HostCli, SuppressionsAndBaselinesWorkAsForShaders) {
   EXPECT_EQ(test::run(host + " --baseline base.json" + flags).exit_code, 0);
 }
 
+// report --host: the host findings as files of the era "C++ host", their effort in the total, and
+// each host change that feeds a shader parameter paired with the shader files that read it.
+TEST(HostReport, PairsEachHostChangeWithTheShadersThatReadItsParameter) {
+  std::string dir = test::scratch("host-report");
+  test::write(dir + "/Source/compile_flags.txt", "-std=c++20\n" + include_flag() + "\n");
+  test::write(dir + "/Source/Fill.cpp",
+              "#include \"ue_mini.h\"\nvoid F(FParameters& P, const AActor* A, const FViewInfo& View)\n{\n"
+              "\tP.ActorPosition = FVector3f(A->GetActorLocation());\n\tP.BoundsOrigin = FVector3f(A->GetActorLocation());\n}\n");
+  test::write(dir + "/Shaders/Actor.usf", "float3 ActorPosition;\nfloat3 ActorPositionScale;\nfloat4 Main(float3 P : POSITION) : SV_Position\n{\n\treturn float4(P - ActorPosition, 1);\n}\n");
+  test::write(dir + "/Shaders/Other.usf", "float3 ActorPositionScale;\nfloat4 Main(float3 P : POSITION) : SV_Position\n{\n\treturn float4(P * ActorPositionScale, 1);\n}\n");
+  test::Run r = test::run("cd " + dir + " && " + test::binary() + " report Shaders --host Source --out out");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  nlohmann::json j = nlohmann::json::parse(test::read(dir + "/out/report.json"));
+  EXPECT_EQ(j.at("summary").at("eras").at("C++ host"), 1);
+  EXPECT_EQ(j.at("host").at("findings"), 2);
+  ASSERT_EQ(j.at("host").at("pairs").size(), 2u);
+  EXPECT_EQ(j.at("host").at("pairs").at(0).at("where"), "Source/Fill.cpp:4");
+  EXPECT_EQ(j.at("host").at("pairs").at(0).at("parameter"), "ActorPosition");
+  EXPECT_EQ(j.at("host").at("pairs").at(0).at("shader_files"), nlohmann::json::array({"Shaders/Actor.usf"}));  // a whole word only
+  EXPECT_EQ(j.at("host").at("pairs").at(1).at("shader_files"), nlohmann::json::array());
+  EXPECT_NE(test::read(dir + "/out/report.md").find("| Source/Fill.cpp:4 | `ActorPosition` | a translated-world position | `Shaders/Actor.usf` |"),
+            std::string::npos);
+  EXPECT_NE(test::read(dir + "/out/report.html").find("<table id=host>"), std::string::npos);
+  // A host run that cannot start fails the report, which says so.
+  test::Run bad = test::run("cd " + dir + " && " + test::binary() + " report Shaders --host Missing --out out2 2>&1");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.out.find("Missing: no such file or folder"), std::string::npos) << bad.out;
+}
+
 }  // namespace
 }  // namespace lwc

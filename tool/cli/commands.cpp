@@ -42,6 +42,7 @@
 #include "fix/scene.h"
 #include "rules/analyze.h"
 #include "rules/rule.h"
+#include "lang/lexer.h"
 #include "lang/tokens.h"
 #include "shaderlib/shaderlib.h"
 #include "verify/harness.h"
@@ -1303,6 +1304,54 @@ std::vector<HistoryPoint> report_history(const Options& o, ConfigFinder& configs
   return out;
 }
 
+int run_host_program(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+
+// report --host: `lwcport host`'s findings as files of their own era, and each one that feeds a
+// shader parameter paired with the shader files that read that parameter.
+void add_host_code(const Options& o, const std::vector<InputFile>& shaders, MigrationReport& rep, std::vector<std::vector<FileEntry>>& per_scene,
+                   std::ostream& err) {
+  std::vector<std::string> args{"host"};
+  args.insert(args.end(), o.host_paths.begin(), o.host_paths.end());
+  for (const char* a : {"--format", "json", "--fail-on", "none"}) args.push_back(a);
+  if (!o.build_dir.empty()) args.insert(args.end(), {"-p", o.build_dir});
+  if (!o.config_file.empty()) args.insert(args.end(), {"--config", o.config_file});
+  if (o.isolated) args.push_back("--isolated");
+  std::ostringstream json, errors;
+  int code = host_command ? host_command(parse_options(args), json, errors) : run_host_program(args, json, errors);
+  err << errors.str();
+  if (code != 0) throw std::runtime_error("`lwcport host` failed on the --host paths; no report was written");
+  std::map<std::string, std::vector<ReportedFinding>> by_file;
+  nlohmann::json parsed = nlohmann::json::parse(json.str());
+  for (const auto& f : parsed.at("findings")) by_file[f.at("path").get<std::string>()].push_back(finding_from_json(f));
+  rep.host = true;
+  std::set<std::string> parameters;
+  for (auto& [path, findings] : by_file) {
+    for (const ReportedFinding& f : findings)
+      if (f.facts.count("shader-parameter")) {
+        parameters.insert(f.facts.at("shader-parameter"));
+        rep.host_pairs.push_back({fmt::format("{}:{}", path, f.start.line), f.rule, f.facts.at("shader-parameter"), f.facts.at("port"), {}});
+      }
+    FileEntry entry{path, kHostEra, std::move(findings)};
+    for (auto& scene : per_scene) scene.push_back(entry);
+    rep.files.push_back(std::move(entry));
+  }
+  std::sort(rep.files.begin(), rep.files.end(), [](const FileEntry& a, const FileEntry& b) { return a.path < b.path; });
+  // Which shader files read each parameter: its name as a whole word in their text.
+  std::map<std::string, std::vector<std::string>> readers;
+  for (const InputFile& file : shaders) {
+    std::string text = file.content ? *file.content : read_file(file.path, SIZE_MAX).text;
+    for (const std::string& p : parameters)
+      for (size_t at = text.find(p); at != std::string::npos; at = text.find(p, at + 1)) {
+        bool starts = at == 0 || !ident_char(text[at - 1]), ends = at + p.size() >= text.size() || !ident_char(text[at + p.size()]);
+        if (starts && ends) {
+          readers[p].push_back(file.display);
+          break;
+        }
+      }
+  }
+  for (HostPair& pair : rep.host_pairs) pair.shader_files = readers[pair.parameter];
+}
+
 int report(const Options& o, std::ostream& out, std::ostream& err) {
   std::unique_ptr<ConfigFinder> configs = config_finder(o);
   std::vector<InputFile> files = input_files(o, *configs, err);
@@ -1344,6 +1393,7 @@ int report(const Options& o, std::ostream& out, std::ostream& err) {
       },
       &order.order);
   if (!every_argument_had_code(o, counter.with_code, err)) return 2;
+  if (!o.host_paths.empty()) add_host_code(o, files, rep, per_scene, err);
   for (size_t s = 0; s < scenes.size(); ++s) rep.scenes.push_back(scene_cost(scenes[s].name, per_scene[s]));
   if (o.history || !o.since.empty()) rep.history = report_history(o, *configs, err);
   if (o.verify) {

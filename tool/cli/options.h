@@ -52,6 +52,7 @@ struct Options {
   std::string build_dir;            // host -p: the folder holding compile_commands.json
   std::vector<std::string> clang_args;  // host: after `--`, the compile flags when there is no database
   bool fix_in_place = false;        // host --fix: apply the fixes (the safe ones; --unsafe-fixes for the rest)
+  std::vector<std::string> host_paths;  // report --host: the C++ host code to analyse too
 };
 
 // Reads the command line; throws UsageError for anything it does not accept.

@@ -26,6 +26,7 @@ ReportedFinding locate(const Source& source, const Finding& f) {
   if (f.span.begin <= f.span.end && f.span.end <= source.text().size())
     r.text = normalised_text(std::string_view(source.text()).substr(f.span.begin, std::min<size_t>(f.span.end - f.span.begin, 4096)));
   if (!f.not_needed) r.withheld = f.withheld;
+  r.facts = f.facts;
   // A long line is shown around the finding only: a finding's report never grows with its line.
   constexpr size_t kMaxLineShown = 240;
   std::string_view line = source.line_text(r.start.line);
@@ -91,7 +92,36 @@ nlohmann::json finding_json(const ReportedFinding& f) {
   if (!f.decision.empty()) j["decision"] = f.decision;
   if (f.not_needed) j["not-needed"] = true;
   if (!f.withheld.empty()) j["withheld"] = f.withheld;
+  if (!f.facts.empty()) j["facts"] = f.facts;
   return j;
+}
+
+ReportedFinding finding_from_json(const nlohmann::json& j) {
+  ReportedFinding f;
+  auto position = [](const nlohmann::json& p) { return Position{p.at("line").get<int>(), p.at("column").get<int>()}; };
+  f.rule = j.at("rule");
+  if (!parse_severity(j.at("severity").get<std::string>(), f.severity)) throw std::runtime_error("bad severity " + j.at("severity").dump());
+  f.message = j.at("message");
+  f.hint = j.value("hint", "");
+  f.start = position(j.at("start"));
+  f.end = position(j.at("end"));
+  if (j.contains("fix")) {
+    const nlohmann::json& x = j.at("fix");
+    ReportedFix fix;
+    fix.title = x.at("title");
+    fix.applicability = x.at("applicability") == "safe" ? Applicability::safe : Applicability::unsafe;
+    fix.reason = x.at("reason");
+    fix.strategy = x.value("strategy", "");
+    for (const auto& e : x.at("edits")) fix.edits.push_back({position(e.at("start")), position(e.at("end")), e.at("text")});
+    fix.library = x.value("library", std::vector<std::string>{});
+    fix.notes = x.value("notes", std::vector<std::string>{});
+    f.fix = std::move(fix);
+  }
+  f.decision = j.value("decision", "");
+  f.not_needed = j.value("not-needed", false);
+  f.withheld = j.value("withheld", std::vector<std::string>{});
+  f.facts = j.value("facts", std::map<std::string, std::string>{});
+  return f;
 }
 
 namespace {

@@ -46,6 +46,7 @@ struct ReportedFinding {
   std::string decision;
   bool not_needed = false;
   std::vector<std::string> withheld;  // rewrites not offered, each with why
+  std::map<std::string, std::string> facts;  // what the check recognised (Finding::facts)
   std::string text;         // the span's text, blanks collapsed (project/baseline.h)
   std::string fingerprint;  // its identity across edits (add_fingerprints)
   int occurrence = 0;       // which finding of its rule and text in the file it is
@@ -66,6 +67,8 @@ ReportedFinding locate(const Source& source, const Finding& finding);
 void add_fingerprints(FileReport& report, const Source& source, bool line_hashes);
 // The JSON form of one finding (docs/json-output.md), shared by --format json and the goldens.
 nlohmann::json finding_json(const ReportedFinding& f);
+// The finding a finding_json() object describes (the report reads `lwcport host`'s findings so).
+ReportedFinding finding_from_json(const nlohmann::json& j);
 
 enum class Format { text, json, sarif, github };
 

@@ -235,6 +235,23 @@ std::string report_html(const json& j) {
     out += "</tbody></table>";
   }
 
+  if (j["host"].is_object()) {
+    const auto& h = j["host"];
+    out += fmt::format("<h2>Host code</h2><p><code>lwcport host</code>: {} finding(s) in {} C++ file(s). A translated-world port changes "
+                       "both sides at once: each host change below and the shaders that read what it uploads.</p>",
+                       str(h["findings"]), str(h["files"]));
+    out += "<table id=host>" + th({{"host change", false}, {"shader parameter", false}, {"the shaders must read it as", false}, {"shader files that read it", false}}) +
+           "<tbody>";
+    for (const auto& p : h["pairs"]) {
+      std::string files;
+      for (const auto& f : p["shader_files"]) files += (files.empty() ? "" : ", ") + f.get<std::string>();
+      std::string port = p["port"] == "translated-matrix" ? "a translated-world matrix" : "a translated-world position";
+      out += "<tr data-rules=\"" + esc(p["rule"].get<std::string>()) + "\">" + td(p["where"]) + "<td><code>" + esc(p["parameter"].get<std::string>()) +
+             "</code></td>" + td(port) + td(files.empty() ? "none found" : files) + "</tr>";
+    }
+    out += "</tbody></table>";
+  }
+
   out += "<h2>Burn-down</h2>" + history_chart(j["history"]);
 
   std::vector<json> ranked(j["files"].begin(), j["files"].end());

@@ -20,7 +20,8 @@ constexpr double kReviewSafe = 1, kReviewUnsafe = 5;
 const char* const kEraNote =
     "What each file's code is written for, read from the code: `UE 5.4+` uses DoubleFloat names, `UE 5.0-5.3` tile/offset names, "
     "`UE4` is Unreal code with neither (code written for UE4, or code that never needed a large-world type); `HLSL` and `GLSL` "
-    "are files outside Unreal.";
+    "are files outside Unreal; `C++ host` is the host code `--host` names (lwcport host).";
+const char* const kHostEra = "C++ host";
 
 namespace {
 
@@ -177,6 +178,16 @@ nlohmann::ordered_json report_json(const MigrationReport& r) {
   json history = json::array();
   for (const HistoryPoint& h : r.history)
     history.push_back({{"commit", h.commit}, {"date", h.date}, {"subject", h.subject}, {"findings", h.total}, {"markers", h.markers}, {"by_rule", h.by_rule}});
+  json host = nullptr;
+  if (r.host) {
+    json pairs = json::array();
+    for (const HostPair& p : r.host_pairs)
+      pairs.push_back({{"where", p.where}, {"rule", p.rule}, {"parameter", p.parameter}, {"port", p.port}, {"shader_files", p.shader_files}});
+    size_t host_files = 0, host_findings = 0;
+    for (const FileEntry& f : r.files)
+      if (f.era == kHostEra) ++host_files, host_findings += f.findings.size();
+    host = {{"files", host_files}, {"findings", host_findings}, {"pairs", pairs}};
+  }
   return {{"version", 1},
           {"tool", {{"name", "lwcport"}, {"version", LWCPORT_VERSION}}},
           {"scene", r.scene},
@@ -188,7 +199,8 @@ nlohmann::ordered_json report_json(const MigrationReport& r) {
           {"findings", findings},
           {"scenes", scenes},
           {"history", history},
-          {"verification", r.verification}};
+          {"verification", r.verification},
+          {"host", host}};
 }
 
 namespace {
@@ -219,6 +231,10 @@ std::string table(const std::vector<std::string>& head, const std::vector<std::v
   out += "\n";
   for (const auto& row : rows) out += line(row);
   return out + "\n";
+}
+
+std::string port_text(const std::string& port) {
+  return port == "translated-matrix" ? "a translated-world matrix" : port == "translated-position" ? "a translated-world position" : port;
 }
 
 std::string num(const nlohmann::ordered_json& v) { return v.is_number_float() ? fmt::format("{:g}", v.get<double>()) : v.dump(); }
@@ -274,6 +290,20 @@ std::string report_markdown(const nlohmann::ordered_json& j) {
     out += fmt::format("## Not needed at scene `{}` ({})\n\nThe scene's numbers show float32 is precise enough at these sites: "
                        "they are reported as notes and cost nothing.\n\n", scene, rows.size()) +
            table({"where", "rule", "finding"}, rows);
+  if (j["host"].is_object()) {
+    const auto& h = j["host"];
+    rows.clear();
+    for (const auto& p : h["pairs"]) {
+      std::string files;
+      for (const auto& f : p["shader_files"]) files += (files.empty() ? "`" : ", `") + f.get<std::string>() + "`";
+      rows.push_back({p["where"], "`" + p["parameter"].get<std::string>() + "`", port_text(p["port"]), files.empty() ? "none found" : files});
+    }
+    out += fmt::format("## Host code\n\n`lwcport host`: {} finding(s) in {} C++ file(s) (era `{}` above). A translated-world port changes "
+                       "both sides at once: each host change below and the shaders that read what it uploads.\n\n",
+                       num(h["findings"]), num(h["files"]), kHostEra);
+    out += rows.empty() ? "No host change feeds a shader parameter.\n\n"
+                        : table({"host change", "shader parameter", "the shaders must read it as", "shader files that read it"}, rows);
+  }
   rows.clear();
   for (const auto& h : j["history"])
     rows.push_back({"`" + h["commit"].get<std::string>().substr(0, 10) + "`", h["date"], num(h["findings"]), num(h["markers"]), h["subject"]});

@@ -41,6 +41,16 @@ struct HistoryPoint {
   size_t total = 0, markers = 0;
 };
 
+// A host change and the shader side it needs: the GPU member a host finding stores into, what the
+// port makes it (a translated-world position or matrix), and the shader files that read it.
+struct HostPair {
+  std::string where;  // path:line of the host finding
+  std::string rule;
+  std::string parameter;
+  std::string port;  // "translated-position", "translated-matrix"
+  std::vector<std::string> shader_files;
+};
+
 struct MigrationReport {
   std::string scene = "default";  // the profile the findings' fixes were planned for
   std::vector<FileEntry> files;   // sorted by path
@@ -48,6 +58,8 @@ struct MigrationReport {
   std::vector<SceneCost> scenes;      // one per bundled or given profile
   std::vector<HistoryPoint> history;  // oldest first; empty without --history / --since
   nlohmann::json verification;        // --verify: `lwcport verify --format json`'s functions; null without
+  bool host = false;                  // --host: C++ host code was analysed (its files have the era "C++ host")
+  std::vector<HostPair> host_pairs;
 };
 
 // Minutes one finding costs by this estimate: none when the scene does not need it, one to review
@@ -60,6 +72,8 @@ SceneCost scene_cost(const std::string& name, const std::vector<FileEntry>& file
 
 // What the era column means, for both written forms.
 extern const char* const kEraNote;
+// The era of the host code's files.
+extern const char* const kHostEra;
 
 // report.json (docs/report.md), and report.md and report.html written from it: the same data in
 // three forms.

@@ -27,6 +27,7 @@ class NarrowedWorldMatrix : public Check {
               {"value", up->value.source}, {"sink", up->sink}, {"field", up->field.empty() ? "the uploaded matrix" : "`" + up->field + "`"}};
     Finding* finding = out_.report(rule_, sm, lang, up->narrowing->getSourceRange(), vars);
     if (!finding) return;
+    if (!up->field.empty()) finding->facts = {{"shader-parameter", up->field}, {"port", "translated-matrix"}};
     std::string preview = preview_translation(up->narrowing, *match.Context, tables_);
     if (preview.empty()) {
       finding->withheld.push_back("translated: no view in scope (a parameter or local of a view type, rules/host-world.json \"views\")");

@@ -25,6 +25,7 @@ class NarrowedWorldUpload : public Check {
               {"value", up->value.source}, {"sink", up->sink}, {"field", up->field.empty() ? "the uploaded value" : "`" + up->field + "`"}};
     Finding* finding = out_.report(rule_, sm, lang, up->narrowing->getSourceRange(), vars);
     if (!finding) return;
+    if (!up->field.empty()) finding->facts = {{"shader-parameter", up->field}, {"port", "translated-position"}};
     // Translated world: the camera subtracted in double, before the rounding.
     std::string preview = preview_translation(up->narrowing, *match.Context, tables_);
     if (preview.empty()) {
