@@ -1511,7 +1511,9 @@ int run_host_program(const std::vector<std::string>& args, std::ostream& out, st
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 2;
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  err << fmt::format("lwcport: error: {} ended by signal {} ({})\n", program.string(), WTERMSIG(status), strsignal(WTERMSIG(status)));
+  return 2;
 }
 
 }  // namespace

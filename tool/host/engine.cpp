@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "host/check.h"
+#include "host/checks/narrowing.h"
 #include "host/host.h"
 #include "project/files.h"
 #include "rules/analyze.h"
@@ -237,12 +238,15 @@ HostResult analyze_host(const HostOptions& options) {
       for (const tooling::CompileCommand& c : db->getCompileCommands(sources[i])) out.command = c.CommandLine;
       std::vector<std::unique_ptr<host::Check>> checks;
       ast_matchers::MatchFinder finder;
+      host::NarrowingFan narrowings;
       for (const RuleInfo& rule : all_rules()) {
         auto factory = host::check_factories().find(rule.id);
         if (!rule.host || !options.enabled(rule.id) || factory == host::check_factories().end()) continue;
         checks.push_back(factory->second(rule, tables, out));
         checks.back()->register_matchers(finder);
+        if (checks.back()->reads_narrowings()) narrowings.checks.push_back(checks.back().get());
       }
+      if (!narrowings.checks.empty()) host::register_narrowings(finder, &narrowings);
       tooling::ClangTool tool(*db, {sources[i]});
       tool.appendArgumentsAdjuster(tooling::getInsertArgumentAdjuster("-resource-dir=" LWCPORT_CLANG_RESOURCE_DIR,
                                                                       tooling::ArgumentInsertPosition::END));

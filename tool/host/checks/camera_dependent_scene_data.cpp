@@ -13,7 +13,8 @@ namespace {
 class CameraDependentSceneData : public Check {
  public:
   using Check::Check;
-  void register_matchers(ast_matchers::MatchFinder& finder) override { register_narrowings(finder, this); }
+  void register_matchers(ast_matchers::MatchFinder&) override {}
+  bool reads_narrowings() const override { return true; }
 
   void run(const ast_matchers::MatchFinder::MatchResult& match) override {
     std::optional<Upload> up = find_upload(match, tables_, Kind::model_view);

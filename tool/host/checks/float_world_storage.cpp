@@ -12,7 +12,8 @@ namespace {
 class FloatWorldStorage : public Check {
  public:
   using Check::Check;
-  void register_matchers(ast_matchers::MatchFinder& finder) override { register_narrowings(finder, this); }
+  void register_matchers(ast_matchers::MatchFinder&) override {}
+  bool reads_narrowings() const override { return true; }
 
   void run(const ast_matchers::MatchFinder::MatchResult& match) override {
     for (Kind kind : {Kind::position, Kind::matrix}) {

@@ -176,11 +176,12 @@ std::optional<Upload> find_upload(const MatchFinder::MatchResult& match, const T
   const Expr* converted = narrowing;
   if (auto* cast = dyn_cast<CastExpr>(narrowing)) converted = cast->getSubExpr()->IgnoreImplicit();
   const Expr* value = converted;
-  if (auto* call = dyn_cast<CallExpr>(converted)) {
+  if (auto* call = dyn_cast<CallExpr>(converted); call && converted == narrowing) {
     const FunctionDecl* callee = call->getDirectCallee();
     // Same shape in and out (a vector to a vector, not a length), and a name that does not say
     // it makes the value relative (`ToCameraRelative(P)`).
-    if (!callee || !callee->getIdentifier() || tables.position_not.match(callee->getName().str()) ||
+    if (!callee || !callee->getIdentifier() || call->getNumArgs() != 1 || isa<CXXMemberCallExpr, CXXOperatorCallExpr>(call) ||
+        tables.position_not.match(callee->getName().str()) ||
         call->getType()->isBuiltinType() != call->getArg(0)->getType()->isBuiltinType())
       return std::nullopt;
     value = call->getArg(0);

@@ -1,6 +1,7 @@
 #pragma once
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <clang/ASTMatchers/ASTMatchFinder.h>
 
@@ -23,6 +24,14 @@ struct Upload {
 // The matchers of every narrowing: conversions to a float vector or matrix type, casts to float,
 // implicit double-to-float conversions. Each match is bound to "narrowing".
 void register_narrowings(clang::ast_matchers::MatchFinder& finder, clang::ast_matchers::MatchFinder::MatchCallback* callback);
+
+// Hands each narrowing match to every check that reads them (Check::reads_narrowings).
+struct NarrowingFan : clang::ast_matchers::MatchFinder::MatchCallback {
+  std::vector<clang::ast_matchers::MatchFinder::MatchCallback*> checks;
+  void run(const clang::ast_matchers::MatchFinder::MatchResult& match) override {
+    for (auto* check : checks) check->run(match);
+  }
+};
 
 // The upload a match is, when its value is a world value of `kind` and it reaches a GPU sink or
 // a member of CPU-side data (`gpu` says which).

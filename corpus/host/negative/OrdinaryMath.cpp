@@ -1,0 +1,42 @@
+// Host code lwcport must leave alone: float math that never held a world position, directions,
+// local-space data, templates, lambdas, and uploads that are already camera-relative or split.
+#include <glm/glm.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "gl_mini.h"
+
+double Compute();
+float Scale(double factor) { return (float)factor; }
+
+struct MaterialConstants {
+  glm::vec3 baseColor;
+  float roughness;
+  glm::vec3 lightDirection;
+  glm::vec3 eyeHigh;
+  glm::vec3 eyeLow;
+};
+
+template <typename T>
+T Lerp(T a, T b, double t) { return T(a + (b - a) * t); }
+
+void FillMaterial(MaterialConstants& constants, const glm::dvec3& sunDirection, double roughness, const glm::dvec3& eye)
+{
+  constants.roughness = (float)Compute();
+  constants.roughness = static_cast<float>(roughness);
+  constants.lightDirection = glm::vec3(glm::normalize(sunDirection));
+  constants.baseColor = glm::vec3(Lerp(glm::dvec3(1.0), glm::dvec3(0.5), 0.25));
+  // The eye as a high/low pair, split in double: right.
+  glm::vec3 eyeHi = glm::vec3(eye);
+  constants.eyeHigh = eyeHi;
+  constants.eyeLow = glm::vec3(eye - glm::dvec3(eyeHi));
+  auto upload = [&](GLint at, const glm::dvec3& offsetFromEye) { glUniform3fv(at, 1, glm::value_ptr(glm::vec3(offsetFromEye))); };
+  upload(0, glm::dvec3(1.0, 2.0, 3.0));
+}
+
+void DrawLocal(const glm::dmat4& localMatrix, const glm::dvec3& localPosition, GLint at)
+{
+  glUniformMatrix4fv(at, 1, GL_FALSE, glm::value_ptr(glm::mat4(localMatrix)));
+  glUniform3f(at, (float)localPosition.x, (float)localPosition.y, (float)localPosition.z);
+  float length = (float)glm::length(localPosition);
+  glUniform3f(at, length, Scale(2.0), 0.0f);
+}
