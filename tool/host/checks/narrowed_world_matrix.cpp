@@ -23,17 +23,10 @@ class NarrowedWorldMatrix : public Check {
     if (!up || !up->gpu) return;
     const SourceManager& sm = *match.SourceManager;
     const LangOptions& lang = match.Context->getLangOpts();
-    World world(tables_, *match.Context);
-    Vars vars{{"narrowing", world.text(up->narrowing->getSourceRange())}, {"type", up->narrowing_type},
-              {"value", up->value.source}, {"sink", up->sink}, {"field", up->field.empty() ? "the uploaded matrix" : "`" + up->field + "`"}};
-    Finding* finding = out_.report(rule_, sm, lang, up->narrowing->getSourceRange(), vars);
-    if (!finding) return;
-    if (!up->field.empty()) finding->facts = {{"shader-parameter", up->field}, {"port", "translated-matrix"}};
-    std::string preview = preview_translation(up->narrowing, *match.Context, tables_);
-    if (preview.empty()) {
-      finding->withheld.push_back("translated: no view in scope (a parameter or local of a view type, rules/host-world.json \"views\")");
-      return;
-    }
+    Vars vars;
+    std::string preview;
+    Finding* finding = report_upload(*up, match, rule_, out_, tables_, "translated-matrix", vars, preview);
+    if (!finding || preview.empty()) return;
     // Row vectors: M.ConcatTranslation(T) is M, then a move by T (local to translated world);
     // FTranslationMatrix(-T) * M moves back by T first (translated world to view or clip).
     const Expr* value = strip(up->value_expr);
@@ -49,7 +42,6 @@ class NarrowedWorldMatrix : public Check {
       if (!postfix) changes.push_back({CharSourceRange::getCharRange(begin, begin), "("});
       changes.push_back({CharSourceRange::getCharRange(end, end), (postfix ? "" : ")") + std::string(".ConcatTranslation(") + preview + ")"});
     }
-    vars["preview"] = preview;
     out_.fix(*finding, rule_, up->value.from_world ? "translated-from-world" : "translated", vars, changes, sm, lang);
   }
 };

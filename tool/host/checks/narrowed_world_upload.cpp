@@ -21,18 +21,11 @@ class NarrowedWorldUpload : public Check {
     if (!up || !up->gpu) return;
     const SourceManager& sm = *match.SourceManager;
     const LangOptions& lang = match.Context->getLangOpts();
-    World world(tables_, *match.Context);
-    Vars vars{{"narrowing", world.text(up->narrowing->getSourceRange())}, {"type", up->narrowing_type},
-              {"value", up->value.source}, {"sink", up->sink}, {"field", up->field.empty() ? "the uploaded value" : "`" + up->field + "`"}};
-    Finding* finding = out_.report(rule_, sm, lang, up->narrowing->getSourceRange(), vars);
-    if (!finding) return;
-    if (!up->field.empty()) finding->facts = {{"shader-parameter", up->field}, {"port", "translated-position"}};
+    Vars vars;
+    std::string preview;
+    Finding* finding = report_upload(*up, match, rule_, out_, tables_, "translated-position", vars, preview);
+    if (!finding || preview.empty()) return;
     // Translated world: the camera subtracted in double, before the rounding.
-    std::string preview = preview_translation(up->narrowing, *match.Context, tables_);
-    if (preview.empty()) {
-      finding->withheld.push_back("translated: no view in scope (a parameter or local of a view type, rules/host-world.json \"views\")");
-      return;
-    }
     const Expr* value = strip(up->value_expr);
     // One component (`Location.Z`) takes the same component of the offset.
     if (up->value_expr->getType()->isBuiltinType()) {
@@ -42,6 +35,7 @@ class NarrowedWorldUpload : public Check {
         return;
       }
       preview += "." + component->getMemberDecl()->getNameAsString();
+      vars["preview"] = preview;
     }
     bool wrap = isa<ConditionalOperator>(value) || (isa<BinaryOperator>(value) && !cast<BinaryOperator>(value)->isAdditiveOp() &&
                                                     !cast<BinaryOperator>(value)->isMultiplicativeOp());
@@ -50,7 +44,6 @@ class NarrowedWorldUpload : public Check {
     std::vector<Reporter::Change> changes;
     if (wrap) changes.push_back({CharSourceRange::getCharRange(sm.getExpansionLoc(range.getBegin()), sm.getExpansionLoc(range.getBegin())), "("});
     changes.push_back({CharSourceRange::getCharRange(end, end), (wrap ? ")" : "") + std::string(" + ") + preview});
-    vars["preview"] = preview;
     out_.fix(*finding, rule_, "translated", vars, changes, sm, lang);
   }
 };

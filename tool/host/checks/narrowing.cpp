@@ -204,6 +204,20 @@ std::optional<Upload> find_upload(const MatchFinder::MatchResult& match, const T
   return Upload{narrowing, value, what, World::type_name(narrowing->getType()), sink->what, sink->field, sink->gpu};
 }
 
+Finding* report_upload(const Upload& up, const MatchFinder::MatchResult& match, const RuleInfo& rule, Reporter& out, const Tables& tables,
+                       const std::string& port, Vars& vars, std::string& preview) {
+  World world(tables, *match.Context);
+  vars = {{"narrowing", world.text(up.narrowing->getSourceRange())}, {"type", up.narrowing_type}, {"value", up.value.source},
+          {"sink", up.sink}, {"field", up.field.empty() ? "the uploaded value" : "`" + up.field + "`"}};
+  Finding* finding = out.report(rule, *match.SourceManager, match.Context->getLangOpts(), up.narrowing->getSourceRange(), vars);
+  if (!finding) return nullptr;
+  if (!up.field.empty()) finding->facts = {{"shader-parameter", up.field}, {"port", port}};
+  preview = preview_translation(up.narrowing, *match.Context, tables);
+  if (preview.empty()) finding->withheld.push_back("translated: no view in scope (a parameter or local of a view type, rules/host-world.json \"views\")");
+  vars["preview"] = preview;
+  return finding;
+}
+
 std::string preview_translation(const Expr* e, ASTContext& context, const Tables& tables) {
   const FunctionDecl* function = nullptr;
   for (DynTypedNode node = DynTypedNode::create(*e); !function;) {

@@ -5,6 +5,7 @@
 
 #include <clang/ASTMatchers/ASTMatchFinder.h>
 
+#include "host/check.h"
 #include "host/world.h"
 
 namespace lwc::host {
@@ -36,6 +37,12 @@ struct NarrowingFan : clang::ast_matchers::MatchFinder::MatchCallback {
 // The upload a match is, when its value is a world value of `kind` and it reaches a GPU sink or
 // a member of CPU-side data (`gpu` says which).
 std::optional<Upload> find_upload(const clang::ast_matchers::MatchFinder::MatchResult& match, const Tables& tables, Kind kind);
+
+// An upload reported as `rule`'s finding (message variables narrowing, type, value, sink, field;
+// facts shader-parameter and `port`), and the view's PreViewTranslation its translated fix adds,
+// in `preview` ("" after the finding says why there is none). Null when not in a reported file.
+Finding* report_upload(const Upload& up, const clang::ast_matchers::MatchFinder::MatchResult& match, const RuleInfo& rule, Reporter& out,
+                       const Tables& tables, const std::string& port, Vars& vars, std::string& preview);
 
 // How the function holding `e` reaches the view's PreViewTranslation (a parameter or local of a
 // view type), e.g. `View.ViewMatrices.GetPreViewTranslation()`; "" when no view is in scope.
