@@ -76,12 +76,16 @@ Tables Tables::load(const nlohmann::json& additions) {
   t.gpu_structs = n("gpu-struct-names");
   t.upload_calls = n("upload-calls");
   t.address_calls = n("address-calls");
+  t.upload_constructors = n("upload-constructors");
   t.high_names = n("splits/high-names");
   t.low_names = n("splits/low-names");
   for (const nlohmann::json* root : {&b, &additions}) {
     if (root->contains("world-positions") && root->at("world-positions").contains("members-of"))
       for (const auto& m : root->at("world-positions").at("members-of"))
         t.position_members.emplace_back(m.at("member").get<std::string>(), alternatives(m.at("type").get<std::string>()));
+    if (root->contains("upload-methods"))
+      for (const auto& m : root->at("upload-methods"))
+        t.upload_methods.emplace_back(alternatives(m.at("method").get<std::string>()), alternatives(m.at("class").get<std::string>()));
     if (root->contains("views"))
       for (const auto& v : root->at("views"))
         t.views.emplace_back(alternatives(v.at("type").get<std::string>()), v.at("preview-translation").get<std::string>());

@@ -24,6 +24,8 @@ struct Tables {
   Names offset_calls, offset_names;
   Names double_scalars, float_scalars, matrix_types;
   Names gpu_macros, gpu_structs, upload_calls, address_calls;
+  std::vector<std::pair<Names, Names>> upload_methods;  // method names, and the classes they upload through (osg::Uniform::set)
+  Names upload_constructors;  // classes whose construction uploads its arguments (`new osg::Uniform(name, value)`)
   Names high_names, low_names;  // the two halves of a high/low split
   std::vector<std::pair<Names, std::string>> views;  // view types, and how a view of one gives PreViewTranslation
 

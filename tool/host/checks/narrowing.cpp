@@ -17,6 +17,11 @@ void register_narrowings(MatchFinder& finder, MatchFinder::MatchCallback* callba
   finder.addMatcher(implicitCastExpr(project, hasCastKind(CK_FloatingCast)).bind("narrowing"), callback);
   // A conversion helper: a free function from a double vector or matrix to its float twin (`ToFloat3(v)`).
   finder.addMatcher(callExpr(project, unless(cxxOperatorCallExpr()), unless(cxxMemberCallExpr()), argumentCountIs(1)).bind("narrowing"), callback);
+  // A conversion operator (OpenSceneGraph's `Vec3d::operator Vec3f()`, implicit or in `osg::Vec3f(v)`).
+  finder.addMatcher(cxxMemberCallExpr(project, callee(cxxConversionDecl()), unless(hasParent(explicitCastExpr())),
+                                      unless(hasParent(implicitCastExpr(hasParent(explicitCastExpr())))))
+                        .bind("narrowing"),
+                    callback);
 }
 
 namespace {
@@ -110,6 +115,11 @@ std::optional<Sink> sink_of(const Expr* e, ASTContext& context, const Tables& ta
       if (auto* var = dyn_cast_or_null<VarDecl>(decl)) return through_local(var, e, context, tables, hops);
       return std::nullopt;
     }
+    if (auto* construct = dyn_cast<CXXConstructExpr>(parent)) {
+      const CXXRecordDecl* record = construct->getConstructor()->getParent();
+      if (record->getIdentifier() && tables.upload_constructors.match(record->getName().str()))
+        return Sink{"the upload `" + record->getNameAsString() + "(...)`", ""};
+    }
     if (isa<ParenExpr, ImplicitCastExpr, MaterializeTemporaryExpr, CXXBindTemporaryExpr, ExprWithCleanups, CXXFunctionalCastExpr,
             CXXConstructExpr, ExplicitCastExpr>(parent)) {
       current = parent;
@@ -140,6 +150,10 @@ std::optional<Sink> sink_of(const Expr* e, ASTContext& context, const Tables& ta
       const FunctionDecl* callee = call->getDirectCallee();
       std::string name = callee && callee->getIdentifier() ? callee->getName().str() : "";
       if (name.empty()) return std::nullopt;
+      if (auto* method = dyn_cast<CXXMethodDecl>(callee); method && method->getParent()->getIdentifier())
+        for (const auto& [methods, classes] : tables.upload_methods)
+          if (methods.match(name) && classes.match(method->getParent()->getName().str()))
+            return Sink{"the upload `" + method->getParent()->getNameAsString() + "::" + name + "`", ""};
       if (tables.upload_calls.match(name)) return Sink{"the upload call `" + name + "`", ""};
       if (tables.address_calls.match(name)) {
         current = parent;
@@ -176,7 +190,9 @@ std::optional<Upload> find_upload(const MatchFinder::MatchResult& match, const T
   const Expr* converted = narrowing;
   if (auto* cast = dyn_cast<CastExpr>(narrowing)) converted = cast->getSubExpr()->IgnoreImplicit();
   const Expr* value = converted;
-  if (auto* call = dyn_cast<CallExpr>(converted); call && converted == narrowing) {
+  if (auto* conversion = dyn_cast<CXXMemberCallExpr>(converted); conversion && isa_and_nonnull<CXXConversionDecl>(conversion->getMethodDecl())) {
+    value = conversion->getImplicitObjectArgument();
+  } else if (auto* call = dyn_cast<CallExpr>(converted); call && converted == narrowing) {
     const FunctionDecl* callee = call->getDirectCallee();
     // Same shape in and out (a vector to a vector, not a length), and a name that does not say
     // it makes the value relative (`ToCameraRelative(P)`).

@@ -1,0 +1,11 @@
+// Uniforms set from double positions in an OpenSceneGraph-style globe renderer.
+#include "osg_mini.h"
+
+void UpdateEye(osg::Uniform* eyeUniform, osg::StateSet* stateSet, const osg::Vec3d& eye, const osg::Vec3d& center)
+{
+  eyeUniform->set(osg::Vec3f(eye));
+  eyeUniform->set(eye);
+  stateSet->addUniform(new osg::Uniform("oe_center", center));
+  // Right: the difference of two positions, in double.
+  eyeUniform->set(osg::Vec3f(eye - center));
+}
