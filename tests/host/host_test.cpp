@@ -196,6 +196,35 @@ TEST(HostCli, RunsThroughLwcportWithLintsOutputsAndReportsWhatClangCannotCompile
   EXPECT_NE(broken.out.find("broken.cpp:4:20: warning: `FVector3f(A->GetActorLocation())`"), std::string::npos) << broken.out;
 }
 
+// Bad input: each problem is reported on its file with the run going on, nothing crashes.
+TEST(HostCli, BadInputIsReportedOnItsFileAndTheRunGoesOn) {
+  std::string dir = test::scratch("host-bad");
+  test::write(dir + "/empty.cpp", "");
+  test::write(dir + "/binary.cpp", std::string("\x7f" "ELF\0\0\x01\x02", 8) + std::string(64, '\0'));
+  test::write(dir + "/garbage.cpp", "}}}{{{ int ( ; #include <no/such/header.h>\nvoid f() { return 1 +; }\n");
+  std::string deep = "#include \"ue_mini.h\"\nvoid F(FParameters& P, const AActor* A)\n{\n\tP.Height = ";
+  for (int i = 0; i < 200; ++i) deep += "(";
+  deep += "A->GetActorLocation().Z";
+  for (int i = 0; i < 200; ++i) deep += " + 1)";
+  deep += ";\n}\n";
+  test::write(dir + "/deep.cpp", deep);
+  test::write(dir + "/good.cpp", "#include \"ue_mini.h\"\nvoid F(FParameters& P, const AActor* A)\n{\n\tP.ActorPosition = FVector3f(A->GetActorLocation());\n}\n");
+  std::string command = "cd " + dir + " && " + test::binary() + " host . missing.cpp --format json -- -std=c++20 " + include_flag();
+  test::Run r = test::run(command);
+  EXPECT_EQ(r.exit_code, 2) << r.out;  // a path that does not exist fails the run, after the report
+  EXPECT_NE(test::run(command + " 2>&1 >/dev/null").out.find("lwcport: error: missing.cpp: no such file or folder"), std::string::npos);
+  nlohmann::json j = nlohmann::json::parse(r.out);
+  std::map<std::string, std::vector<std::string>> rules;
+  for (const auto& f : j.at("findings")) rules[f.at("path")].push_back(f.at("rule"));
+  EXPECT_EQ(rules["garbage.cpp"], std::vector<std::string>{"lwc-input"});
+  for (const auto& f : j.at("findings"))  // the first error, named by the path the user gave
+    if (f.at("path") == "garbage.cpp") EXPECT_NE(f.at("message").get<std::string>().find(": garbage.cpp:1:1: "), std::string::npos) << f.dump();
+  EXPECT_EQ(rules["binary.cpp"], std::vector<std::string>{"lwc-input"});
+  EXPECT_EQ(rules["good.cpp"], std::vector<std::string>{"lwc-host-narrowed-world-upload"});
+  EXPECT_EQ(rules.count("deep.cpp"), 0u);  // parsed, and followed only to the world model's depth: no finding, no crash
+  EXPECT_EQ(rules.count("empty.cpp"), 0u);
+}
+
 // A suppression comment silences a host finding like a shader one; a stale one is reported.
 TEST(HostCli, SuppressionsAndBaselinesWorkAsForShaders) {
   std::string dir = test::scratch("host-suppress");

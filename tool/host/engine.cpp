@@ -101,6 +101,20 @@ std::optional<std::pair<std::string, Span>> Reporter::place(const SourceManager&
 
 namespace {
 
+bool is_source(const fs::path& p) {
+  static const std::set<std::string> kSources = {".cpp", ".cc", ".cxx", ".c++", ".C", ".mm"};
+  return kSources.count(p.extension().string()) > 0;
+}
+
+bool under(const std::string& path, const std::string& folder) {
+  return path.size() > folder.size() && path.compare(0, folder.size(), folder) == 0 && (folder.back() == '/' || path[folder.size()] == '/');
+}
+
+std::string shown(const std::string& absolute, const fs::path& cwd) {
+  if (under(absolute, cwd.string())) return fs::path(absolute).lexically_relative(cwd).string();
+  return absolute;
+}
+
 // Keeps Clang's diagnostics: the first error of a unit becomes that file's input finding.
 class Diagnostics : public DiagnosticConsumer {
  public:
@@ -112,7 +126,7 @@ class Diagnostics : public DiagnosticConsumer {
     first = message.str().str();
     if (info.hasSourceManager() && info.getLocation().isValid()) {
       PresumedLoc at = info.getSourceManager().getPresumedLoc(info.getLocation());
-      if (at.isValid()) first = fmt::format("{}:{}:{}: {}", at.getFilename(), at.getLine(), at.getColumn(), first);
+      if (at.isValid()) first = fmt::format("{}:{}:{}: {}", shown(fs::absolute(at.getFilename()).lexically_normal().string(), fs::current_path()), at.getLine(), at.getColumn(), first);
     }
   }
   std::string first;
@@ -152,20 +166,6 @@ class ActionFactory : public tooling::FrontendActionFactory {
   ast_matchers::MatchFinder& finder_;
   Reporter& out_;
 };
-
-bool is_source(const fs::path& p) {
-  static const std::set<std::string> kSources = {".cpp", ".cc", ".cxx", ".c++", ".C", ".mm"};
-  return kSources.count(p.extension().string()) > 0;
-}
-
-bool under(const std::string& path, const std::string& folder) {
-  return path.size() > folder.size() && path.compare(0, folder.size(), folder) == 0 && (folder.back() == '/' || path[folder.size()] == '/');
-}
-
-std::string shown(const std::string& absolute, const fs::path& cwd) {
-  if (under(absolute, cwd.string())) return fs::path(absolute).lexically_relative(cwd).string();
-  return absolute;
-}
 
 }  // namespace
 }  // namespace host
