@@ -156,6 +156,15 @@ TEST(HostCorpus, FindingsAndFixedFilesAreTheGoldenOnesAndCompile) {
     EXPECT_EQ(got, test::read(path + ".expected.json")) << path;
     EXPECT_EQ(fixed, test::read(path + ".fixed")) << path;
     EXPECT_EQ(compile_errors(path + ".fixed"), "") << path << ".fixed";
+    // The fixed file keeps only the findings that had no fix: no fix is flagged again.
+    size_t without_fix = 0;
+    for (const Finding& f : file->findings) without_fix += f.fixes.empty();
+    std::string copy = test::scratch("host-corpus-fixed") + "/" + e.path().filename().string();
+    test::write(copy, fixed);
+    const HostFile* fixed_file = nullptr;
+    HostResult after = analyze_file(copy);
+    fixed_file = file_named(after, copy);
+    EXPECT_EQ(fixed_file ? fixed_file->findings.size() : 0u, without_fix) << path;
   }
   EXPECT_GE(files, 2);
 }
@@ -223,6 +232,23 @@ TEST(HostCli, BadInputIsReportedOnItsFileAndTheRunGoesOn) {
   EXPECT_EQ(rules["good.cpp"], std::vector<std::string>{"lwc-host-narrowed-world-upload"});
   EXPECT_EQ(rules.count("deep.cpp"), 0u);  // parsed, and followed only to the world model's depth: no finding, no crash
   EXPECT_EQ(rules.count("empty.cpp"), 0u);
+}
+
+// --fix writes what --diff shows: the safe fixes, and with --unsafe-fixes the others; then reports
+// what remains in the fixed files.
+TEST(HostCli, FixWritesTheFixedFileAndReportsWhatRemains) {
+  std::string dir = test::scratch("host-fix");
+  std::string corpus = test::source_dir() + "/corpus/host/unreal/ActorParameters.cpp";
+  test::write(dir + "/a.cpp", test::read(corpus));
+  std::string host = "cd " + dir + " && " + test::binary() + " host a.cpp";
+  std::string flags = " -- -std=c++20 " + include_flag();
+  EXPECT_EQ(test::run(host + " --diff" + flags).out, "");  // every fix here is unsafe
+  EXPECT_EQ(test::run(host + " --diff --unsafe-fixes" + flags).exit_code, 1);
+  test::Run fixed = test::run(host + " --fix --unsafe-fixes --format json" + flags);
+  EXPECT_EQ(test::read(dir + "/a.cpp"), test::read(corpus + ".fixed"));
+  size_t remaining = nlohmann::json::parse(fixed.out).at("findings").size();
+  EXPECT_EQ(remaining, 1u) << fixed.out;  // the one without a view in scope
+  EXPECT_EQ(compile_errors(dir + "/a.cpp"), "");
 }
 
 // A suppression comment silences a host finding like a shader one; a stale one is reported.

@@ -195,6 +195,9 @@ Value World::classify(const Expr* e, int depth) const {
       // A product keeps the world translation of its world matrix (model * view is camera-relative:
       // the translations cancel in double).
       if (o == OO_Star) {
+        // FTranslationMatrix(-PreViewTranslation) * WorldToClip: translated already.
+        if ((a.kind == Kind::camera_offset && b.kind == Kind::matrix) || (a.kind == Kind::matrix && b.kind == Kind::camera_offset))
+          return {Kind::relative, source};
         if (a.kind == Kind::matrix && b.kind == Kind::matrix && a.from_world != b.from_world) return {Kind::model_view, source};
         if (a.kind == Kind::model_view || b.kind == Kind::model_view) return {Kind::model_view, source};
         Value product = a.kind == Kind::matrix ? a : b.kind == Kind::matrix ? b : Value{};
@@ -208,6 +211,7 @@ Value World::classify(const Expr* e, int depth) const {
       if (b.kind == Kind::position && o == OO_Plus) return {Kind::position, source};
       return {};
     }
+    if (o == OO_Minus && op->getNumArgs() == 1) return classify(op->getArg(0), depth + 1);  // -PreViewTranslation
     if (o == OO_Subscript && op->getNumArgs() == 2) {
       Value base = classify(op->getArg(0), depth + 1);
       return base.kind == Kind::position ? Value{Kind::position, source} : Value{};
@@ -228,6 +232,7 @@ Value World::classify(const Expr* e, int depth) const {
     if (a.kind == Kind::position || (b.kind == Kind::position && bin->getOpcode() == BO_Add)) return {Kind::position, source};
     return {};
   }
+  if (auto* unary = dyn_cast<UnaryOperator>(e); unary && unary->getOpcode() == UO_Minus) return classify(unary->getSubExpr(), depth + 1);
   if (auto* cond = dyn_cast<ConditionalOperator>(e)) {
     Value a = classify(cond->getTrueExpr(), depth + 1);
     return a.kind != Kind::none ? a : classify(cond->getFalseExpr(), depth + 1);
@@ -255,8 +260,8 @@ Value World::classify(const Expr* e, int depth) const {
     const ValueDecl* decl = member->getMemberDecl();
     std::string name = decl->getIdentifier() ? decl->getName().str() : "";
     Value base = classify(member->getBase(), depth + 1);
-    // A component of a position is a position (its X is as large as it is).
-    if (base.kind == Kind::position && !isa<CXXMethodDecl>(decl)) return {Kind::position, source};
+    // A component of a position is a position (its X is as large as it is); of the offset, the offset.
+    if ((base.kind == Kind::position || base.kind == Kind::camera_offset) && !isa<CXXMethodDecl>(decl)) return {base.kind, source};
     std::string base_type = type_name(member->getBase()->getType());
     for (const auto& [m, types] : tables_.position_members)
       if (m == name && types.match(base_type)) return {Kind::position, source};
