@@ -118,6 +118,8 @@ std::string shown(const std::string& absolute, const fs::path& cwd) {
 // Keeps Clang's diagnostics: the first error of a unit becomes that file's input finding.
 class Diagnostics : public DiagnosticConsumer {
  public:
+  // `cwd`: where lwcport runs (Clang works in each command's directory meanwhile).
+  explicit Diagnostics(fs::path cwd) : cwd_(std::move(cwd)) {}
   void HandleDiagnostic(DiagnosticsEngine::Level level, const Diagnostic& info) override {
     DiagnosticConsumer::HandleDiagnostic(level, info);
     if (level < DiagnosticsEngine::Error || !first.empty()) return;
@@ -126,10 +128,17 @@ class Diagnostics : public DiagnosticConsumer {
     first = message.str().str();
     if (info.hasSourceManager() && info.getLocation().isValid()) {
       PresumedLoc at = info.getSourceManager().getPresumedLoc(info.getLocation());
-      if (at.isValid()) first = fmt::format("{}:{}:{}: {}", shown(fs::absolute(at.getFilename()).lexically_normal().string(), fs::current_path()), at.getLine(), at.getColumn(), first);
+      if (at.isValid()) {
+        fs::path file = at.getFilename();
+        if (file.is_relative()) file = fs::current_path() / file;
+        first = fmt::format("{}:{}:{}: {}", shown(file.lexically_normal().string(), cwd_), at.getLine(), at.getColumn(), first);
+      }
     }
   }
   std::string first;
+
+ private:
+  fs::path cwd_;
 };
 
 class CommentCollector : public CommentHandler {
@@ -254,7 +263,7 @@ HostResult analyze_host(const HostOptions& options) {
       // "Error while processing".
       tool.appendArgumentsAdjuster(tooling::getInsertArgumentAdjuster("-fno-caret-diagnostics", tooling::ArgumentInsertPosition::END));
       tool.setPrintErrorMessage(false);
-      host::Diagnostics diagnostics;
+      host::Diagnostics diagnostics(cwd);
       tool.setDiagnosticConsumer(&diagnostics);
       host::ActionFactory factory(finder, out);
       int status = tool.run(&factory);
