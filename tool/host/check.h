@@ -59,10 +59,6 @@ class Check : public clang::ast_matchers::MatchFinder::MatchCallback {
  public:
   Check(const RuleInfo& rule, const Tables& tables, Reporter& out) : rule_(rule), tables_(tables), out_(out) {}
   virtual void register_matchers(clang::ast_matchers::MatchFinder& finder) = 0;
-  // True for a check whose run() takes the narrowing matches (checks/narrowing.h): the engine
-  // registers those matchers once and hands each match to every such check, instead of each
-  // check registering its own copy (one traversal's matching instead of four).
-  virtual bool reads_narrowings() const { return false; }
 
  protected:
   const RuleInfo& rule_;

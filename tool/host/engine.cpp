@@ -247,13 +247,14 @@ HostResult analyze_host(const HostOptions& options) {
       for (const tooling::CompileCommand& c : db->getCompileCommands(sources[i])) out.command = c.CommandLine;
       std::vector<std::unique_ptr<host::Check>> checks;
       ast_matchers::MatchFinder finder;
-      host::NarrowingFan narrowings;
+      host::NarrowingFan narrowings;  // the checks that read uploads share one set of matchers
+      narrowings.tables = &tables;
       for (const RuleInfo& rule : all_rules()) {
         auto factory = host::check_factories().find(rule.id);
         if (!rule.host || !options.enabled(rule.id) || factory == host::check_factories().end()) continue;
         checks.push_back(factory->second(rule, tables, out));
         checks.back()->register_matchers(finder);
-        if (checks.back()->reads_narrowings()) narrowings.checks.push_back(checks.back().get());
+        if (auto* reads_uploads = dynamic_cast<host::UploadCheck*>(checks.back().get())) narrowings.checks.push_back(reads_uploads);
       }
       if (!narrowings.checks.empty()) host::register_narrowings(finder, &narrowings);
       tooling::ClangTool tool(*db, {sources[i]});

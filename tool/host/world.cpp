@@ -168,22 +168,20 @@ std::string World::text(SourceRange range) const {
 Value World::by_name(const NamedDecl* decl, QualType type, const Expr* e) const {
   if (!decl || !decl->getIdentifier()) return {};
   std::string name = decl->getName().str();
-  std::string source = text(e->getSourceRange());
-  if (tables_.offset_names.match(name)) return {Kind::camera_offset, source};
+  if (tables_.offset_names.match(name)) return {Kind::camera_offset, e};
   if (is_matrix_type(type)) {
     if (tables_.matrix_not.match(name)) return {};
-    if (tables_.matrix_names.match(name)) return {Kind::matrix, source};
-    if (tables_.from_world_names.match(name)) return {Kind::matrix, source, true};
+    if (tables_.matrix_names.match(name)) return {Kind::matrix, e};
+    if (tables_.from_world_names.match(name)) return {Kind::matrix, e, true};
     return {};
   }
-  if (tables_.position_names.match(name) && !tables_.position_not.match(name)) return {Kind::position, source};
+  if (tables_.position_names.match(name) && !tables_.position_not.match(name)) return {Kind::position, e};
   return {};
 }
 
 Value World::classify(const Expr* e, int depth) const {
   e = strip(e);
   if (!e || depth > 6) return {};
-  std::string source = text(e->getSourceRange());
   // A conversion to another vector or matrix type keeps what the value is (FVector(FVector3f), glm::dvec3(v)).
   if (auto* cast = dyn_cast<CXXFunctionalCastExpr>(e)) return classify(cast->getSubExpr(), depth + 1);
   if (auto* construct = dyn_cast<CXXConstructExpr>(e); construct && construct->getNumArgs() >= 1 && !isa<CXXTemporaryObjectExpr>(e))
@@ -197,24 +195,24 @@ Value World::classify(const Expr* e, int depth) const {
       if (o == OO_Star) {
         // FTranslationMatrix(-PreViewTranslation) * WorldToClip: translated already.
         if ((a.kind == Kind::camera_offset && b.kind == Kind::matrix) || (a.kind == Kind::matrix && b.kind == Kind::camera_offset))
-          return {Kind::relative, source};
-        if (a.kind == Kind::matrix && b.kind == Kind::matrix && a.from_world != b.from_world) return {Kind::model_view, source};
-        if (a.kind == Kind::model_view || b.kind == Kind::model_view) return {Kind::model_view, source};
+          return {Kind::relative, e};
+        if (a.kind == Kind::matrix && b.kind == Kind::matrix && a.from_world != b.from_world) return {Kind::model_view, e};
+        if (a.kind == Kind::model_view || b.kind == Kind::model_view) return {Kind::model_view, e};
         Value product = a.kind == Kind::matrix ? a : b.kind == Kind::matrix ? b : Value{};
-        if (product.kind != Kind::none) product.source = source;
+        if (product.kind != Kind::none) product.expr = e;
         return product;
       }
-      if (a.kind == Kind::position && b.kind == Kind::position && o == OO_Minus) return {Kind::relative, source};
+      if (a.kind == Kind::position && b.kind == Kind::position && o == OO_Minus) return {Kind::relative, e};
       if ((a.kind == Kind::position && b.kind == Kind::camera_offset) || (a.kind == Kind::camera_offset && b.kind == Kind::position))
-        return {Kind::relative, source};
-      if (a.kind == Kind::position) return {Kind::position, source};
-      if (b.kind == Kind::position && o == OO_Plus) return {Kind::position, source};
+        return {Kind::relative, e};
+      if (a.kind == Kind::position) return {Kind::position, e};
+      if (b.kind == Kind::position && o == OO_Plus) return {Kind::position, e};
       return {};
     }
     if (o == OO_Minus && op->getNumArgs() == 1) return classify(op->getArg(0), depth + 1);  // -PreViewTranslation
     if (o == OO_Subscript && op->getNumArgs() == 2) {
       Value base = classify(op->getArg(0), depth + 1);
-      return base.kind == Kind::position ? Value{Kind::position, source} : Value{};
+      return base.kind == Kind::position ? Value{Kind::position, e} : Value{};
     }
     return {};
   }
@@ -224,12 +222,12 @@ Value World::classify(const Expr* e, int depth) const {
     if (bin->getOpcode() == BO_Sub)
       if (auto* ref = dyn_cast<DeclRefExpr>(strip(bin->getRHS())); ref && ref->getDecl()->getIdentifier() &&
                                                                    tables_.high_names.match(ref->getDecl()->getName().str()))
-        return {Kind::relative, source};
+        return {Kind::relative, e};
     Value a = classify(bin->getLHS(), depth + 1), b = classify(bin->getRHS(), depth + 1);
-    if (a.kind == Kind::position && b.kind == Kind::position && bin->getOpcode() == BO_Sub) return {Kind::relative, source};
+    if (a.kind == Kind::position && b.kind == Kind::position && bin->getOpcode() == BO_Sub) return {Kind::relative, e};
     if ((a.kind == Kind::position && b.kind == Kind::camera_offset) || (a.kind == Kind::camera_offset && b.kind == Kind::position))
-      return {Kind::relative, source};
-    if (a.kind == Kind::position || (b.kind == Kind::position && bin->getOpcode() == BO_Add)) return {Kind::position, source};
+      return {Kind::relative, e};
+    if (a.kind == Kind::position || (b.kind == Kind::position && bin->getOpcode() == BO_Add)) return {Kind::position, e};
     return {};
   }
   if (auto* unary = dyn_cast<UnaryOperator>(e); unary && unary->getOpcode() == UO_Minus) return classify(unary->getSubExpr(), depth + 1);
@@ -241,18 +239,18 @@ Value World::classify(const Expr* e, int depth) const {
     const FunctionDecl* callee = call->getDirectCallee();
     if (!callee || !callee->getIdentifier()) return {};
     std::string name = callee->getName().str();
-    if (tables_.offset_calls.match(name)) return {Kind::camera_offset, source};
-    if (tables_.position_calls.match(name) && !is_matrix_type(call->getType())) return {Kind::position, source};
-    if (tables_.matrix_calls.match(name) && is_matrix_type(call->getType())) return {Kind::matrix, source};
-    if (tables_.from_world_calls.match(name) && is_matrix_type(call->getType())) return {Kind::matrix, source, true};
+    if (tables_.offset_calls.match(name)) return {Kind::camera_offset, e};
+    if (tables_.position_calls.match(name) && !is_matrix_type(call->getType())) return {Kind::position, e};
+    if (tables_.matrix_calls.match(name) && is_matrix_type(call->getType())) return {Kind::matrix, e};
+    if (tables_.from_world_calls.match(name) && is_matrix_type(call->getType())) return {Kind::matrix, e, true};
     if (auto* member = dyn_cast<CXXMemberCallExpr>(call)) {
       Value object = classify(member->getImplicitObjectArgument(), depth + 1);
-      if (object.kind == Kind::matrix && tables_.position_from_matrix.match(name)) return {Kind::position, source};
-      if (object.kind == Kind::matrix && tables_.matrix_keep.match(name)) return {Kind::matrix, source, object.from_world};
-      if (object.kind == Kind::matrix && tables_.matrix_inverse.match(name)) return {Kind::matrix, source, !object.from_world};
+      if (object.kind == Kind::matrix && tables_.position_from_matrix.match(name)) return {Kind::position, e};
+      if (object.kind == Kind::matrix && tables_.matrix_keep.match(name)) return {Kind::matrix, e, object.from_world};
+      if (object.kind == Kind::matrix && tables_.matrix_inverse.match(name)) return {Kind::matrix, e, !object.from_world};
     } else if (call->getNumArgs() == 1 && (tables_.matrix_keep.match(name) || tables_.matrix_inverse.match(name))) {  // glm::inverse(M)
       Value arg = classify(call->getArg(0), depth + 1);
-      if (arg.kind == Kind::matrix) return {Kind::matrix, source, arg.from_world != tables_.matrix_inverse.match(name)};
+      if (arg.kind == Kind::matrix) return {Kind::matrix, e, arg.from_world != tables_.matrix_inverse.match(name)};
     }
     return {};
   }
@@ -261,10 +259,10 @@ Value World::classify(const Expr* e, int depth) const {
     std::string name = decl->getIdentifier() ? decl->getName().str() : "";
     Value base = classify(member->getBase(), depth + 1);
     // A component of a position is a position (its X is as large as it is); of the offset, the offset.
-    if ((base.kind == Kind::position || base.kind == Kind::camera_offset) && !isa<CXXMethodDecl>(decl)) return {base.kind, source};
+    if ((base.kind == Kind::position || base.kind == Kind::camera_offset) && !isa<CXXMethodDecl>(decl)) return {base.kind, e};
     std::string base_type = type_name(member->getBase()->getType());
     for (const auto& [m, types] : tables_.position_members)
-      if (m == name && types.match(base_type)) return {Kind::position, source};
+      if (m == name && types.match(base_type)) return {Kind::position, e};
     return by_name(decl, member->getType(), e);
   }
   if (auto* ref = dyn_cast<DeclRefExpr>(e)) {
@@ -278,14 +276,14 @@ Value World::classify(const Expr* e, int depth) const {
     // A local initialised once: what it was initialised with.
     if (auto* var = dyn_cast<VarDecl>(decl); var && var->isLocalVarDecl() && var->getInit()) {
       Value init = classify(var->getInit(), depth + 1);
-      if (init.kind != Kind::none) init.source = source;
+      if (init.kind != Kind::none) init.expr = e;
       return init;
     }
     return {};
   }
   if (auto* sub = dyn_cast<ArraySubscriptExpr>(e)) {
     Value base = classify(sub->getBase(), depth + 1);
-    return base.kind == Kind::position ? Value{Kind::position, source} : Value{};
+    return base.kind == Kind::position ? Value{Kind::position, e} : Value{};
   }
   return {};
 }

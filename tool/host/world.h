@@ -45,7 +45,7 @@ enum class Kind {
 
 struct Value {
   Kind kind = Kind::none;
-  std::string source;  // the code it comes from, e.g. `Actor->GetActorLocation()`
+  const clang::Expr* expr = nullptr;  // the code it comes from, e.g. `Actor->GetActorLocation()` (its text is read only when reported)
   bool from_world = false;  // a matrix that takes world positions in (world to view or clip), not one that gives them
 };
 

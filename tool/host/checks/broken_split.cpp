@@ -127,9 +127,9 @@ class BrokenSplit : public Check {
     bool member_target = false;
     if (auto* bin = match.Nodes.getNodeAs<BinaryOperator>("assign")) member_target = isa<MemberExpr>(bin->getLHS()->IgnoreParenImpCasts());
     if (auto* op = match.Nodes.getNodeAs<CXXOperatorCallExpr>("assign")) member_target = isa<MemberExpr>(op->getArg(0)->IgnoreParenImpCasts());
-    if (target.empty() || !value || world.scalar(type) != 'f') return;
+    if (target.empty() || !value) return;
     bool low = tables_.low_names.match(target), high = tables_.high_names.match(target);
-    if (!low && !high) return;
+    if ((!low && !high) || world.scalar(type) != 'f') return;
     // Swapped: a high part stored from the low one of the same value, or the reverse.
     std::string source = name_of(value);
     bool opposite = (low && tables_.high_names.match(source)) || (high && tables_.low_names.match(source));

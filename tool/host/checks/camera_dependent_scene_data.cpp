@@ -10,18 +10,16 @@ using namespace clang;
 
 namespace {
 
-class CameraDependentSceneData : public Check {
+class CameraDependentSceneData : public UploadCheck {
  public:
-  using Check::Check;
-  void register_matchers(ast_matchers::MatchFinder&) override {}
-  bool reads_narrowings() const override { return true; }
+  using UploadCheck::UploadCheck;
 
-  void run(const ast_matchers::MatchFinder::MatchResult& match) override {
-    std::optional<Upload> up = find_upload(match, tables_, Kind::model_view);
-    if (!up || !up->gpu) return;
+  void upload(const Upload& found, const ast_matchers::MatchFinder::MatchResult& match) override {
+    if (found.value.kind != Kind::model_view || !found.gpu) return;
+    const Upload* up = &found;
     World world(tables_, *match.Context);
     out_.report(rule_, *match.SourceManager, match.Context->getLangOpts(), up->narrowing->getSourceRange(),
-                {{"narrowing", world.text(up->narrowing->getSourceRange())}, {"value", up->value.source}, {"sink", up->sink}});
+                {{"narrowing", world.text(up->narrowing->getSourceRange())}, {"value", world.text(up->value.expr->getSourceRange())}, {"sink", up->sink}});
   }
 };
 

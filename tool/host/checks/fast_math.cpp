@@ -27,6 +27,12 @@ class FastMath : public Check {
 
   void register_matchers(MatchFinder& finder) override {
     auto project = unless(isExpansionInSystemHeader());
+    std::vector<llvm::StringRef> switches(metal_switches_.globs.begin(), metal_switches_.globs.end());  // plain names
+    if (fast_flag().empty()) {
+      // Without a fast-math flag only metal-cpp's switches can be at fault.
+      finder.addMatcher(callExpr(project, callee(functionDecl(hasAnyName(llvm::ArrayRef<llvm::StringRef>(switches))).bind("callee"))).bind("call"), this);
+      return;
+    }
     // Where the unit splits or sums error-free: a call to such a function, or a low part
     // computed from a high one (`lo = (float)(x - hi)`).
     finder.addMatcher(callExpr(project, callee(functionDecl().bind("callee"))).bind("call"), this);

@@ -9,23 +9,18 @@ using namespace clang;
 
 namespace {
 
-class FloatWorldStorage : public Check {
+class FloatWorldStorage : public UploadCheck {
  public:
-  using Check::Check;
-  void register_matchers(ast_matchers::MatchFinder&) override {}
-  bool reads_narrowings() const override { return true; }
+  using UploadCheck::UploadCheck;
 
-  void run(const ast_matchers::MatchFinder::MatchResult& match) override {
-    for (Kind kind : {Kind::position, Kind::matrix}) {
-      std::optional<Upload> up = find_upload(match, tables_, kind);
-      if (!up || up->gpu) continue;
-      World world(tables_, *match.Context);
-      out_.report(rule_, *match.SourceManager, match.Context->getLangOpts(), up->narrowing->getSourceRange(),
-                  {{"narrowing", world.text(up->narrowing->getSourceRange())},
-                   {"what", kind == Kind::position ? "world position" : "world matrix"},
-                   {"value", up->value.source},
-                   {"sink", up->sink}});
-    }
+  void upload(const Upload& found, const ast_matchers::MatchFinder::MatchResult& match) override {
+    if (found.gpu || (found.value.kind != Kind::position && found.value.kind != Kind::matrix)) return;
+    World world(tables_, *match.Context);
+    out_.report(rule_, *match.SourceManager, match.Context->getLangOpts(), found.narrowing->getSourceRange(),
+                {{"narrowing", world.text(found.narrowing->getSourceRange())},
+                 {"what", found.value.kind == Kind::position ? "world position" : "world matrix"},
+                 {"value", world.text(found.value.expr->getSourceRange())},
+                 {"sink", found.sink}});
   }
 };
 

@@ -10,15 +10,13 @@ using namespace clang;
 
 namespace {
 
-class NarrowedWorldUpload : public Check {
+class NarrowedWorldUpload : public UploadCheck {
  public:
-  using Check::Check;
-  void register_matchers(ast_matchers::MatchFinder&) override {}
-  bool reads_narrowings() const override { return true; }
+  using UploadCheck::UploadCheck;
 
-  void run(const ast_matchers::MatchFinder::MatchResult& match) override {
-    std::optional<Upload> up = find_upload(match, tables_, Kind::position);
-    if (!up || !up->gpu) return;
+  void upload(const Upload& found, const ast_matchers::MatchFinder::MatchResult& match) override {
+    if (found.value.kind != Kind::position || !found.gpu) return;
+    const Upload* up = &found;
     const SourceManager& sm = *match.SourceManager;
     const LangOptions& lang = match.Context->getLangOpts();
     Vars vars;

@@ -179,7 +179,7 @@ std::optional<Sink> sink_of(const Expr* e, ASTContext& context, const Tables& ta
 
 }  // namespace
 
-std::optional<Upload> find_upload(const MatchFinder::MatchResult& match, const Tables& tables, Kind kind) {
+std::optional<Upload> find_upload(const MatchFinder::MatchResult& match, const Tables& tables) {
   const Expr* narrowing = match.Nodes.getNodeAs<Expr>("narrowing");
   if (!narrowing || inside_explicit_cast(narrowing)) return std::nullopt;
   ASTContext& context = *match.Context;
@@ -208,10 +208,10 @@ std::optional<Upload> find_upload(const MatchFinder::MatchResult& match, const T
     return std::nullopt;
   }
   if (!value || world.scalar(value->IgnoreParenImpCasts()->getType()) != 'd') return std::nullopt;
-  // A vector built from a matrix, or the reverse, is neither rule's.
-  if ((kind == Kind::matrix || kind == Kind::model_view) != world.is_matrix_type(narrowing->getType())) return std::nullopt;
   Value what = world.classify(value);
-  if (what.kind != kind) return std::nullopt;
+  if (what.kind != Kind::position && what.kind != Kind::matrix && what.kind != Kind::model_view) return std::nullopt;
+  // A vector built from a matrix, or the reverse, is no narrowing of either.
+  if ((what.kind != Kind::position) != world.is_matrix_type(narrowing->getType())) return std::nullopt;
   std::optional<Sink> sink = sink_of(narrowing, context, tables, 0);
   if (!sink) return std::nullopt;
   // The halves of a high/low split are narrowed on purpose (lwc-host-broken-split checks them).
@@ -223,7 +223,7 @@ std::optional<Upload> find_upload(const MatchFinder::MatchResult& match, const T
 Finding* report_upload(const Upload& up, const MatchFinder::MatchResult& match, const RuleInfo& rule, Reporter& out, const Tables& tables,
                        const std::string& port, Vars& vars, std::string& preview) {
   World world(tables, *match.Context);
-  vars = {{"narrowing", world.text(up.narrowing->getSourceRange())}, {"type", up.narrowing_type}, {"value", up.value.source},
+  vars = {{"narrowing", world.text(up.narrowing->getSourceRange())}, {"type", up.narrowing_type}, {"value", world.text(up.value.expr->getSourceRange())},
           {"sink", up.sink}, {"field", up.field.empty() ? "the uploaded value" : "`" + up.field + "`"}};
   Finding* finding = out.report(rule, *match.SourceManager, match.Context->getLangOpts(), up.narrowing->getSourceRange(), vars);
   if (!finding) return nullptr;

@@ -26,17 +26,28 @@ struct Upload {
 // implicit double-to-float conversions. Each match is bound to "narrowing".
 void register_narrowings(clang::ast_matchers::MatchFinder& finder, clang::ast_matchers::MatchFinder::MatchCallback* callback);
 
-// Hands each narrowing match to every check that reads them (Check::reads_narrowings).
-struct NarrowingFan : clang::ast_matchers::MatchFinder::MatchCallback {
-  std::vector<clang::ast_matchers::MatchFinder::MatchCallback*> checks;
-  void run(const clang::ast_matchers::MatchFinder::MatchResult& match) override {
-    for (auto* check : checks) check->run(match);
-  }
+// The upload a match is, when its value is a world value (a position, a world matrix or a
+// model-view product) and it reaches a GPU sink or a member of CPU-side data (`gpu` says which).
+std::optional<Upload> find_upload(const clang::ast_matchers::MatchFinder::MatchResult& match, const Tables& tables);
+
+// A check that reads the uploads the narrowing matchers find. The engine registers those matchers
+// once; each match is worked out once (find_upload) and handed to every such check.
+class UploadCheck : public Check {
+ public:
+  using Check::Check;
+  void register_matchers(clang::ast_matchers::MatchFinder&) override {}
+  void run(const clang::ast_matchers::MatchFinder::MatchResult&) override {}
+  virtual void upload(const Upload& up, const clang::ast_matchers::MatchFinder::MatchResult& match) = 0;
 };
 
-// The upload a match is, when its value is a world value of `kind` and it reaches a GPU sink or
-// a member of CPU-side data (`gpu` says which).
-std::optional<Upload> find_upload(const clang::ast_matchers::MatchFinder::MatchResult& match, const Tables& tables, Kind kind);
+struct NarrowingFan : clang::ast_matchers::MatchFinder::MatchCallback {
+  const Tables* tables = nullptr;
+  std::vector<UploadCheck*> checks;
+  void run(const clang::ast_matchers::MatchFinder::MatchResult& match) override {
+    if (std::optional<Upload> up = find_upload(match, *tables))
+      for (UploadCheck* check : checks) check->upload(*up, match);
+  }
+};
 
 // An upload reported as `rule`'s finding (message variables narrowing, type, value, sink, field;
 // facts shader-parameter and `port`), and the view's PreViewTranslation its translated fix adds,
