@@ -60,7 +60,9 @@ def main():
     for entry in units:
         path = entry["file"] if os.path.isabs(entry["file"]) else os.path.join(entry["directory"], entry["file"])
         clang_cpu, clang_rc = cpu_of(syntax_only(entry, args.clang), entry["directory"])
-        host_cpu, host_rc = cpu_of([args.lwcport_host, "host", "-p", args.build_dir, path, "--fail-on", "none", "-j", "1"], entry["directory"])
+        # From the project's root (the build folder's parent), as a user runs it: its headers are reported on too.
+        host_cpu, host_rc = cpu_of([args.lwcport_host, "host", "-p", os.path.abspath(args.build_dir), path, "--fail-on", "none", "-j", "1"],
+                                   os.path.dirname(os.path.abspath(args.build_dir)))
         if clang_rc != 0 or host_rc != 0:
             print(f"skipped {path}: clang exit {clang_rc}, lwcport host exit {host_rc}", file=sys.stderr)
             continue

@@ -41,6 +41,9 @@ class Reporter {
   // Records a comment, for the lwcport-ignore comments.
   void comment(const clang::SourceManager& sm, clang::SourceRange range);
   std::map<std::string, File>& files() { return files_; }
+  // Whether findings in this file are wanted (not a system header; a unit's file or under the
+  // project's folders).
+  bool reports(const clang::SourceManager& sm, clang::FileID id) { return file_of(sm, id) != nullptr; }
   // The unit's compile command (its arguments), for checks that read compiler settings.
   std::vector<std::string> command;
 

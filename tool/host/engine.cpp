@@ -153,16 +153,39 @@ class CommentCollector : public CommentHandler {
   Reporter& out_;
 };
 
-class Action : public ASTFrontendAction {
+// Runs the matchers over the declarations of the files findings are reported in only: the
+// standard library, system and other headers are parsed but not walked (a walk of everything
+// cost as much again as the checks themselves).
+class ProjectMatcher : public ASTConsumer {
  public:
-  Action(ast_matchers::MatchFinder& finder, Reporter& out) : finder_(finder), comments_(out) {}
-  std::unique_ptr<ASTConsumer> CreateASTConsumer(CompilerInstance& ci, StringRef) override {
-    ci.getPreprocessor().addCommentHandler(&comments_);
-    return finder_.newASTConsumer();
+  ProjectMatcher(ast_matchers::MatchFinder& finder, Reporter& out) : finder_(finder), out_(out) {}
+  void HandleTranslationUnit(ASTContext& context) override {
+    const SourceManager& sm = context.getSourceManager();
+    std::vector<Decl*> scope;
+    for (Decl* d : context.getTranslationUnitDecl()->decls()) {
+      SourceLocation at = sm.getExpansionLoc(d->getLocation());
+      if (at.isValid() && out_.reports(sm, sm.getFileID(at))) scope.push_back(d);
+    }
+    context.setTraversalScope(scope);
+    finder_.matchAST(context);
   }
 
  private:
   ast_matchers::MatchFinder& finder_;
+  Reporter& out_;
+};
+
+class Action : public ASTFrontendAction {
+ public:
+  Action(ast_matchers::MatchFinder& finder, Reporter& out) : finder_(finder), out_(out), comments_(out) {}
+  std::unique_ptr<ASTConsumer> CreateASTConsumer(CompilerInstance& ci, StringRef) override {
+    ci.getPreprocessor().addCommentHandler(&comments_);
+    return std::make_unique<ProjectMatcher>(finder_, out_);
+  }
+
+ private:
+  ast_matchers::MatchFinder& finder_;
+  Reporter& out_;
   CommentCollector comments_;
 };
 
