@@ -234,6 +234,22 @@ TEST(HostCli, BadInputIsReportedOnItsFileAndTheRunGoesOn) {
   EXPECT_EQ(rules.count("empty.cpp"), 0u);
 }
 
+// Units whose commands work in different folders, analysed side by side: each finds its own
+// headers through its own relative -I (Clang works in each command's folder; the threads must not
+// share one working directory).
+TEST(HostCli, UnitsInDifferentFoldersFindTheirOwnHeadersOnAnyNumberOfThreads) {
+  std::string dir = test::scratch("host-folders");
+  for (int i = 0; i < 12; ++i) {
+    std::string sub = dir + "/p" + std::to_string(i);
+    test::write(sub + "/compile_flags.txt", "-std=c++20\n-Iinc\n");
+    test::write(sub + "/inc/own.h", "struct Own" + std::to_string(i) + " {};\n");
+    test::write(sub + "/u.cpp", "#include \"own.h\"\nOwn" + std::to_string(i) + " value;\n");
+  }
+  test::Run r = test::run("cd " + dir + " && " + test::binary() + " host . -j 2 --format json");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_EQ(nlohmann::json::parse(r.out).at("findings").size(), 0u) << r.out;
+}
+
 // --fix writes what --diff shows: the safe fixes, and with --unsafe-fixes the others; then reports
 // what remains in the fixed files.
 TEST(HostCli, FixWritesTheFixedFileAndReportsWhatRemains) {

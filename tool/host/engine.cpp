@@ -62,13 +62,20 @@ void Reporter::comment(const SourceManager& sm, SourceRange range) {
       {sm.getFileOffset(range.getBegin()), sm.getFileOffset(range.getEnd())});
 }
 
+// A file's absolute path as Clang opened it (relative names are relative to the command's folder,
+// which is not this process's working directory).
+static std::string real_path(FileEntryRef entry) {
+  StringRef real = entry.getFileEntry().tryGetRealPathName();
+  return real.empty() ? fs::absolute(entry.getName().str()).string() : real.str();
+}
+
 Reporter::File* Reporter::file_of(const SourceManager& sm, FileID id) {
   auto [it, fresh] = paths_.emplace(id.getHashValue(), "");
   if (fresh) {
     OptionalFileEntryRef entry = sm.getFileEntryRefForID(id);
     if (entry && !sm.isInSystemHeader(sm.getLocForStartOfFile(id))) {
       std::error_code ec;
-      fs::path path = fs::weakly_canonical(fs::absolute(entry->getName().str()), ec);
+      fs::path path = fs::weakly_canonical(real_path(*entry), ec);
       if (!ec && reported_(path.string())) {
         it->second = path.string();
         File& file = files_[it->second];
@@ -127,11 +134,12 @@ class Diagnostics : public DiagnosticConsumer {
     info.FormatDiagnostic(message);
     first = message.str().str();
     if (info.hasSourceManager() && info.getLocation().isValid()) {
-      PresumedLoc at = info.getSourceManager().getPresumedLoc(info.getLocation());
+      const SourceManager& sm = info.getSourceManager();
+      PresumedLoc at = sm.getPresumedLoc(info.getLocation());
       if (at.isValid()) {
-        fs::path file = at.getFilename();
-        if (file.is_relative()) file = fs::current_path() / file;
-        first = fmt::format("{}:{}:{}: {}", shown(file.lexically_normal().string(), cwd_), at.getLine(), at.getColumn(), first);
+        OptionalFileEntryRef entry = sm.getFileEntryRefForID(sm.getFileID(sm.getExpansionLoc(info.getLocation())));
+        std::string file = entry ? real_path(*entry) : at.getFilename();
+        first = fmt::format("{}:{}:{}: {}", shown(fs::path(file).lexically_normal().string(), cwd_), at.getLine(), at.getColumn(), first);
       }
     }
   }
@@ -207,23 +215,34 @@ HostResult analyze_host(const HostOptions& options) {
   std::error_code ec;
   fs::path cwd = fs::current_path(ec);
   std::string error;
-  std::unique_ptr<tooling::CompilationDatabase> db;
+  // The compile commands: the database -p names, or the flags after `--`, for every unit; else each
+  // unit's own compile_commands.json or compile_flags.txt, found upward from it (as Clang's tools
+  // do), and plain C++20 where there is none. A file a database does not list gets the command of
+  // its nearest neighbour.
+  std::unique_ptr<tooling::CompilationDatabase> given;
   if (!options.build_dir.empty()) {
-    db = tooling::CompilationDatabase::loadFromDirectory(options.build_dir, error);
-    if (!db) {
+    given = tooling::CompilationDatabase::loadFromDirectory(options.build_dir, error);
+    if (!given) {
       result.errors.push_back(fmt::format("{}: no compile_commands.json here ({})", options.build_dir, error));
       return result;
     }
   } else if (!options.clang_args.empty()) {
-    db = std::make_unique<tooling::FixedCompilationDatabase>(".", options.clang_args);
-  } else {
-    for (const std::string& p : options.paths.empty() ? std::vector<std::string>{"."} : options.paths)
-      if ((db = tooling::CompilationDatabase::autoDetectFromDirectory(fs::is_directory(p) ? p : fs::path(p).parent_path().string(), error)))
-        break;
-    if (!db) db = std::make_unique<tooling::FixedCompilationDatabase>(".", std::vector<std::string>{"-std=c++20"});
+    given = std::make_unique<tooling::FixedCompilationDatabase>(".", options.clang_args);
   }
-  // A header or a file the database does not list gets the command of its nearest neighbour.
-  db = tooling::inferMissingCompileCommands(std::move(db));
+  if (given) given = tooling::inferMissingCompileCommands(std::move(given));
+  std::map<std::string, std::unique_ptr<tooling::CompilationDatabase>> found;  // by the unit's folder
+  auto database_for = [&](const std::string& source) -> tooling::CompilationDatabase& {
+    if (given) return *given;
+    std::string folder = fs::path(source).parent_path().string();
+    auto [it, fresh] = found.emplace(folder, nullptr);
+    if (fresh) {
+      std::string why;
+      it->second = tooling::CompilationDatabase::autoDetectFromDirectory(folder, why);
+      if (!it->second) it->second = std::make_unique<tooling::FixedCompilationDatabase>(".", std::vector<std::string>{"-std=c++20"});
+      it->second = tooling::inferMissingCompileCommands(std::move(it->second));
+    }
+    return *it->second;
+  };
 
   // The sources: files as named; folders give the database's files under them, else their C++ sources.
   std::vector<std::string> sources;
@@ -233,7 +252,7 @@ HostResult analyze_host(const HostOptions& options) {
     std::string abs = fs::weakly_canonical(fs::absolute(p), ec).string();
     if (seen.insert(abs).second) sources.push_back(abs);
   };
-  std::vector<std::string> listed = db->getAllFiles();
+  std::vector<std::string> listed = given ? given->getAllFiles() : std::vector<std::string>{};
   for (const std::string& p : options.paths.empty() ? std::vector<std::string>{"."} : options.paths) {
     if (!fs::exists(p, ec)) {
       result.errors.push_back(fmt::format("{}: no such file or folder", p));
@@ -254,6 +273,8 @@ HostResult analyze_host(const HostOptions& options) {
         if (it->is_regular_file(ec) && host::is_source(it->path())) add(it->path());
   }
   std::sort(sources.begin(), sources.end());
+  std::vector<tooling::CompilationDatabase*> databases;  // per unit, found before the threads start
+  for (const std::string& source : sources) databases.push_back(&database_for(source));
   if (!cwd.empty()) roots.push_back(cwd.string());
   auto reported = [&, sources_set = std::set<std::string>(sources.begin(), sources.end())](const std::string& path) {
     if (sources_set.count(path)) return true;
@@ -267,7 +288,7 @@ HostResult analyze_host(const HostOptions& options) {
   auto work = [&] {
     for (size_t i; (i = next++) < sources.size();) {
       host::Reporter out(reported);
-      for (const tooling::CompileCommand& c : db->getCompileCommands(sources[i])) out.command = c.CommandLine;
+      for (const tooling::CompileCommand& c : databases[i]->getCompileCommands(sources[i])) out.command = c.CommandLine;
       std::vector<std::unique_ptr<host::Check>> checks;
       ast_matchers::MatchFinder finder;
       host::NarrowingFan narrowings;  // the checks that read uploads share one set of matchers
@@ -280,7 +301,9 @@ HostResult analyze_host(const HostOptions& options) {
         if (auto* reads_uploads = dynamic_cast<host::UploadCheck*>(checks.back().get())) narrowings.checks.push_back(reads_uploads);
       }
       if (!narrowings.checks.empty()) host::register_narrowings(finder, &narrowings);
-      tooling::ClangTool tool(*db, {sources[i]});
+      // A file system of its own, with its own working directory: Clang works in each command's
+      // folder, and threads must not move one process-wide working directory under each other.
+      tooling::ClangTool tool(*databases[i], {sources[i]}, std::make_shared<PCHContainerOperations>(), llvm::vfs::createPhysicalFileSystem());
       tool.appendArgumentsAdjuster(tooling::getInsertArgumentAdjuster("-resource-dir=" LWCPORT_CLANG_RESOURCE_DIR,
                                                                       tooling::ArgumentInsertPosition::END));
       // Our finding reports a unit's first error: no caret diagnostics, no "N errors generated", no
