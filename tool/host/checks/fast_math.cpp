@@ -23,12 +23,20 @@ class FastMath : public Check {
     };
     error_free_ = names("error-free-functions");
     metal_switches_ = names("metal-switches");
+    // The fast-math flag in effect: the last of the unit's flags that turn it on or off.
+    const nlohmann::json& flags = rule.data.at("flags");
+    const nlohmann::json& resets = rule.data.at("resets");
+    for (const std::string& arg : out.command) {
+      if (flags.contains(arg)) flag_ = arg;
+      for (const auto& r : resets)
+        if (arg == r.get<std::string>()) flag_.clear();
+    }
   }
 
   void register_matchers(MatchFinder& finder) override {
     auto project = unless(isExpansionInSystemHeader());
     std::vector<llvm::StringRef> switches(metal_switches_.globs.begin(), metal_switches_.globs.end());  // plain names
-    if (fast_flag().empty()) {
+    if (flag_.empty()) {
       // Without a fast-math flag only metal-cpp's switches can be at fault.
       finder.addMatcher(callExpr(project, callee(functionDecl(hasAnyName(llvm::ArrayRef<llvm::StringRef>(switches))).bind("callee"))).bind("call"), this);
       return;
@@ -65,28 +73,14 @@ class FastMath : public Check {
  private:
   // The first split or error-free site of a unit compiled with fast math is where it is reported.
   void split_site(const MatchFinder::MatchResult& match, const Expr* at) {
-    if (reported_) return;
-    std::string flag = fast_flag();
-    if (flag.empty()) return;
+    if (reported_ || flag_.empty()) return;
     reported_ = true;
-    std::string form = expand(rule_.data.at("forms").at("flag").get<std::string>(), {{"flag", flag}, {"reset", rule_.data.at("flags").at(flag).get<std::string>()}});
+    std::string form = expand(rule_.data.at("forms").at("flag").get<std::string>(), {{"flag", flag_}, {"reset", rule_.data.at("flags").at(flag_).get<std::string>()}});
     out_.report(rule_, *match.SourceManager, match.Context->getLangOpts(), at->getSourceRange(), {{"what", form}});
   }
 
-  // The fast-math flag in effect (the last of the flags that turn it on or off), or "".
-  std::string fast_flag() const {
-    std::string on;
-    const nlohmann::json& flags = rule_.data.at("flags");
-    const nlohmann::json& resets = rule_.data.at("resets");
-    for (const std::string& arg : out_.command) {
-      if (flags.contains(arg)) on = arg;
-      for (const auto& r : resets)
-        if (arg == r.get<std::string>()) on.clear();
-    }
-    return on;
-  }
-
   Names error_free_, metal_switches_;
+  std::string flag_;  // "" when fast math is off for this unit
   bool reported_ = false;
 };
 
