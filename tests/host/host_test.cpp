@@ -30,8 +30,9 @@ std::vector<std::string> example_flags(const std::string& code) {
   return out;
 }
 
-HostResult analyze_file(const std::string& path) {
+HostResult analyze_file(const std::string& path, const nlohmann::json& tables = nlohmann::json::object()) {
   HostOptions options;
+  options.tables = tables;
   options.paths = {path};
   options.clang_args = {"-std=c++20", include_flag()};
   for (const std::string& f : example_flags(test::read(path))) options.clang_args.push_back(f);
@@ -140,6 +141,9 @@ TEST(HostCorpus, FindingsAndFixedFilesAreTheGoldenOnesAndCompile) {
     ASSERT_EQ(compile_errors(path), "") << path;
     HostOptions options;
     options.paths = {path};  // compile_flags.txt beside the corpus gives the flags
+    // A folder's .lwcport.json extends the tables, as for `lwcport host` run in that folder.
+    std::string config = e.path().parent_path().string() + "/.lwcport.json";
+    if (fs::exists(config)) options.tables = nlohmann::json::parse(test::read(config)).value("host", nlohmann::json::object());
     HostResult result = analyze_host(options);
     ASSERT_TRUE(result.errors.empty()) << result.errors.front();
     const HostFile* file = file_named(result, path);
@@ -162,7 +166,7 @@ TEST(HostCorpus, FindingsAndFixedFilesAreTheGoldenOnesAndCompile) {
     std::string copy = test::scratch("host-corpus-fixed") + "/" + e.path().filename().string();
     test::write(copy, fixed);
     const HostFile* fixed_file = nullptr;
-    HostResult after = analyze_file(copy);
+    HostResult after = analyze_file(copy, options.tables);
     fixed_file = file_named(after, copy);
     EXPECT_EQ(fixed_file ? fixed_file->findings.size() : 0u, without_fix) << path;
   }

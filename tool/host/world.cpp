@@ -87,8 +87,10 @@ Tables Tables::load(const nlohmann::json& additions) {
       for (const auto& m : root->at("upload-methods"))
         t.upload_methods.emplace_back(alternatives(m.at("method").get<std::string>()), alternatives(m.at("class").get<std::string>()));
     if (root->contains("views"))
-      for (const auto& v : root->at("views"))
-        t.views.emplace_back(alternatives(v.at("type").get<std::string>()), v.at("preview-translation").get<std::string>());
+      for (const auto& v : root->at("views")) {
+        bool origin = v.contains("camera-origin");
+        t.views.push_back({alternatives(v.at("type").get<std::string>()), v.at(origin ? "camera-origin" : "preview-translation").get<std::string>(), origin});
+      }
   }
   return t;
 }

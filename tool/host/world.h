@@ -27,7 +27,14 @@ struct Tables {
   std::vector<std::pair<Names, Names>> upload_methods;  // method names, and the classes they upload through (osg::Uniform::set)
   Names upload_constructors;  // classes whose construction uploads its arguments (`new osg::Uniform(name, value)`)
   Names high_names, low_names;  // the two halves of a high/low split
-  std::vector<std::pair<Names, std::string>> views;  // view types, and how a view of one gives PreViewTranslation
+  // How a function reaches the camera: from a parameter or local of one of `types`, either the
+  // view's PreViewTranslation (added to a world position) or the camera's world origin (subtracted).
+  struct View {
+    Names types;
+    std::string code;  // with `{view}.` standing for the variable, e.g. "{view}.ViewMatrices.GetPreViewTranslation()"
+    bool subtract = false;  // a camera origin ("camera-origin"), not a PreViewTranslation
+  };
+  std::vector<View> views;
 
   // The built-in tables with a project's additions (each list under the same key extends the built-in one).
   static Tables load(const nlohmann::json& additions);

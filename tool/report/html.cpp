@@ -245,7 +245,7 @@ std::string report_html(const json& j) {
     for (const auto& p : h["pairs"]) {
       std::string files;
       for (const auto& f : p["shader_files"]) files += (files.empty() ? "" : ", ") + f.get<std::string>();
-      std::string port = p["port"] == "translated-matrix" ? "a translated-world matrix" : "a translated-world position";
+      std::string port = port_text(p["port"]);
       out += "<tr data-rules=\"" + esc(p["rule"].get<std::string>()) + "\">" + td(p["where"]) + "<td><code>" + esc(p["parameter"].get<std::string>()) +
              "</code></td>" + td(port) + td(files.empty() ? "none found" : files) + "</tr>";
     }

@@ -233,10 +233,6 @@ std::string table(const std::vector<std::string>& head, const std::vector<std::v
   return out + "\n";
 }
 
-std::string port_text(const std::string& port) {
-  return port == "translated-matrix" ? "a translated-world matrix" : port == "translated-position" ? "a translated-world position" : port;
-}
-
 std::string num(const nlohmann::ordered_json& v) { return v.is_number_float() ? fmt::format("{:g}", v.get<double>()) : v.dump(); }
 
 }  // namespace
@@ -318,6 +314,14 @@ std::string report_markdown(const nlohmann::ordered_json& j) {
     out += "## Verification\n\n" + table({"function", "file", "variants", "pick"}, rows);
   }
   return out;
+}
+
+std::string port_text(const std::string& port) {
+  if (port == "translated-matrix") return "a translated-world matrix";
+  if (port == "translated-position") return "a translated-world position";
+  if (port == "high-low-matrix") return "a matrix relative to its own origin, and the origin (FDFMatrix)";
+  if (port == "high-low-position") return "a high/low pair (DoubleFloat)";
+  return port;
 }
 
 }  // namespace lwc

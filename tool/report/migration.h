@@ -47,7 +47,7 @@ struct HostPair {
   std::string where;  // path:line of the host finding
   std::string rule;
   std::string parameter;
-  std::string port;  // "translated-position", "translated-matrix"
+  std::string port;  // "translated-position", "translated-matrix", "high-low-position", "high-low-matrix"
   std::vector<std::string> shader_files;
 };
 
@@ -80,5 +80,8 @@ extern const char* const kHostEra;
 nlohmann::ordered_json report_json(const MigrationReport& report);
 std::string report_markdown(const nlohmann::ordered_json& report);
 std::string report_html(const nlohmann::ordered_json& report);
+
+// How a host port changes what a shader parameter holds, in words ("a translated-world position").
+std::string port_text(const std::string& port);
 
 }  // namespace lwc

@@ -79,6 +79,37 @@ using FTranslationMatrix = UE::Math::TTranslationMatrix<double>;
 using FTransform = UE::Math::TTransform<double>;
 using FBoxSphereBounds = UE::Math::TBoxSphereBounds<double>;
 
+// UE 5.4's DoubleFloat host types (Math/DoubleFloat.h): a value as the float nearest it (High)
+// and the float nearest the rest (Low); a matrix as a float matrix relative to a float origin.
+struct FDFScalar {
+  FDFScalar() = default;
+  FDFScalar(double Value) : High(static_cast<float>(Value)), Low(static_cast<float>(Value - static_cast<double>(High))) {}
+  float High = 0;
+  float Low = 0;
+};
+
+struct FDFVector3 {
+  FDFVector3() = default;
+  template <typename T>
+  FDFVector3(const UE::Math::TVector<T>& Value) {
+    const FDFScalar X(Value.X), Y(Value.Y), Z(Value.Z);
+    High = FVector3f(X.High, Y.High, Z.High);
+    Low = FVector3f(X.Low, Y.Low, Z.Low);
+  }
+  FVector3f High, Low;
+};
+
+struct FDFMatrix {
+  FMatrix44f M;
+  FVector3f PostTranslation;  // added after M: world = local * M + PostTranslation
+  static FDFMatrix MakeToRelativeWorldMatrix(const FVector3f Origin, const FMatrix& ToWorld) {
+    FDFMatrix Result;
+    Result.M = FMatrix44f(ToWorld.ConcatTranslation(-FVector(Origin)));
+    Result.PostTranslation = Origin;
+    return Result;
+  }
+};
+
 struct USceneComponent {
   FVector GetComponentLocation() const { return {}; }
   const FTransform& GetComponentTransform() const { return Transform; }

@@ -1,4 +1,5 @@
-// A small OpenGL scene renderer on glm, with positions kept in double on the CPU.
+// A small OpenGL scene renderer on glm, with positions kept in double on the CPU. The .lwcport.json
+// beside it names the camera origin (`Camera::position`) that translated fixes subtract.
 #include <glm/glm.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -30,6 +31,7 @@ void DrawNode(const SceneNode& node, const Camera& camera, const Locations& at)
 {
   glUniform3fv(at.nodePosition, 1, glm::value_ptr(glm::vec3(node.position)));
   glUniform3f(at.camera, (float)camera.position.x, (float)camera.position.y, (float)camera.position.z);
+  glUniform3f(at.nodePosition, (float)node.position.x, (float)node.position.y, (float)node.position.z);
   glUniformMatrix4fv(at.model, 1, GL_FALSE, glm::value_ptr(glm::mat4(node.modelMatrix)));
   // Right: the model-view product is computed in double, where the two translations cancel.
   glUniformMatrix4fv(at.modelView, 1, GL_FALSE, glm::value_ptr(glm::mat4(camera.view * node.modelMatrix)));
@@ -44,4 +46,16 @@ void FillUniforms(SceneUniforms& uniforms, const Camera& camera, float time)
   uniforms.cameraPosition = glm::vec3(camera.position);
   uniforms.time = time;
   uniforms.viewProjection = glm::mat4(camera.projection * camera.view);
+}
+
+// 28 bytes: a member added at the end would not sit where the shader's block puts it.
+struct LightUniforms {
+  glm::vec3 lightPosition;
+  float intensity;
+  glm::vec3 color;
+};
+
+void FillLight(LightUniforms& light, const SceneNode& node)
+{
+  light.lightPosition = glm::vec3(node.position);
 }

@@ -1,10 +1,10 @@
 // lwc-host-narrowed-world-matrix: a matrix with the world translation in it narrowed to float for upload.
 #include "host/check.h"
+#include "host/checks/high_low.h"
 #include "host/checks/narrowing.h"
 
-#include <clang/Lex/Lexer.h>
-
 #include <clang/AST/ExprCXX.h>
+#include <clang/Lex/Lexer.h>
 
 namespace lwc::host {
 
@@ -16,31 +16,43 @@ class NarrowedWorldMatrix : public UploadCheck {
  public:
   using UploadCheck::UploadCheck;
 
-  void upload(const Upload& found, const ast_matchers::MatchFinder::MatchResult& match) override {
-    if (found.value.kind != Kind::matrix || !found.gpu) return;
-    const Upload* up = &found;
+  void upload(const Upload& up, const ast_matchers::MatchFinder::MatchResult& match) override {
+    if (up.value.kind != Kind::matrix || !up.gpu) return;
+    Vars vars;
+    Finding* finding = report_upload(up, match, rule_, out_, tables_, "translated-matrix", vars);
+    if (!finding) return;
+    std::string why = translated(up, *finding, vars, match);
+    if (why.empty()) return;
+    finding->withheld.push_back("translated: " + why);
+    offer_high_low(up, *finding, vars, match, rule_, out_);
+  }
+
+ private:
+  // The view's PreViewTranslation folded into the matrix in double; "" when offered, else why not.
+  std::string translated(const Upload& up, Finding& finding, Vars& vars, const ast_matchers::MatchFinder::MatchResult& match) {
     const SourceManager& sm = *match.SourceManager;
     const LangOptions& lang = match.Context->getLangOpts();
-    Vars vars;
-    std::string preview;
-    Finding* finding = report_upload(*up, match, rule_, out_, tables_, "translated-matrix", vars, preview);
-    if (!finding || preview.empty()) return;
+    std::optional<CameraInScope> camera = camera_in_scope(up.narrowing, *match.Context, tables_);
+    if (!camera) return "no camera in scope (a parameter or local of a view type, rules/host-world.json \"views\")";
+    if (camera->subtract) return "the camera is given as a world origin, and matrices are moved only with UE's PreViewTranslation";
+    vars["preview"] = camera->code;
     // Row vectors: M.ConcatTranslation(T) is M, then a move by T (local to translated world);
     // FTranslationMatrix(-T) * M moves back by T first (translated world to view or clip).
-    const Expr* value = strip(up->value_expr);
+    const Expr* value = strip(up.value_expr);
     bool postfix = isa<DeclRefExpr, MemberExpr, CallExpr, ParenExpr>(value) && !isa<CXXOperatorCallExpr>(value);
-    CharSourceRange range = CharSourceRange::getTokenRange(up->value_expr->getSourceRange());
+    CharSourceRange range = CharSourceRange::getTokenRange(up.value_expr->getSourceRange());
     SourceLocation begin = sm.getExpansionLoc(range.getBegin());
     SourceLocation end = Lexer::getLocForEndOfToken(sm.getExpansionLoc(range.getEnd()), 0, sm, lang);
     std::vector<Reporter::Change> changes;
-    if (up->value.from_world) {
-      changes.push_back({CharSourceRange::getCharRange(begin, begin), "FTranslationMatrix(-" + preview + ") * " + (postfix ? "" : "(")});
+    if (up.value.from_world) {
+      changes.push_back({CharSourceRange::getCharRange(begin, begin), "FTranslationMatrix(-" + camera->code + ") * " + (postfix ? "" : "(")});
       if (!postfix) changes.push_back({CharSourceRange::getCharRange(end, end), ")"});
     } else {
       if (!postfix) changes.push_back({CharSourceRange::getCharRange(begin, begin), "("});
-      changes.push_back({CharSourceRange::getCharRange(end, end), (postfix ? "" : ")") + std::string(".ConcatTranslation(") + preview + ")"});
+      changes.push_back({CharSourceRange::getCharRange(end, end), (postfix ? "" : ")") + std::string(".ConcatTranslation(") + camera->code + ")"});
     }
-    out_.fix(*finding, rule_, up->value.from_world ? "translated-from-world" : "translated", vars, changes, sm, lang);
+    out_.fix(finding, rule_, up.value.from_world ? "translated-from-world" : "translated", vars, changes, sm, lang);
+    return "";
   }
 };
 

@@ -1,5 +1,6 @@
 // lwc-host-narrowed-world-upload: a double world position narrowed to float on its way to the GPU.
 #include "host/check.h"
+#include "host/checks/high_low.h"
 #include "host/checks/narrowing.h"
 
 #include <clang/Lex/Lexer.h>
@@ -14,35 +15,57 @@ class NarrowedWorldUpload : public UploadCheck {
  public:
   using UploadCheck::UploadCheck;
 
-  void upload(const Upload& found, const ast_matchers::MatchFinder::MatchResult& match) override {
-    if (found.value.kind != Kind::position || !found.gpu) return;
-    const Upload* up = &found;
+  void upload(const Upload& up, const ast_matchers::MatchFinder::MatchResult& match) override {
+    if (up.value.kind != Kind::position || !up.gpu) return;
+    Vars vars;
+    Finding* finding = report_upload(up, match, rule_, out_, tables_, "translated-position", vars);
+    if (!finding) return;
+    // Translated world is the cheaper port (one float on the GPU, no pair arithmetic): offered
+    // wherever the camera is in scope; the high/low split where it is not.
+    std::string why = translated(up, *finding, vars, match);
+    if (why.empty()) return;
+    finding->withheld.push_back("translated: " + why);
+    offer_high_low(up, *finding, vars, match, rule_, out_);
+  }
+
+ private:
+  // The camera subtracted in double before the rounding; "" when offered, else why not.
+  std::string translated(const Upload& up, Finding& finding, Vars& vars, const ast_matchers::MatchFinder::MatchResult& match) {
     const SourceManager& sm = *match.SourceManager;
     const LangOptions& lang = match.Context->getLangOpts();
-    Vars vars;
-    std::string preview;
-    Finding* finding = report_upload(*up, match, rule_, out_, tables_, "translated-position", vars, preview);
-    if (!finding || preview.empty()) return;
-    // Translated world: the camera subtracted in double, before the rounding.
-    const Expr* value = strip(up->value_expr);
-    // One component (`Location.Z`) takes the same component of the offset.
-    if (up->value_expr->getType()->isBuiltinType()) {
+    std::optional<CameraInScope> camera = camera_in_scope(up.narrowing, *match.Context, tables_);
+    if (!camera) return "no camera in scope (a parameter or local of a view type, rules/host-world.json \"views\")";
+    const Expr* value = strip(up.value_expr);
+    std::string code = camera->code;
+    const Expr* position = value;
+    // One component (`Location.Z`) takes the same component of the camera.
+    if (up.value_expr->getType()->isBuiltinType()) {
       auto* component = dyn_cast<MemberExpr>(value);
-      if (!component) {
-        finding->withheld.push_back("translated: a scalar that is not a named component of the position");
-        return;
-      }
-      preview += "." + component->getMemberDecl()->getNameAsString();
-      vars["preview"] = preview;
+      if (!component) return "a scalar that is not a named component of the position";
+      code += "." + component->getMemberDecl()->getNameAsString();
+      position = component->getBase()->IgnoreParenImpCasts();
+      // glm's `x` is a member of an anonymous union inside the vector.
+      for (auto* m = dyn_cast<MemberExpr>(position); m && !m->getMemberDecl()->getIdentifier(); m = dyn_cast<MemberExpr>(position))
+        position = m->getBase()->IgnoreParenImpCasts();
     }
-    bool wrap = isa<ConditionalOperator>(value) || (isa<BinaryOperator>(value) && !cast<BinaryOperator>(value)->isAdditiveOp() &&
-                                                    !cast<BinaryOperator>(value)->isMultiplicativeOp());
-    CharSourceRange range = CharSourceRange::getTokenRange(up->value_expr->getSourceRange());
+    if (camera->subtract && World(tables_, *match.Context).text(position->getSourceRange()) == camera->code)
+      return "the camera's own position, which is zero in translated world";
+    std::string term = (camera->subtract ? " - " : " + ") + code;
+    vars["translated"] = vars["value"] + term;
+    // `a - b` plus the camera needs no brackets (+ and - associate left), a comparison or a choice
+    // does; and `(float)P.X` binds tighter than the sum, which goes in brackets of its own.
+    bool wrap_value = isa<ConditionalOperator>(value) ||
+                      (isa<BinaryOperator>(value) && !cast<BinaryOperator>(value)->isAdditiveOp() && !cast<BinaryOperator>(value)->isMultiplicativeOp());
+    bool wrap_sum = isa<CStyleCastExpr>(up.narrowing) && !isa<ParenExpr>(up.value_expr->IgnoreImpCasts());
+    CharSourceRange range = CharSourceRange::getTokenRange(up.value_expr->getSourceRange());
+    SourceLocation begin = sm.getExpansionLoc(range.getBegin());
     SourceLocation end = Lexer::getLocForEndOfToken(sm.getExpansionLoc(range.getEnd()), 0, sm, lang);
+    std::string open = std::string(wrap_sum ? "(" : "") + (wrap_value ? "(" : "");
     std::vector<Reporter::Change> changes;
-    if (wrap) changes.push_back({CharSourceRange::getCharRange(sm.getExpansionLoc(range.getBegin()), sm.getExpansionLoc(range.getBegin())), "("});
-    changes.push_back({CharSourceRange::getCharRange(end, end), (wrap ? ")" : "") + std::string(" + ") + preview});
-    out_.fix(*finding, rule_, "translated", vars, changes, sm, lang);
+    if (!open.empty()) changes.push_back({CharSourceRange::getCharRange(begin, begin), open});
+    changes.push_back({CharSourceRange::getCharRange(end, end), (wrap_value ? ")" : "") + term + (wrap_sum ? ")" : "")});
+    out_.fix(finding, rule_, "translated", vars, changes, sm, lang);
+    return "";
   }
 };
 

@@ -1,4 +1,5 @@
 #include "host/checks/narrowing.h"
+#include "host/checks/high_low.h"
 
 #include <clang/AST/ExprCXX.h>
 #include <clang/ASTMatchers/ASTMatchers.h>
@@ -58,6 +59,7 @@ struct Sink {
   std::string what, field;
   bool gpu = true;  // false: a member of a struct the GPU does not read (scene data on the CPU)
   std::string through = "";  // the local it went through, if any
+  const FieldDecl* decl = nullptr;  // the member, when stored in one
 };
 
 // The GPU member an assignment's left side names.
@@ -73,8 +75,8 @@ std::optional<Sink> assigned_to(const Expr* lhs, ASTContext& context, const Tabl
       return Sink{"shader parameter " + where(outer), outer->getNameAsString()};
   auto* field = dyn_cast<FieldDecl>(member->getMemberDecl());
   if (!field) return std::nullopt;
-  if (!gpu_field(field, context, tables)) return Sink{"member " + where(field), field->getNameAsString(), false};
-  return Sink{"shader parameter " + where(field), field->getNameAsString()};
+  if (!gpu_field(field, context, tables)) return Sink{"member " + where(field), field->getNameAsString(), false, "", field};
+  return Sink{"shader parameter " + where(field), field->getNameAsString(), true, "", field};
 }
 
 std::optional<Sink> sink_of(const Expr* e, ASTContext& context, const Tables& tables, int hops);
@@ -216,29 +218,25 @@ std::optional<Upload> find_upload(const MatchFinder::MatchResult& match, const T
   if (!sink) return std::nullopt;
   // The halves of a high/low split are narrowed on purpose (lwc-host-broken-split checks them).
   auto half = [&](const std::string& name) { return tables.high_names.match(name) || tables.low_names.match(name); };
-  if (half(sink->field) || half(sink->through)) return std::nullopt;
+  if (half(sink->field) || half(sink->through) || (sink->decl && writes_low_half(sink->decl, narrowing, context, tables))) return std::nullopt;
   return Upload{narrowing, value, what, World::type_name(narrowing->getType()), sink->what, sink->field, sink->gpu};
 }
 
 Finding* report_upload(const Upload& up, const MatchFinder::MatchResult& match, const RuleInfo& rule, Reporter& out, const Tables& tables,
-                       const std::string& port, Vars& vars, std::string& preview) {
+                       const std::string& port, Vars& vars) {
   World world(tables, *match.Context);
   vars = {{"narrowing", world.text(up.narrowing->getSourceRange())}, {"type", up.narrowing_type}, {"value", world.text(up.value.expr->getSourceRange())},
           {"sink", up.sink}, {"field", up.field.empty() ? "the uploaded value" : "`" + up.field + "`"}};
   Finding* finding = out.report(rule, *match.SourceManager, match.Context->getLangOpts(), up.narrowing->getSourceRange(), vars);
-  if (!finding) return nullptr;
-  if (!up.field.empty()) finding->facts = {{"shader-parameter", up.field}, {"port", port}};
-  preview = preview_translation(up.narrowing, *match.Context, tables);
-  if (preview.empty()) finding->withheld.push_back("translated: no view in scope (a parameter or local of a view type, rules/host-world.json \"views\")");
-  vars["preview"] = preview;
+  if (finding && !up.field.empty()) finding->facts = {{"shader-parameter", up.field}, {"port", port}};
   return finding;
 }
 
-std::string preview_translation(const Expr* e, ASTContext& context, const Tables& tables) {
+std::optional<CameraInScope> camera_in_scope(const Expr* e, ASTContext& context, const Tables& tables) {
   const FunctionDecl* function = nullptr;
   for (DynTypedNode node = DynTypedNode::create(*e); !function;) {
     auto parents = context.getParents(node);
-    if (parents.empty()) return "";
+    if (parents.empty()) return std::nullopt;
     node = parents[0];
     function = node.get<FunctionDecl>();
   }
@@ -251,16 +249,16 @@ std::string preview_translation(const Expr* e, ASTContext& context, const Tables
   for (const VarDecl* v : candidates) {
     if (!v->getIdentifier()) continue;
     std::string type = World::type_name(v->getType());
-    for (const auto& [types, pattern] : tables.views) {
-      if (!types.match(type)) continue;
+    for (const Tables::View& view : tables.views) {
+      if (!view.types.match(type)) continue;
       bool pointer = v->getType().getNonReferenceType()->isPointerType();
-      std::string out = pattern;
+      std::string code = view.code;
       std::string name = v->getNameAsString() + (pointer ? "->" : ".");
-      if (size_t at = out.find("{view}."); at != std::string::npos) out.replace(at, 7, name);
-      return out;
+      if (size_t at = code.find("{view}."); at != std::string::npos) code.replace(at, 7, name);
+      return CameraInScope{code, view.subtract};
     }
   }
-  return "";
+  return std::nullopt;
 }
 
 }  // namespace lwc::host

@@ -49,14 +49,18 @@ struct NarrowingFan : clang::ast_matchers::MatchFinder::MatchCallback {
   }
 };
 
-// An upload reported as `rule`'s finding (message variables narrowing, type, value, sink, field;
-// facts shader-parameter and `port`), and the view's PreViewTranslation its translated fix adds,
-// in `preview` ("" after the finding says why there is none). Null when not in a reported file.
-Finding* report_upload(const Upload& up, const clang::ast_matchers::MatchFinder::MatchResult& match, const RuleInfo& rule, Reporter& out,
-                       const Tables& tables, const std::string& port, Vars& vars, std::string& preview);
+// How the function holding an upload reaches the camera (a parameter or local of a view type,
+// rules/host-world.json "views"): `code` is added to a world position (PreViewTranslation) or,
+// with `subtract`, subtracted from it (a camera origin).
+struct CameraInScope {
+  std::string code;  // e.g. `View.ViewMatrices.GetPreViewTranslation()`
+  bool subtract = false;
+};
+std::optional<CameraInScope> camera_in_scope(const clang::Expr* e, clang::ASTContext& context, const Tables& tables);
 
-// How the function holding `e` reaches the view's PreViewTranslation (a parameter or local of a
-// view type), e.g. `View.ViewMatrices.GetPreViewTranslation()`; "" when no view is in scope.
-std::string preview_translation(const clang::Expr* e, clang::ASTContext& context, const Tables& tables);
+// An upload reported as `rule`'s finding (message variables narrowing, type, value, sink, field;
+// facts shader-parameter and `port`). Null when not in a reported file.
+Finding* report_upload(const Upload& up, const clang::ast_matchers::MatchFinder::MatchResult& match, const RuleInfo& rule, Reporter& out,
+                       const Tables& tables, const std::string& port, Vars& vars);
 
 }  // namespace lwc::host

@@ -1,0 +1,278 @@
+#include "host/checks/high_low.h"
+
+#include <clang/AST/ExprCXX.h>
+#include <clang/AST/QualTypeNames.h>
+#include <clang/AST/RecordLayout.h>
+#include <clang/ASTMatchers/ASTMatchers.h>
+#include <clang/Lex/Lexer.h>
+#include <fmt/format.h>
+
+namespace lwc::host {
+
+using namespace clang;
+using namespace clang::ast_matchers;
+
+namespace {
+
+const FunctionDecl* enclosing_function(const Expr* e, ASTContext& context) {
+  for (DynTypedNode node = DynTypedNode::create(*e);;) {
+    auto parents = context.getParents(node);
+    if (parents.empty()) return nullptr;
+    node = parents[0];
+    if (auto* f = node.get<FunctionDecl>()) return f;
+  }
+}
+
+// `Object.Member = <narrowing>;` as a statement of its own in a block.
+struct Assignment {
+  const Expr* expr;          // the whole assignment (the `;` follows it)
+  const MemberExpr* member;  // its left side
+  const FieldDecl* field;
+};
+
+std::optional<Assignment> assignment_statement(const Expr* narrowing, ASTContext& context) {
+  const Stmt* current = narrowing;
+  const Expr* assign = nullptr;
+  const Expr* lhs = nullptr;
+  while (!assign) {
+    auto parents = context.getParents(*current);
+    const Stmt* parent = parents.empty() ? nullptr : parents[0].get<Stmt>();
+    if (!parent) return std::nullopt;
+    if (isa<ImplicitCastExpr, MaterializeTemporaryExpr, CXXBindTemporaryExpr, ParenExpr>(parent)) {
+      current = parent;
+    } else if (auto* bin = dyn_cast<BinaryOperator>(parent); bin && bin->getOpcode() == BO_Assign && bin->getRHS() == current) {
+      assign = bin, lhs = bin->getLHS();
+    } else if (auto* op = dyn_cast<CXXOperatorCallExpr>(parent); op && op->getOperator() == OO_Equal && op->getNumArgs() == 2 && op->getArg(1) == current) {
+      assign = op, lhs = op->getArg(0);
+    } else {
+      return std::nullopt;
+    }
+  }
+  const Stmt* statement = assign;
+  auto parents = context.getParents(*statement);
+  if (!parents.empty() && parents[0].get<ExprWithCleanups>()) statement = parents[0].get<ExprWithCleanups>(), parents = context.getParents(*statement);
+  if (parents.empty() || !parents[0].get<CompoundStmt>()) return std::nullopt;
+  auto* member = dyn_cast<MemberExpr>(lhs->IgnoreParenImpCasts());
+  auto* field = member ? dyn_cast<FieldDecl>(member->getMemberDecl()) : nullptr;
+  if (!field) return std::nullopt;
+  return Assignment{assign, member, field};
+}
+
+std::string source_text(CharSourceRange range, ASTContext& context) {
+  CharSourceRange file = Lexer::makeFileCharRange(range, context.getSourceManager(), context.getLangOpts());
+  return file.isInvalid() ? "" : Lexer::getSourceText(file, context.getSourceManager(), context.getLangOpts()).str();
+}
+
+std::string source_text(SourceRange range, ASTContext& context) { return source_text(CharSourceRange::getTokenRange(range), context); }
+
+// The blanks before `at` on its line, or nullopt when something else comes first.
+std::optional<std::string> indent_of(SourceLocation at, const SourceManager& sm) {
+  auto [file, offset] = sm.getDecomposedLoc(sm.getExpansionLoc(at));
+  StringRef text = sm.getBufferData(file);
+  size_t start = text.rfind('\n', offset);  // looks before `offset` only
+  start = start == StringRef::npos ? 0 : start + 1;
+  StringRef before = text.slice(start, offset);
+  if (before.find_first_not_of(" \t") != StringRef::npos) return std::nullopt;
+  return before.str();
+}
+
+bool declared(ASTContext& context, const char* name) { return !context.getTranslationUnitDecl()->lookup(&context.Idents.get(name)).empty(); }
+
+// A name the function does not use yet, for a new local.
+bool unused_name(const std::string& name, const FunctionDecl* function, ASTContext& context) {
+  if (!function->getBody() || declared(context, name.c_str())) return false;
+  return match(findAll(namedDecl(hasName(name))), *function->getBody(), context).empty() &&
+         std::none_of(function->param_begin(), function->param_end(), [&](const ParmVarDecl* p) { return p->getName() == name; });
+}
+
+const FieldDecl* field_named(const RecordDecl* record, const std::string& name) {
+  for (const FieldDecl* f : record->fields())
+    if (f->getName() == name) return f;
+  return nullptr;
+}
+
+// The spelling of a type that compiles anywhere in the unit (`glm::vec3`, `double`).
+std::string spelled(QualType type, ASTContext& context) {
+  PrintingPolicy policy(context.getLangOpts());
+  policy.SuppressScope = false;
+  return TypeName::getFullyQualifiedName(type.getNonReferenceType().getUnqualifiedType(), context, policy);
+}
+
+// The new member's declaration beside `field`: after its shader-parameter macro (members of those
+// structs are bound by name), or at the end of a plain struct, where a new member sits at the same
+// offset in C++ as in the shader's block only if the struct is a whole number of 16-byte rows.
+std::variant<Reporter::Change, std::string> declare(const FieldDecl* field, const std::string& type, const std::string& name, ASTContext& context) {
+  const SourceManager& sm = context.getSourceManager();
+  const LangOptions& lang = context.getLangOpts();
+  const RecordDecl* record = field->getParent();
+  std::string struct_name = record->getIdentifier() ? "`" + record->getNameAsString() + "`" : "the struct";
+  if (field->getLocation().isMacroID()) {
+    CharSourceRange call = sm.getExpansionRange(field->getLocation());
+    std::string text = source_text(call, context);
+    size_t open = text.find('('), comma = text.rfind(',');
+    if (open == std::string::npos || comma == std::string::npos || text.find(',', open) != comma || text.back() != ')')
+      return "`" + text.substr(0, open) + "` declares " + struct_name + "'s member with more than a type and a name; add the low half by hand";
+    std::string macro = text.substr(0, open);
+    SourceLocation end = Lexer::getLocForEndOfToken(call.getEnd(), 0, sm, lang);
+    std::string indent = indent_of(call.getBegin(), sm).value_or("\t");
+    std::string written_type = type.empty() ? StringRef(text).slice(open + 1, comma).trim().str() : type;
+    return Reporter::Change{CharSourceRange::getCharRange(end, end), "\n" + indent + macro + "(" + written_type + ", " + name + ")"};
+  }
+  if (record->isInvalidDecl() || record->isDependentType()) return struct_name + " has no fixed layout";
+  int64_t size = context.getASTRecordLayout(record).getSize().getQuantity();
+  if (size % 16 != 0)
+    return fmt::format("{} is {} bytes, not a whole number of 16-byte rows: a new member would not sit at the same offset as in the shader's block",
+                       struct_name, size);
+  SourceLocation brace = record->getBraceRange().getEnd();
+  if (brace.isMacroID()) return struct_name + " ends inside a macro";
+  std::string indent = indent_of(field->getBeginLoc(), sm).value_or("  ");
+  std::string declaration = (type.empty() ? spelled(field->getType(), context) : type) + " " + name + ";";
+  if (std::optional<std::string> closing = indent_of(brace, sm)) {
+    SourceLocation line = brace.getLocWithOffset(-static_cast<int>(closing->size()));
+    return Reporter::Change{CharSourceRange::getCharRange(line, line), indent + declaration + "\n"};
+  }
+  return Reporter::Change{CharSourceRange::getCharRange(brace, brace), declaration + " "};
+}
+
+// UE 5.4's DoubleFloat type for a narrowed UE type, when the unit declares it.
+const char* df_type(QualType narrowed, ASTContext& context) {
+  const char* name = nullptr;
+  if (narrowed->isBuiltinType()) name = "FDFScalar";
+  else if (const RecordDecl* r = narrowed->getAsRecordDecl(); r && r->getIdentifier()) {
+    StringRef record = r->getName();
+    name = record == "TVector" ? "FDFVector3" : record == "TVector2" ? "FDFVector2" : record == "TVector4" ? "FDFVector4" : nullptr;
+  }
+  return name && declared(context, name) ? name : nullptr;
+}
+
+// Whether a value of `type` can be made from its float twin (`static_cast<glm::dvec3>(v)`).
+bool widens_from_float(QualType type) {
+  if (type->isBuiltinType()) return true;
+  const CXXRecordDecl* record = type->getAsCXXRecordDecl();
+  if (!record || !record->hasDefinition()) return false;
+  for (const Decl* d : record->decls()) {
+    const CXXConstructorDecl* ctor = dyn_cast<CXXConstructorDecl>(d);
+    if (auto* t = dyn_cast<FunctionTemplateDecl>(d)) ctor = dyn_cast<CXXConstructorDecl>(t->getTemplatedDecl());
+    if (ctor && !ctor->isCopyOrMoveConstructor() && ctor->getNumParams() >= 1 && ctor->getMinRequiredArguments() <= 1) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool writes_low_half(const FieldDecl* field, const Expr* e, ASTContext& context, const Tables& tables) {
+  const FunctionDecl* function = enclosing_function(e, context);
+  if (!function || !function->getBody() || !field->getIdentifier()) return false;
+  std::string name = field->getNameAsString();
+  for (const FieldDecl* sibling : field->getParent()->fields()) {
+    StringRef other = sibling->getName();
+    if (sibling == field || !other.starts_with(name) || !tables.low_names.match(other.str()) || !tables.low_names.match(other.substr(name.size()).str()))
+      continue;
+    if (!match(findAll(memberExpr(member(equalsNode(sibling)))), *function->getBody(), context).empty()) return true;
+  }
+  return false;
+}
+
+std::variant<HighLowFix, std::string> high_low_fix(const Upload& up, ASTContext& context) {
+  const SourceManager& sm = context.getSourceManager();
+  const LangOptions& lang = context.getLangOpts();
+  std::optional<Assignment> at = assignment_statement(up.narrowing, context);
+  if (!at) return std::string("the narrowed value is not assigned to a member in a statement of its own");
+  if (auto* construct = dyn_cast<CXXConstructExpr>(strip(up.narrowing)); construct && construct->getNumArgs() != 1)
+    return "`" + source_text(up.narrowing->getSourceRange(), context).substr(0, source_text(up.narrowing->getSourceRange(), context).find('(')) +
+           "(...)` packs the value with others; split it by hand";
+  if (sm.getFileID(sm.getExpansionLoc(at->field->getLocation())) != sm.getFileID(sm.getExpansionLoc(at->expr->getBeginLoc())))
+    return "the member is declared in another file (" + sm.getFilename(sm.getExpansionLoc(at->field->getLocation())).str() +
+           "), and a rewrite stays in one file";
+  std::optional<std::string> indent = indent_of(at->expr->getBeginLoc(), sm);
+  if (!indent || at->expr->getBeginLoc().isMacroID() || at->expr->getEndLoc().isMacroID())
+    return std::string("the assignment does not start its line, or is inside a macro");
+  const FunctionDecl* function = enclosing_function(up.narrowing, context);
+  bool matrix = up.value.kind != Kind::position;
+  std::string name = at->field->getNameAsString();
+  std::string low = name + (matrix ? "PostTranslation" : name.find('_') != std::string::npos ? "_low" : "Low");
+
+  const Expr* base = at->member->getBase();
+  bool implicit_this = isa<CXXThisExpr>(base->IgnoreParenImpCasts()) && cast<CXXThisExpr>(base->IgnoreParenImpCasts())->isImplicit();
+  std::string object = implicit_this ? "" : source_text(base->getSourceRange(), context) + (at->member->isArrow() ? "->" : ".");
+  std::string target = source_text(at->member->getSourceRange(), context);
+  std::string value = source_text(up.value_expr->getSourceRange(), context);
+  if (object.empty() && !implicit_this) return std::string("the member's object could not be read");
+
+  HighLowFix fix;
+  fix.low = low;
+  CharSourceRange whole = CharSourceRange::getTokenRange(at->expr->getSourceRange());
+  std::string type_of_low;  // "" for the member's own type
+  if (matrix) {
+    if (up.value.from_world)
+      return std::string("a world-to-view or world-to-clip matrix: pre-translate it by the camera (UE 5.4 `FDFInverseMatrix::MakeFromRelativeWorldMatrix`) by hand");
+    if (!declared(context, "FDFMatrix") || !declared(context, "FDFVector3"))
+      return std::string("a matrix is split with UE 5.4's `FDFMatrix`, which this unit does not declare");
+    std::string local = name + "DF";
+    if (!unused_name(local, function, context)) return "`" + local + "` is taken";
+    std::string source = value;
+    std::string prefix;
+    // The matrix is read twice (its origin and itself); a call is made once, into a local.
+    if (up.value_expr->HasSideEffects(context)) {
+      source = name + "Absolute";
+      if (!unused_name(source, function, context)) return "`" + source + "` is taken";
+      prefix = "const auto& " + source + " = " + value + ";\n" + *indent;
+    }
+    fix.changes.push_back({whole, prefix + "const FDFMatrix " + local + " = FDFMatrix::MakeToRelativeWorldMatrix(FDFVector3(" + source +
+                                      ".GetOrigin()).High, " + source + ");\n" + *indent + target + " = " + local + ".M;\n" + *indent + object + low +
+                                      " = " + local + ".PostTranslation"});
+    fix.form = "`FDFMatrix::MakeToRelativeWorldMatrix`";
+    fix.read = "`MakeDFMatrix(" + low + ", " + name + ")`";
+    type_of_low = "FVector3f";
+  } else if (const char* df = df_type(up.narrowing->getType(), context)) {
+    std::string local = name + "DF";
+    if (!unused_name(local, function, context)) return "`" + local + "` is taken";
+    fix.changes.push_back({whole, std::string("const ") + df + " " + local + "(" + value + ");\n" + *indent + target + " = " + local + ".High;\n" +
+                                      *indent + object + low + " = " + local + ".Low"});
+    fix.form = std::string("`") + df + "`";
+    fix.read = "`MakeDF" + std::string(df + 3) + "(" + name + ", " + low + ")`";
+  } else {
+    // low = float(value - double(high)): the difference is exact in double, and its nearest
+    // float is the rest the high half lost (lwc::host::split in lwcport's lwc_host.h does the same).
+    QualType wide = up.value_expr->getType();
+    if (!widens_from_float(wide.getNonReferenceType()))
+      return "`" + spelled(wide, context) + "` has no constructor from its float twin to subtract the high half in double";
+    std::string source = value;
+    if (up.value_expr->HasSideEffects(context)) {
+      source = name + "World";
+      if (!unused_name(source, function, context)) return "`" + source + "` is taken";
+      SourceLocation begin = sm.getExpansionLoc(at->expr->getBeginLoc());
+      fix.changes.push_back({CharSourceRange::getCharRange(begin, begin), "const " + spelled(wide, context) + " " + source + " = " + value + ";\n" + *indent});
+      fix.changes.push_back({CharSourceRange::getTokenRange(up.value_expr->getSourceRange()), source});
+    }
+    SourceLocation after = Lexer::findLocationAfterToken(sm.getExpansionLoc(at->expr->getEndLoc()), tok::semi, sm, lang, false);
+    if (after.isInvalid()) return std::string("the assignment has no `;` right after it");
+    std::string narrow = spelled(at->field->getType(), context);
+    fix.changes.push_back({CharSourceRange::getCharRange(after, after), "\n" + *indent + object + low + " = static_cast<" + narrow + ">(" + source +
+                                                                        " - static_cast<" + spelled(wide, context) + ">(" + target + "));"});
+    fix.form = "a difference in double";
+    fix.read = "a DoubleFloat pair (high `" + name + "`, low `" + low + "`), added only in DoubleFloat arithmetic";
+  }
+  if (!field_named(at->field->getParent(), low)) {
+    auto declaration = declare(at->field, type_of_low, low, context);
+    if (auto* why = std::get_if<std::string>(&declaration)) return *why;
+    fix.changes.push_back(std::get<Reporter::Change>(declaration));
+  }
+  return fix;
+}
+
+void offer_high_low(const Upload& up, Finding& finding, Vars& vars, const MatchFinder::MatchResult& match, const RuleInfo& rule, Reporter& out) {
+  auto fix = high_low_fix(up, *match.Context);
+  if (auto* why = std::get_if<std::string>(&fix)) {
+    finding.withheld.push_back("high-low: " + *why);
+    return;
+  }
+  const HighLowFix& split = std::get<HighLowFix>(fix);
+  vars["low"] = "`" + split.low + "`";
+  vars["form"] = split.form;
+  vars["read"] = split.read;
+  if (out.fix(finding, rule, "high-low", vars, split.changes, *match.SourceManager, match.Context->getLangOpts()) && finding.facts.count("port"))
+    finding.facts["port"] = up.value.kind == Kind::position ? "high-low-position" : "high-low-matrix";
+}
+
+}  // namespace lwc::host
