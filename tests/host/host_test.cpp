@@ -271,6 +271,28 @@ TEST(HostCli, FixWritesTheFixedFileAndReportsWhatRemains) {
   EXPECT_EQ(compile_errors(dir + "/a.cpp"), "");
 }
 
+// Two sites that would each declare the same new member: one round declares it, the next round
+// splits the other site into it; the file compiles and nothing is left.
+TEST(HostCli, FixSplitsEverySiteOfOneMemberInOneRun) {
+  std::string dir = test::scratch("host-fix-rounds");
+  std::string site = "\tP.SceneOrigin = FVector3f(A->GetActorLocation());\n";
+  test::write(dir + "/a.cpp", "#include \"ue_mini.h\"\nBEGIN_SHADER_PARAMETER_STRUCT(FSceneParameters, )\n\tSHADER_PARAMETER(FVector3f, SceneOrigin)\n"
+                              "END_SHADER_PARAMETER_STRUCT()\nvoid G(FSceneParameters& P, const AActor* A)\n{\n" + site +
+                              "}\nvoid H(FSceneParameters& P, const AActor* A)\n{\n" + site + "}\n");
+  test::Run fixed = test::run("cd " + dir + " && " + test::binary() + " host a.cpp --fix --unsafe-fixes --format json -- -std=c++20 " + include_flag() + " 2>&1");
+  EXPECT_NE(fixed.out.find("Fixed 2 finding(s) in 1 file(s)."), std::string::npos) << fixed.out;
+  std::string text = test::read(dir + "/a.cpp");
+  auto count = [&](const std::string& what) {
+    size_t n = 0;
+    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+    return n;
+  };
+  size_t declared = count("SHADER_PARAMETER(FVector3f, SceneOriginLow)"), split = count("P.SceneOriginLow = SceneOriginDF.Low;");
+  EXPECT_EQ(declared, 1u) << text;
+  EXPECT_EQ(split, 2u) << text;
+  EXPECT_EQ(compile_errors(dir + "/a.cpp"), "");
+}
+
 // A suppression comment silences a host finding like a shader one; a stale one is reported.
 TEST(HostCli, SuppressionsAndBaselinesWorkAsForShaders) {
   std::string dir = test::scratch("host-suppress");
@@ -298,21 +320,29 @@ TEST(HostReport, PairsEachHostChangeWithTheShadersThatReadItsParameter) {
   test::write(dir + "/Source/Fill.cpp",
               "#include \"ue_mini.h\"\nvoid F(FParameters& P, const AActor* A, const FViewInfo& View)\n{\n"
               "\tP.ActorPosition = FVector3f(A->GetActorLocation());\n\tP.BoundsOrigin = FVector3f(A->GetActorLocation());\n}\n");
+  // No view here: the high/low port, with the struct declared beside it.
+  test::write(dir + "/Source/Scene.cpp",
+              "#include \"ue_mini.h\"\nBEGIN_SHADER_PARAMETER_STRUCT(FSceneParameters, )\n\tSHADER_PARAMETER(FVector3f, SceneOrigin)\n"
+              "END_SHADER_PARAMETER_STRUCT()\nvoid G(FSceneParameters& P, const AActor* A)\n{\n\tP.SceneOrigin = FVector3f(A->GetActorLocation());\n}\n");
   test::write(dir + "/Shaders/Actor.usf", "float3 ActorPosition;\nfloat3 ActorPositionScale;\nfloat4 Main(float3 P : POSITION) : SV_Position\n{\n\treturn float4(P - ActorPosition, 1);\n}\n");
   test::write(dir + "/Shaders/Other.usf", "float3 ActorPositionScale;\nfloat4 Main(float3 P : POSITION) : SV_Position\n{\n\treturn float4(P * ActorPositionScale, 1);\n}\n");
   test::Run r = test::run("cd " + dir + " && " + test::binary() + " report Shaders --host Source --out out");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   nlohmann::json j = nlohmann::json::parse(test::read(dir + "/out/report.json"));
-  EXPECT_EQ(j.at("summary").at("eras").at("C++ host"), 1);
-  EXPECT_EQ(j.at("host").at("findings"), 2);
-  ASSERT_EQ(j.at("host").at("pairs").size(), 2u);
+  EXPECT_EQ(j.at("summary").at("eras").at("C++ host"), 2);
+  EXPECT_EQ(j.at("host").at("findings"), 3);
+  ASSERT_EQ(j.at("host").at("pairs").size(), 3u);
   EXPECT_EQ(j.at("host").at("pairs").at(0).at("where"), "Source/Fill.cpp:4");
   EXPECT_EQ(j.at("host").at("pairs").at(0).at("parameter"), "ActorPosition");
   EXPECT_EQ(j.at("host").at("pairs").at(0).at("shader_files"), nlohmann::json::array({"Shaders/Actor.usf"}));  // a whole word only
   EXPECT_EQ(j.at("host").at("pairs").at(1).at("shader_files"), nlohmann::json::array());
   EXPECT_NE(test::read(dir + "/out/report.md").find("| Source/Fill.cpp:4 | `ActorPosition` | a translated-world position | `Shaders/Actor.usf` |"),
             std::string::npos);
+  EXPECT_EQ(j.at("host").at("pairs").at(2).at("port"), "high-low-position");
+  EXPECT_NE(test::read(dir + "/out/report.md").find("| Source/Scene.cpp:7 | `SceneOrigin` | a high/low pair (DoubleFloat) | none found |"),
+            std::string::npos);
   EXPECT_NE(test::read(dir + "/out/report.html").find("<table id=host>"), std::string::npos);
+  EXPECT_NE(test::read(dir + "/out/report.html").find("a high/low pair (DoubleFloat)"), std::string::npos);
   // A host run that cannot start fails the report, which says so.
   test::Run bad = test::run("cd " + dir + " && " + test::binary() + " report Shaders --host Missing --out out2 2>&1");
   EXPECT_EQ(bad.exit_code, 2);

@@ -2,6 +2,8 @@
 // suppressions, exit code), and --fix / --diff through fix's.
 #include <fmt/format.h>
 
+#include <set>
+
 #include "cli/commands.h"
 #include "fix/apply.h"
 #include "fix/diff.h"
@@ -36,9 +38,14 @@ HostResult analyze(const Options& o, const ProjectConfig& config) {
   return result;
 }
 
-// --fix and --diff: each file's chosen fixes applied once; "" or why nothing was written.
-int apply(const Options& o, const HostResult& result, std::ostream& out, std::ostream& err, bool& wrote) {
-  int fixed = 0, files = 0, failed = 0;
+// --fix and --diff: each file's chosen fixes applied once (--diff prints them instead).
+struct Applied {
+  int fixed = 0, failed = 0;
+  std::set<std::string> files;  // written
+};
+
+Applied apply(const Options& o, const HostResult& result, std::ostream& out, std::ostream& err) {
+  Applied done;
   for (const HostFile& file : result.files) {
     Source source(file.path, file.text);
     std::vector<Edit> edits;
@@ -52,15 +59,13 @@ int apply(const Options& o, const HostResult& result, std::ostream& out, std::os
     }
     if (std::string why = replace_file(file.path, file.text, text); !why.empty()) {
       err << fmt::format("lwcport: error: {}: {}\n", file.path, why);
-      ++failed;
+      ++done.failed;
       continue;
     }
-    fixed += static_cast<int>(chosen.size());
-    ++files;
-    wrote = true;
+    done.fixed += static_cast<int>(chosen.size());
+    done.files.insert(file.path);
   }
-  if (!o.diff) err << fmt::format("Fixed {} finding(s) in {} file(s).\n", fixed, files);
-  return failed;
+  return done;
 }
 
 }  // namespace
@@ -72,17 +77,25 @@ int run_host(const Options& o, std::ostream& out, std::ostream& err) {
   for (const std::string& e : result.errors) err << "lwcport: error: " << e << '\n';
   if (!result.errors.empty() && result.units == 0) return 2;
   if (o.diff) {
-    bool wrote = false;
-    apply(o, result, out, err, wrote);
+    apply(o, result, out, err);
     bool any = false;
     for (const HostFile& f : result.files) any = any || !choose_fixes(f.findings, o.unsafe_fixes).empty();
     return any && o.fail_on ? 1 : 0;
   }
   if (o.fix_in_place) {
-    bool wrote = false;
-    int failed = apply(o, result, out, err, wrote);
-    if (wrote) result = analyze(o, config);  // what remains, from the fixed files
-    if (failed) return 2;
+    // Fixes that clash (two that declare the same new member) wait for the next round, which
+    // re-analyses what the last one wrote; a few rounds settle any file.
+    std::set<std::string> files;
+    int fixed = 0;
+    for (int round = 0; round < 4; ++round) {
+      Applied done = apply(o, result, out, err);
+      if (done.failed) return 2;
+      if (done.fixed == 0) break;
+      fixed += done.fixed;
+      files.insert(done.files.begin(), done.files.end());
+      result = analyze(o, config);  // what remains, from the fixed files
+    }
+    err << fmt::format("Fixed {} finding(s) in {} file(s).\n", fixed, files.size());
   }
   LintOutput output(o, out, err);
   if (!output.open(*configs)) return 2;

@@ -237,7 +237,7 @@ std::string report_html(const json& j) {
 
   if (j["host"].is_object()) {
     const auto& h = j["host"];
-    out += fmt::format("<h2>Host code</h2><p><code>lwcport host</code>: {} finding(s) in {} C++ file(s). A translated-world port changes "
+    out += fmt::format("<h2>Host code</h2><p><code>lwcport host</code>: {} finding(s) in {} C++ file(s). A translated-world or high/low port changes "
                        "both sides at once: each host change below and the shaders that read what it uploads.</p>",
                        str(h["findings"]), str(h["files"]));
     out += "<table id=host>" + th({{"host change", false}, {"shader parameter", false}, {"the shaders must read it as", false}, {"shader files that read it", false}}) +

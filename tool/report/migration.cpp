@@ -294,7 +294,7 @@ std::string report_markdown(const nlohmann::ordered_json& j) {
       for (const auto& f : p["shader_files"]) files += (files.empty() ? "`" : ", `") + f.get<std::string>() + "`";
       rows.push_back({p["where"], "`" + p["parameter"].get<std::string>() + "`", port_text(p["port"]), files.empty() ? "none found" : files});
     }
-    out += fmt::format("## Host code\n\n`lwcport host`: {} finding(s) in {} C++ file(s) (era `{}` above). A translated-world port changes "
+    out += fmt::format("## Host code\n\n`lwcport host`: {} finding(s) in {} C++ file(s) (era `{}` above). A translated-world or high/low port changes "
                        "both sides at once: each host change below and the shaders that read what it uploads.\n\n",
                        num(h["findings"]), num(h["files"]), kHostEra);
     out += rows.empty() ? "No host change feeds a shader parameter.\n\n"
