@@ -152,7 +152,20 @@ TEST(HostCorpus, FindingsAndFixedFilesAreTheGoldenOnesAndCompile) {
     Source source(path, file->text);
     for (const Finding& f : file->findings) findings.push_back(finding_json(locate(source, f)));
     std::string got = nlohmann::json{{"findings", findings}}.dump(2) + "\n";
-    std::string fixed = fixed_text(*file, true);
+    // Every fix applied, in rounds as `lwcport host --fix` applies them (fixes that clash, as two
+    // that add a member at the end of one struct, wait for the next round and its re-analysis).
+    std::string copy = test::scratch("host-corpus-fixed") + "/" + e.path().filename().string();
+    std::string fixed = file->text;
+    size_t applied = 0, remaining = file->findings.size();
+    for (int round = 0; round < 4; ++round) {
+      HostResult now = round == 0 ? result : analyze_file(copy, options.tables);
+      const HostFile* current = file_named(now, round == 0 ? path : copy);
+      remaining = current ? current->findings.size() : 0;
+      if (!current || choose_fixes(current->findings, true).empty()) break;
+      applied += choose_fixes(current->findings, true).size();
+      fixed = fixed_text(*current, true);
+      test::write(copy, fixed);
+    }
     if (update) {
       test::write(path + ".expected.json", got);
       test::write(path + ".fixed", fixed);
@@ -160,15 +173,8 @@ TEST(HostCorpus, FindingsAndFixedFilesAreTheGoldenOnesAndCompile) {
     EXPECT_EQ(got, test::read(path + ".expected.json")) << path;
     EXPECT_EQ(fixed, test::read(path + ".fixed")) << path;
     EXPECT_EQ(compile_errors(path + ".fixed"), "") << path << ".fixed";
-    // The fixed file keeps only the findings that had no fix: no fix is flagged again.
-    size_t without_fix = 0;
-    for (const Finding& f : file->findings) without_fix += f.fixes.empty();
-    std::string copy = test::scratch("host-corpus-fixed") + "/" + e.path().filename().string();
-    test::write(copy, fixed);
-    const HostFile* fixed_file = nullptr;
-    HostResult after = analyze_file(copy, options.tables);
-    fixed_file = file_named(after, copy);
-    EXPECT_EQ(fixed_file ? fixed_file->findings.size() : 0u, without_fix) << path;
+    // Each fix removed its finding and added none: what remains is what had no fix.
+    EXPECT_EQ(remaining, file->findings.size() - applied) << path;
   }
   EXPECT_GE(files, 2);
 }

@@ -291,8 +291,7 @@ HostResult analyze_host(const HostOptions& options) {
       for (const tooling::CompileCommand& c : databases[i]->getCompileCommands(sources[i])) out.command = c.CommandLine;
       std::vector<std::unique_ptr<host::Check>> checks;
       ast_matchers::MatchFinder finder;
-      host::NarrowingFan narrowings;  // the checks that read uploads share one set of matchers
-      narrowings.tables = &tables;
+      host::NarrowingFan narrowings(tables);  // the checks that read uploads share one set of matchers
       for (const RuleInfo& rule : all_rules()) {
         auto factory = host::check_factories().find(rule.id);
         if (!rule.host || !options.enabled(rule.id) || factory == host::check_factories().end()) continue;

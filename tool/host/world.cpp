@@ -76,6 +76,8 @@ Tables Tables::load(const nlohmann::json& additions) {
   t.gpu_structs = n("gpu-struct-names");
   t.upload_calls = n("upload-calls");
   t.address_calls = n("address-calls");
+  t.copy_calls = n("copy-calls");
+  t.mapped_pointers = n("mapped-pointers");
   t.upload_constructors = n("upload-constructors");
   t.high_names = n("splits/high-names");
   t.low_names = n("splits/low-names");

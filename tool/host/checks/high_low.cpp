@@ -119,10 +119,18 @@ std::variant<Reporter::Change, std::string> declare(const FieldDecl* field, cons
     return Reporter::Change{CharSourceRange::getCharRange(end, end), "\n" + indent + macro + "(" + written_type + ", " + name + ")"};
   }
   if (record->isInvalidDecl() || record->isDependentType()) return struct_name + " has no fixed layout";
-  int64_t size = context.getASTRecordLayout(record).getSize().getQuantity();
-  if (size % 16 != 0)
-    return fmt::format("{} is {} bytes, not a whole number of 16-byte rows: a new member would not sit at the same offset as in the shader's block",
-                       struct_name, size);
+  // C++ puts the new member right after the last one (in its tail padding, if any); std140 and
+  // cbuffer packing put a 3- or 4-vector at the next 16-byte row. They agree when the last
+  // member ends on a row.
+  const FieldDecl* last = nullptr;
+  for (const FieldDecl* f : record->fields()) last = f;
+  if (!last || last->isBitField()) return struct_name + " does not end with a plain member";
+  int64_t end = static_cast<int64_t>(context.getASTRecordLayout(record).getFieldOffset(last->getFieldIndex()) / 8) +
+                context.getTypeSizeInChars(last->getType()).getQuantity();
+  if (end % 16 != 0)
+    return fmt::format("{}'s members end at byte {}, not on a 16-byte row: a member added at the end would not sit at the same offset "
+                       "as in the shader's block",
+                       struct_name, end);
   SourceLocation brace = record->getBraceRange().getEnd();
   if (brace.isMacroID()) return struct_name + " ends inside a macro";
   std::string indent = indent_of(field->getBeginLoc(), sm).value_or("  ");

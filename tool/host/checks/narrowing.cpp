@@ -40,13 +40,38 @@ const Stmt* parent_of(ASTContext& context, const DynTypedNode& node, const Decl*
   return parents[0].get<Stmt>();
 }
 
-// A member declared through one of the shader-parameter macros, or of a struct named like a GPU block.
-bool gpu_field(const FieldDecl* field, ASTContext& context, const Tables& tables) {
+// A member declared through one of the shader-parameter macros, of a struct named like a GPU
+// block, or of a struct the unit uploads.
+bool gpu_field(const FieldDecl* field, ASTContext& context, const GpuSinks& sinks) {
   const SourceManager& sm = context.getSourceManager();
   for (SourceLocation at = field->getLocation(); at.isMacroID(); at = sm.getImmediateMacroCallerLoc(at))
-    if (tables.gpu_macros.match(Lexer::getImmediateMacroName(at, sm, context.getLangOpts()).str())) return true;
+    if (sinks.tables.gpu_macros.match(Lexer::getImmediateMacroName(at, sm, context.getLangOpts()).str())) return true;
   const RecordDecl* record = field->getParent();
-  return record && record->getIdentifier() && tables.gpu_structs.match(record->getName().str());
+  return record && ((record->getIdentifier() && sinks.tables.gpu_structs.match(record->getName().str())) || sinks.uploaded(record, context));
+}
+
+// The name an expression reads a pointer by: `frame.mapped`, `(char*)pData + offset`, `buffer->contents()`.
+std::string pointer_name(const Expr* e) {
+  for (;;) {
+    e = e->IgnoreParenImpCasts();
+    if (auto* c = dyn_cast<ExplicitCastExpr>(e)) e = c->getSubExpr();
+    else if (auto* b = dyn_cast<BinaryOperator>(e); b && b->isAdditiveOp()) e = b->getLHS();
+    else break;
+  }
+  const NamedDecl* named = nullptr;
+  if (auto* ref = dyn_cast<DeclRefExpr>(e)) named = ref->getDecl();
+  else if (auto* member = dyn_cast<MemberExpr>(e)) named = member->getMemberDecl();
+  else if (auto* call = dyn_cast<CallExpr>(e)) named = call->getDirectCallee();
+  return named && named->getIdentifier() ? named->getName().str() : "";
+}
+
+// The struct an argument passes by address: `&globals`, `&objects[i]`.
+const RecordDecl* addressed_record(const Expr* e) {
+  e = e->IgnoreParenImpCasts();
+  if (auto* c = dyn_cast<ExplicitCastExpr>(e)) e = c->getSubExpr()->IgnoreParenImpCasts();
+  auto* address = dyn_cast<UnaryOperator>(e);
+  if (!address || address->getOpcode() != UO_AddrOf) return nullptr;
+  return address->getSubExpr()->getType()->getAsRecordDecl();
 }
 
 std::string where(const FieldDecl* field) {
@@ -63,7 +88,7 @@ struct Sink {
 };
 
 // The GPU member an assignment's left side names.
-std::optional<Sink> assigned_to(const Expr* lhs, ASTContext& context, const Tables& tables) {
+std::optional<Sink> assigned_to(const Expr* lhs, ASTContext& context, const GpuSinks& tables) {
   lhs = lhs->IgnoreParenImpCasts();
   if (auto* sub = dyn_cast<ArraySubscriptExpr>(lhs)) lhs = sub->getBase()->IgnoreParenImpCasts();
   if (auto* op = dyn_cast<CXXOperatorCallExpr>(lhs); op && op->getOperator() == OO_Subscript) lhs = op->getArg(0)->IgnoreParenImpCasts();
@@ -79,10 +104,10 @@ std::optional<Sink> assigned_to(const Expr* lhs, ASTContext& context, const Tabl
   return Sink{"shader parameter " + where(field), field->getNameAsString(), true, "", field};
 }
 
-std::optional<Sink> sink_of(const Expr* e, ASTContext& context, const Tables& tables, int hops);
+std::optional<Sink> sink_of(const Expr* e, ASTContext& context, const GpuSinks& sinks, int hops);
 
 // Where a local's value goes: the first use of it that reaches a sink.
-std::optional<Sink> through_local(const VarDecl* var, const Expr* from, ASTContext& context, const Tables& tables, int hops) {
+std::optional<Sink> through_local(const VarDecl* var, const Expr* from, ASTContext& context, const GpuSinks& sinks, int hops) {
   if (hops > 0 || !var->isLocalVarDecl()) return std::nullopt;
   const Stmt* body = nullptr;
   for (DynTypedNode node = DynTypedNode::create(*from);;) {
@@ -100,7 +125,7 @@ std::optional<Sink> through_local(const VarDecl* var, const Expr* from, ASTConte
   }
   if (!body) return std::nullopt;
   for (const BoundNodes& use : match(findAll(declRefExpr(to(varDecl(equalsNode(var)))).bind("use")), *body, context))
-    if (auto sink = sink_of(use.getNodeAs<Expr>("use"), context, tables, hops + 1)) {
+    if (auto sink = sink_of(use.getNodeAs<Expr>("use"), context, sinks, hops + 1)) {
       sink->what += " through `" + var->getNameAsString() + "`";
       sink->through = var->getNameAsString();
       return sink;
@@ -108,13 +133,14 @@ std::optional<Sink> through_local(const VarDecl* var, const Expr* from, ASTConte
   return std::nullopt;
 }
 
-std::optional<Sink> sink_of(const Expr* e, ASTContext& context, const Tables& tables, int hops) {
+std::optional<Sink> sink_of(const Expr* e, ASTContext& context, const GpuSinks& sinks, int hops) {
+  const Tables& tables = sinks.tables;
   const Stmt* current = e;
   for (int step = 0; step < 16; ++step) {
     const Decl* decl = nullptr;
     const Stmt* parent = parent_of(context, DynTypedNode::create(*current), &decl);
     if (!parent) {
-      if (auto* var = dyn_cast_or_null<VarDecl>(decl)) return through_local(var, e, context, tables, hops);
+      if (auto* var = dyn_cast_or_null<VarDecl>(decl)) return through_local(var, e, context, sinks, hops);
       return std::nullopt;
     }
     if (auto* construct = dyn_cast<CXXConstructExpr>(parent)) {
@@ -132,7 +158,7 @@ std::optional<Sink> sink_of(const Expr* e, ASTContext& context, const Tables& ta
       continue;
     }
     if (auto* bin = dyn_cast<BinaryOperator>(parent)) {
-      if (bin->isAssignmentOp()) return bin->getRHS() == current ? assigned_to(bin->getLHS(), context, tables) : std::nullopt;
+      if (bin->isAssignmentOp()) return bin->getRHS() == current ? assigned_to(bin->getLHS(), context, sinks) : std::nullopt;
       if (bin->isMultiplicativeOp() || bin->isAdditiveOp()) {
         current = parent;
         continue;
@@ -140,7 +166,7 @@ std::optional<Sink> sink_of(const Expr* e, ASTContext& context, const Tables& ta
       return std::nullopt;
     }
     if (auto* op = dyn_cast<CXXOperatorCallExpr>(parent)) {
-      if (op->isAssignmentOp()) return op->getNumArgs() == 2 && op->getArg(1) == current ? assigned_to(op->getArg(0), context, tables) : std::nullopt;
+      if (op->isAssignmentOp()) return op->getNumArgs() == 2 && op->getArg(1) == current ? assigned_to(op->getArg(0), context, sinks) : std::nullopt;
       OverloadedOperatorKind o = op->getOperator();
       if (o == OO_Plus || o == OO_Minus || o == OO_Star || o == OO_Slash) {
         current = parent;
@@ -171,7 +197,7 @@ std::optional<Sink> sink_of(const Expr* e, ASTContext& context, const Tables& ta
       }
       unsigned at = 0;
       for (const FieldDecl* field : record->fields())
-        if (at++ == index) return gpu_field(field, context, tables) ? std::optional<Sink>(Sink{"shader parameter " + where(field), field->getNameAsString()}) : std::nullopt;
+        if (at++ == index) return gpu_field(field, context, sinks) ? std::optional<Sink>(Sink{"shader parameter " + where(field), field->getNameAsString()}) : std::nullopt;
       return std::nullopt;
     }
     return std::nullopt;
@@ -181,7 +207,8 @@ std::optional<Sink> sink_of(const Expr* e, ASTContext& context, const Tables& ta
 
 }  // namespace
 
-std::optional<Upload> find_upload(const MatchFinder::MatchResult& match, const Tables& tables) {
+std::optional<Upload> find_upload(const MatchFinder::MatchResult& match, const GpuSinks& sinks) {
+  const Tables& tables = sinks.tables;
   const Expr* narrowing = match.Nodes.getNodeAs<Expr>("narrowing");
   if (!narrowing || inside_explicit_cast(narrowing)) return std::nullopt;
   ASTContext& context = *match.Context;
@@ -214,12 +241,31 @@ std::optional<Upload> find_upload(const MatchFinder::MatchResult& match, const T
   if (what.kind != Kind::position && what.kind != Kind::matrix && what.kind != Kind::model_view) return std::nullopt;
   // A vector built from a matrix, or the reverse, is no narrowing of either.
   if ((what.kind != Kind::position) != world.is_matrix_type(narrowing->getType())) return std::nullopt;
-  std::optional<Sink> sink = sink_of(narrowing, context, tables, 0);
+  std::optional<Sink> sink = sink_of(narrowing, context, sinks, 0);
   if (!sink) return std::nullopt;
   // The halves of a high/low split are narrowed on purpose (lwc-host-broken-split checks them).
   auto half = [&](const std::string& name) { return tables.high_names.match(name) || tables.low_names.match(name); };
   if (half(sink->field) || half(sink->through) || (sink->decl && writes_low_half(sink->decl, narrowing, context, tables))) return std::nullopt;
   return Upload{narrowing, value, what, World::type_name(narrowing->getType()), sink->what, sink->field, sink->gpu};
+}
+
+bool GpuSinks::uploaded(const RecordDecl* record, ASTContext& context) const {
+  if (!uploaded_) {
+    uploaded_.emplace();
+    for (const BoundNodes& b : match(findAll(callExpr(unless(isExpansionInSystemHeader())).bind("call")), context)) {
+      const CallExpr* call = b.getNodeAs<CallExpr>("call");
+      const FunctionDecl* callee = call->getDirectCallee();
+      if (!callee || !callee->getIdentifier()) continue;
+      std::string name = callee->getName().str();
+      if (tables.copy_calls.match(name) && call->getNumArgs() >= 2 && tables.mapped_pointers.match(pointer_name(call->getArg(0)))) {
+        if (const RecordDecl* r = addressed_record(call->getArg(1))) uploaded_->insert(r->getCanonicalDecl());
+      } else if (tables.upload_calls.match(name)) {
+        for (const Expr* arg : call->arguments())
+          if (const RecordDecl* r = addressed_record(arg)) uploaded_->insert(r->getCanonicalDecl());
+      }
+    }
+  }
+  return uploaded_->count(record->getCanonicalDecl()) > 0;
 }
 
 Finding* report_upload(const Upload& up, const MatchFinder::MatchResult& match, const RuleInfo& rule, Reporter& out, const Tables& tables,

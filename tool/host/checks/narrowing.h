@@ -1,5 +1,6 @@
 #pragma once
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -26,9 +27,24 @@ struct Upload {
 // implicit double-to-float conversions. Each match is bound to "narrowing".
 void register_narrowings(clang::ast_matchers::MatchFinder& finder, clang::ast_matchers::MatchFinder::MatchCallback* callback);
 
+// Where values reach the GPU in one unit: the tables' sinks, and the structs the unit copies into
+// mapped GPU memory (`memcpy(frame.mapped, &globals, ...)`) or hands to an upload call by address
+// (`glBufferSubData(..., &globals)`), whatever they are named. Those are found by one walk of the
+// unit, made the first time a narrowed world value reaches a member of a struct not named as a GPU
+// block.
+class GpuSinks {
+ public:
+  explicit GpuSinks(const Tables& tables) : tables(tables) {}
+  bool uploaded(const clang::RecordDecl* record, clang::ASTContext& context) const;
+  const Tables& tables;
+
+ private:
+  mutable std::optional<std::set<const clang::Decl*>> uploaded_;
+};
+
 // The upload a match is, when its value is a world value (a position, a world matrix or a
 // model-view product) and it reaches a GPU sink or a member of CPU-side data (`gpu` says which).
-std::optional<Upload> find_upload(const clang::ast_matchers::MatchFinder::MatchResult& match, const Tables& tables);
+std::optional<Upload> find_upload(const clang::ast_matchers::MatchFinder::MatchResult& match, const GpuSinks& sinks);
 
 // A check that reads the uploads the narrowing matchers find. The engine registers those matchers
 // once; each match is worked out once (find_upload) and handed to every such check.
@@ -40,11 +56,13 @@ class UploadCheck : public Check {
   virtual void upload(const Upload& up, const clang::ast_matchers::MatchFinder::MatchResult& match) = 0;
 };
 
+// One per unit.
 struct NarrowingFan : clang::ast_matchers::MatchFinder::MatchCallback {
-  const Tables* tables = nullptr;
+  explicit NarrowingFan(const Tables& tables) : sinks(tables) {}
+  GpuSinks sinks;
   std::vector<UploadCheck*> checks;
   void run(const clang::ast_matchers::MatchFinder::MatchResult& match) override {
-    if (std::optional<Upload> up = find_upload(match, *tables))
+    if (std::optional<Upload> up = find_upload(match, sinks))
       for (UploadCheck* check : checks) check->upload(*up, match);
   }
 };
