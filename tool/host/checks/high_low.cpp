@@ -269,18 +269,26 @@ std::variant<HighLowFix, std::string> high_low_fix(const Upload& up, ASTContext&
   return fix;
 }
 
-void offer_high_low(const Upload& up, Finding& finding, Vars& vars, const MatchFinder::MatchResult& match, const RuleInfo& rule, Reporter& out) {
+void PortedUploadCheck::upload(const Upload& up, const MatchFinder::MatchResult& match) {
+  if (!reports(up)) return;
+  Vars vars;
+  Finding* finding = report_upload(up, match, rule_, out_, tables_, port(), vars);
+  if (!finding) return;
+  std::optional<CameraInScope> camera = camera_in_scope(up.narrowing, *match.Context, tables_);
+  std::string why = camera ? translated(up, *camera, *finding, vars, match) : "no camera in scope (a parameter or local of a view type, rules/host-world.json \"views\")";
+  if (why.empty()) return;
+  finding->withheld.push_back("translated: " + why);
   auto fix = high_low_fix(up, *match.Context);
-  if (auto* why = std::get_if<std::string>(&fix)) {
-    finding.withheld.push_back("high-low: " + *why);
+  if (auto* not_split = std::get_if<std::string>(&fix)) {
+    finding->withheld.push_back("high-low: " + *not_split);
     return;
   }
   const HighLowFix& split = std::get<HighLowFix>(fix);
   vars["low"] = "`" + split.low + "`";
   vars["form"] = split.form;
   vars["read"] = split.read;
-  if (out.fix(finding, rule, "high-low", vars, split.changes, *match.SourceManager, match.Context->getLangOpts()) && finding.facts.count("port"))
-    finding.facts["port"] = up.value.kind == Kind::position ? "high-low-position" : "high-low-matrix";
+  if (out_.fix(*finding, rule_, "high-low", vars, split.changes, *match.SourceManager, match.Context->getLangOpts()) && finding->facts.count("port"))
+    finding->facts["port"] = up.value.kind == Kind::position ? "high-low-position" : "high-low-matrix";
 }
 
 }  // namespace lwc::host

@@ -26,9 +26,19 @@ std::variant<HighLowFix, std::string> high_low_fix(const Upload& up, clang::ASTC
 // names say: `PositionLow`, `position_low`): then `field` is the high half of a split made there.
 bool writes_low_half(const clang::FieldDecl* field, const clang::Expr* e, clang::ASTContext& context, const Tables& tables);
 
-// Adds the high/low rewrite to a finding (message variables `low` and `form`), or says in its
-// withheld list why there is none.
-void offer_high_low(const Upload& up, Finding& finding, Vars& vars, const clang::ast_matchers::MatchFinder::MatchResult& match,
-                    const RuleInfo& rule, Reporter& out);
+// A check of uploads whose findings are ported: translated where the camera is in scope (the
+// cheaper port: one float on the GPU, no pair arithmetic), else split high/low.
+class PortedUploadCheck : public UploadCheck {
+ public:
+  using UploadCheck::UploadCheck;
+  void upload(const Upload& up, const clang::ast_matchers::MatchFinder::MatchResult& match) override;
+
+ protected:
+  virtual bool reports(const Upload& up) const = 0;
+  virtual const char* port() const = 0;  // the finding's "port" fact until a high/low fix replaces it
+  // Adds the translated fix with the camera in scope: "" when added, else why not.
+  virtual std::string translated(const Upload& up, const CameraInScope& camera, Finding& finding, Vars& vars,
+                                 const clang::ast_matchers::MatchFinder::MatchResult& match) = 0;
+};
 
 }  // namespace lwc::host

@@ -12,30 +12,20 @@ using namespace clang;
 
 namespace {
 
-class NarrowedWorldMatrix : public UploadCheck {
+class NarrowedWorldMatrix : public PortedUploadCheck {
  public:
-  using UploadCheck::UploadCheck;
+  using PortedUploadCheck::PortedUploadCheck;
 
-  void upload(const Upload& up, const ast_matchers::MatchFinder::MatchResult& match) override {
-    if (up.value.kind != Kind::matrix || !up.gpu) return;
-    Vars vars;
-    Finding* finding = report_upload(up, match, rule_, out_, tables_, "translated-matrix", vars);
-    if (!finding) return;
-    std::string why = translated(up, *finding, vars, match);
-    if (why.empty()) return;
-    finding->withheld.push_back("translated: " + why);
-    offer_high_low(up, *finding, vars, match, rule_, out_);
-  }
+  bool reports(const Upload& up) const override { return up.value.kind == Kind::matrix && up.gpu; }
+  const char* port() const override { return "translated-matrix"; }
 
- private:
   // The view's PreViewTranslation folded into the matrix in double; "" when offered, else why not.
-  std::string translated(const Upload& up, Finding& finding, Vars& vars, const ast_matchers::MatchFinder::MatchResult& match) {
+  std::string translated(const Upload& up, const CameraInScope& camera, Finding& finding, Vars& vars,
+                         const ast_matchers::MatchFinder::MatchResult& match) override {
     const SourceManager& sm = *match.SourceManager;
     const LangOptions& lang = match.Context->getLangOpts();
-    std::optional<CameraInScope> camera = camera_in_scope(up.narrowing, *match.Context, tables_);
-    if (!camera) return "no camera in scope (a parameter or local of a view type, rules/host-world.json \"views\")";
-    if (camera->subtract) return "the camera is given as a world origin, and matrices are moved only with UE's PreViewTranslation";
-    vars["preview"] = camera->code;
+    if (camera.subtract) return "the camera is given as a world origin, and matrices are moved only with UE's PreViewTranslation";
+    vars["preview"] = camera.code;
     // Row vectors: M.ConcatTranslation(T) is M, then a move by T (local to translated world);
     // FTranslationMatrix(-T) * M moves back by T first (translated world to view or clip).
     const Expr* value = strip(up.value_expr);
@@ -45,11 +35,11 @@ class NarrowedWorldMatrix : public UploadCheck {
     SourceLocation end = Lexer::getLocForEndOfToken(sm.getExpansionLoc(range.getEnd()), 0, sm, lang);
     std::vector<Reporter::Change> changes;
     if (up.value.from_world) {
-      changes.push_back({CharSourceRange::getCharRange(begin, begin), "FTranslationMatrix(-" + camera->code + ") * " + (postfix ? "" : "(")});
+      changes.push_back({CharSourceRange::getCharRange(begin, begin), "FTranslationMatrix(-" + camera.code + ") * " + (postfix ? "" : "(")});
       if (!postfix) changes.push_back({CharSourceRange::getCharRange(end, end), ")"});
     } else {
       if (!postfix) changes.push_back({CharSourceRange::getCharRange(begin, begin), "("});
-      changes.push_back({CharSourceRange::getCharRange(end, end), (postfix ? "" : ")") + std::string(".ConcatTranslation(") + camera->code + ")"});
+      changes.push_back({CharSourceRange::getCharRange(end, end), (postfix ? "" : ")") + std::string(".ConcatTranslation(") + camera.code + ")"});
     }
     out_.fix(finding, rule_, up.value.from_world ? "translated-from-world" : "translated", vars, changes, sm, lang);
     return "";

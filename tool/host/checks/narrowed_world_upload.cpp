@@ -11,32 +11,20 @@ using namespace clang;
 
 namespace {
 
-class NarrowedWorldUpload : public UploadCheck {
+class NarrowedWorldUpload : public PortedUploadCheck {
  public:
-  using UploadCheck::UploadCheck;
+  using PortedUploadCheck::PortedUploadCheck;
 
-  void upload(const Upload& up, const ast_matchers::MatchFinder::MatchResult& match) override {
-    if (up.value.kind != Kind::position || !up.gpu) return;
-    Vars vars;
-    Finding* finding = report_upload(up, match, rule_, out_, tables_, "translated-position", vars);
-    if (!finding) return;
-    // Translated world is the cheaper port (one float on the GPU, no pair arithmetic): offered
-    // wherever the camera is in scope; the high/low split where it is not.
-    std::string why = translated(up, *finding, vars, match);
-    if (why.empty()) return;
-    finding->withheld.push_back("translated: " + why);
-    offer_high_low(up, *finding, vars, match, rule_, out_);
-  }
+  bool reports(const Upload& up) const override { return up.value.kind == Kind::position && up.gpu; }
+  const char* port() const override { return "translated-position"; }
 
- private:
   // The camera subtracted in double before the rounding; "" when offered, else why not.
-  std::string translated(const Upload& up, Finding& finding, Vars& vars, const ast_matchers::MatchFinder::MatchResult& match) {
+  std::string translated(const Upload& up, const CameraInScope& camera, Finding& finding, Vars& vars,
+                         const ast_matchers::MatchFinder::MatchResult& match) override {
     const SourceManager& sm = *match.SourceManager;
     const LangOptions& lang = match.Context->getLangOpts();
-    std::optional<CameraInScope> camera = camera_in_scope(up.narrowing, *match.Context, tables_);
-    if (!camera) return "no camera in scope (a parameter or local of a view type, rules/host-world.json \"views\")";
     const Expr* value = strip(up.value_expr);
-    std::string code = camera->code;
+    std::string code = camera.code;
     const Expr* position = value;
     // One component (`Location.Z`) takes the same component of the camera.
     if (up.value_expr->getType()->isBuiltinType()) {
@@ -48,9 +36,9 @@ class NarrowedWorldUpload : public UploadCheck {
       for (auto* m = dyn_cast<MemberExpr>(position); m && !m->getMemberDecl()->getIdentifier(); m = dyn_cast<MemberExpr>(position))
         position = m->getBase()->IgnoreParenImpCasts();
     }
-    if (camera->subtract && World(tables_, *match.Context).text(position->getSourceRange()) == camera->code)
+    if (camera.subtract && World(tables_, *match.Context).text(position->getSourceRange()) == camera.code)
       return "the camera's own position, which is zero in translated world";
-    std::string term = (camera->subtract ? " - " : " + ") + code;
+    std::string term = (camera.subtract ? " - " : " + ") + code;
     vars["translated"] = vars["value"] + term;
     // `a - b` plus the camera needs no brackets (+ and - associate left), a comparison or a choice
     // does; and `(float)P.X` binds tighter than the sum, which goes in brackets of its own.
