@@ -18,7 +18,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string include_flag() { return "-I" + test::source_dir() + "/corpus/host/include"; }
+// The corpus's headers, and Eigen's from Debian's libeigen3-dev (as compile_flags.txt says).
+std::vector<std::string> include_flags() { return {"-I" + test::source_dir() + "/corpus/host/include", "-isystem", "/usr/include/eigen3"}; }
+std::string include_flag() { return include_flags()[0] + " " + include_flags()[1] + " " + include_flags()[2]; }
 
 // An example's own compile flags: a first line `// lwcport-test-flags: -ffast-math ...`.
 std::vector<std::string> example_flags(const std::string& code) {
@@ -34,7 +36,8 @@ HostResult analyze_file(const std::string& path, const nlohmann::json& tables = 
   HostOptions options;
   options.tables = tables;
   options.paths = {path};
-  options.clang_args = {"-std=c++20", include_flag()};
+  options.clang_args = include_flags();
+  options.clang_args.insert(options.clang_args.begin(), "-std=c++20");
   for (const std::string& f : example_flags(test::read(path))) options.clang_args.push_back(f);
   return analyze_host(options);
 }
@@ -322,7 +325,7 @@ TEST(HostCli, SuppressionsAndBaselinesWorkAsForShaders) {
 // each host change that feeds a shader parameter paired with the shader files that read it.
 TEST(HostReport, PairsEachHostChangeWithTheShadersThatReadItsParameter) {
   std::string dir = test::scratch("host-report");
-  test::write(dir + "/Source/compile_flags.txt", "-std=c++20\n" + include_flag() + "\n");
+  test::write(dir + "/Source/compile_flags.txt", "-std=c++20\n" + include_flags()[0] + "\n" + include_flags()[1] + "\n" + include_flags()[2] + "\n");
   test::write(dir + "/Source/Fill.cpp",
               "#include \"ue_mini.h\"\nvoid F(FParameters& P, const AActor* A, const FViewInfo& View)\n{\n"
               "\tP.ActorPosition = FVector3f(A->GetActorLocation());\n\tP.BoundsOrigin = FVector3f(A->GetActorLocation());\n}\n");

@@ -299,7 +299,7 @@ HostResult analyze_host(const HostOptions& options) {
         checks.back()->register_matchers(finder);
         if (auto* reads_uploads = dynamic_cast<host::UploadCheck*>(checks.back().get())) narrowings.checks.push_back(reads_uploads);
       }
-      if (!narrowings.checks.empty()) host::register_narrowings(finder, &narrowings);
+      if (!narrowings.checks.empty()) host::register_narrowings(finder, &narrowings, tables);
       // A file system of its own, with its own working directory: Clang works in each command's
       // folder, and threads must not move one process-wide working directory under each other.
       tooling::ClangTool tool(*databases[i], {sources[i]}, std::make_shared<PCHContainerOperations>(), llvm::vfs::createPhysicalFileSystem());

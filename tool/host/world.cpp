@@ -78,6 +78,7 @@ Tables Tables::load(const nlohmann::json& additions) {
   t.address_calls = n("address-calls");
   t.copy_calls = n("copy-calls");
   t.mapped_pointers = n("mapped-pointers");
+  t.narrowing_methods = n("narrowing-methods");
   t.upload_constructors = n("upload-constructors");
   t.high_names = n("splits/high-names");
   t.low_names = n("splits/low-names");
@@ -160,7 +161,16 @@ char World::scalar(QualType type) const {
   return 0;
 }
 
-bool World::is_matrix_type(QualType type) const { return tables_.matrix_types.match(type_name(type)); }
+bool World::is_matrix_type(QualType type) const {
+  // Eigen's Matrix<double, 3, 1> is a vector: a template whose first two numbers are extents, one of them 1.
+  if (auto* spec = dyn_cast_or_null<ClassTemplateSpecializationDecl>(type.getNonReferenceType()->getAsCXXRecordDecl())) {
+    std::vector<int64_t> extents;
+    for (const TemplateArgument& a : spec->getTemplateArgs().asArray())
+      if (a.getKind() == TemplateArgument::Integral) extents.push_back(a.getAsIntegral().getExtValue());
+    if (extents.size() >= 2 && (extents[0] == 1 || extents[1] == 1)) return false;
+  }
+  return tables_.matrix_types.match(type_name(type));
+}
 
 std::string World::text(SourceRange range) const {
   const SourceManager& sm = context_.getSourceManager();

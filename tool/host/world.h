@@ -25,6 +25,7 @@ struct Tables {
   Names double_scalars, float_scalars, matrix_types;
   Names gpu_macros, gpu_structs, upload_calls, address_calls;
   Names copy_calls, mapped_pointers;  // `memcpy(mapped, &block, size)`: a copy into mapped GPU memory
+  Names narrowing_methods;  // `v.cast<float>()` (Eigen): a method whose template argument is the scalar it converts to
   std::vector<std::pair<Names, Names>> upload_methods;  // method names, and the classes they upload through (osg::Uniform::set)
   Names upload_constructors;  // classes whose construction uploads its arguments (`new osg::Uniform(name, value)`)
   Names high_names, low_names;  // the two halves of a high/low split

@@ -243,7 +243,9 @@ std::variant<HighLowFix, std::string> high_low_fix(const Upload& up, ASTContext&
     // low = float(value - double(high)): the difference is exact in double, and its nearest
     // float is the rest the high half lost (lwc::host::split in lwcport's lwc_host.h does the same).
     QualType wide = up.value_expr->getType();
-    if (!widens_from_float(wide.getNonReferenceType()))
+    const CXXMethodDecl* method = isa<CXXMemberCallExpr>(up.narrowing) ? cast<CXXMemberCallExpr>(up.narrowing)->getMethodDecl() : nullptr;
+    bool by_method = method && method->getTemplateSpecializationArgs();  // `v.cast<float>()`, widened by `cast<double>()`
+    if (!by_method && !widens_from_float(wide.getNonReferenceType()))
       return "`" + spelled(wide, context) + "` has no constructor from its float twin to subtract the high half in double";
     std::string source = value;
     if (up.value_expr->HasSideEffects(context)) {
@@ -256,8 +258,9 @@ std::variant<HighLowFix, std::string> high_low_fix(const Upload& up, ASTContext&
     SourceLocation after = Lexer::findLocationAfterToken(sm.getExpansionLoc(at->expr->getEndLoc()), tok::semi, sm, lang, false);
     if (after.isInvalid()) return std::string("the assignment has no `;` right after it");
     std::string narrow = spelled(at->field->getType(), context);
-    fix.changes.push_back({CharSourceRange::getCharRange(after, after), "\n" + *indent + object + low + " = static_cast<" + narrow + ">(" + source +
-                                                                        " - static_cast<" + spelled(wide, context) + ">(" + target + "));"});
+    std::string rest = by_method ? "(" + source + " - " + target + "." + method->getNameAsString() + "<double>())." + method->getNameAsString() + "<float>()"
+                                 : "static_cast<" + narrow + ">(" + source + " - static_cast<" + spelled(wide, context) + ">(" + target + "))";
+    fix.changes.push_back({CharSourceRange::getCharRange(after, after), "\n" + *indent + object + low + " = " + rest + ";"});
     fix.form = "a difference in double";
     fix.read = "a DoubleFloat pair (high `" + name + "`, low `" + low + "`), added only in DoubleFloat arithmetic";
   }

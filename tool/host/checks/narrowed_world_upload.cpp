@@ -41,10 +41,10 @@ class NarrowedWorldUpload : public PortedUploadCheck {
     std::string term = (camera.subtract ? " - " : " + ") + code;
     vars["translated"] = vars["value"] + term;
     // `a - b` plus the camera needs no brackets (+ and - associate left), a comparison or a choice
-    // does; and `(float)P.X` binds tighter than the sum, which goes in brackets of its own.
+    // does; and `(float)P.X` and `P.cast<float>()` bind tighter than the sum, which goes in brackets of its own.
     bool wrap_value = isa<ConditionalOperator>(value) ||
                       (isa<BinaryOperator>(value) && !cast<BinaryOperator>(value)->isAdditiveOp() && !cast<BinaryOperator>(value)->isMultiplicativeOp());
-    bool wrap_sum = isa<CStyleCastExpr>(up.narrowing) && !isa<ParenExpr>(up.value_expr->IgnoreImpCasts());
+    bool wrap_sum = isa<CStyleCastExpr, CXXMemberCallExpr>(up.narrowing) && !isa<ParenExpr>(up.value_expr->IgnoreImpCasts());
     CharSourceRange range = CharSourceRange::getTokenRange(up.value_expr->getSourceRange());
     SourceLocation begin = sm.getExpansionLoc(range.getBegin());
     SourceLocation end = Lexer::getLocForEndOfToken(sm.getExpansionLoc(range.getEnd()), 0, sm, lang);

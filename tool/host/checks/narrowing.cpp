@@ -10,7 +10,7 @@ namespace lwc::host {
 using namespace clang;
 using namespace clang::ast_matchers;
 
-void register_narrowings(MatchFinder& finder, MatchFinder::MatchCallback* callback) {
+void register_narrowings(MatchFinder& finder, MatchFinder::MatchCallback* callback, const Tables& tables) {
   auto project = unless(isExpansionInSystemHeader());
   // A construction inside a cast is the cast's match.
   finder.addMatcher(cxxConstructExpr(project, unless(hasParent(explicitCastExpr()))).bind("narrowing"), callback);
@@ -23,6 +23,19 @@ void register_narrowings(MatchFinder& finder, MatchFinder::MatchCallback* callba
                                       unless(hasParent(implicitCastExpr(hasParent(explicitCastExpr())))))
                         .bind("narrowing"),
                     callback);
+  // A converting method: Eigen's `v.cast<float>()`.
+  if (!tables.narrowing_methods.globs.empty()) {
+    std::vector<StringRef> names(tables.narrowing_methods.globs.begin(), tables.narrowing_methods.globs.end());
+    finder.addMatcher(cxxMemberCallExpr(project, callee(cxxMethodDecl(hasAnyName(names)))).bind("narrowing"), callback);
+  }
+}
+
+bool narrowing_method_call(const Expr* e, const World& world) {
+  auto* call = dyn_cast<CXXMemberCallExpr>(e);
+  const CXXMethodDecl* method = call ? call->getMethodDecl() : nullptr;
+  if (!method || !method->getIdentifier() || !world.tables().narrowing_methods.match(method->getName().str())) return false;
+  const TemplateArgumentList* args = method->getTemplateSpecializationArgs();
+  return args && args->size() >= 1 && args->get(0).getKind() == TemplateArgument::Type && world.scalar(args->get(0).getAsType()) == 'f';
 }
 
 namespace {
@@ -213,13 +226,20 @@ std::optional<Upload> find_upload(const MatchFinder::MatchResult& match, const G
   if (!narrowing || inside_explicit_cast(narrowing)) return std::nullopt;
   ASTContext& context = *match.Context;
   World world(tables, context);
-  if (world.scalar(narrowing->getType()) != 'f') return std::nullopt;
+  // The type the value becomes, for its shape: a method's result is an expression of its own
+  // (Eigen's CwiseUnaryOp), so the value's own type stands for it.
+  QualType narrowed = narrowing->getType();
+  bool by_method = narrowing_method_call(narrowing, world);
+  if (!by_method && world.scalar(narrowed) != 'f') return std::nullopt;
   // `FVector3f(V)`, `static_cast<float>(X)`, `(float)X`, an implicit conversion; a cast to a
   // class type holds the construction that converts.
   const Expr* converted = narrowing;
   if (auto* cast = dyn_cast<CastExpr>(narrowing)) converted = cast->getSubExpr()->IgnoreImplicit();
   const Expr* value = converted;
-  if (auto* conversion = dyn_cast<CXXMemberCallExpr>(converted); conversion && isa_and_nonnull<CXXConversionDecl>(conversion->getMethodDecl())) {
+  if (by_method) {
+    value = cast<CXXMemberCallExpr>(narrowing)->getImplicitObjectArgument()->IgnoreImpCasts();  // not its base class (DenseBase)
+    narrowed = value->getType();
+  } else if (auto* conversion = dyn_cast<CXXMemberCallExpr>(converted); conversion && isa_and_nonnull<CXXConversionDecl>(conversion->getMethodDecl())) {
     value = conversion->getImplicitObjectArgument();
   } else if (auto* call = dyn_cast<CallExpr>(converted); call && converted == narrowing) {
     const FunctionDecl* callee = call->getDirectCallee();
@@ -240,13 +260,13 @@ std::optional<Upload> find_upload(const MatchFinder::MatchResult& match, const G
   Value what = world.classify(value);
   if (what.kind != Kind::position && what.kind != Kind::matrix && what.kind != Kind::model_view) return std::nullopt;
   // A vector built from a matrix, or the reverse, is no narrowing of either.
-  if ((what.kind != Kind::position) != world.is_matrix_type(narrowing->getType())) return std::nullopt;
+  if ((what.kind != Kind::position) != world.is_matrix_type(narrowed)) return std::nullopt;
   std::optional<Sink> sink = sink_of(narrowing, context, sinks, 0);
   if (!sink) return std::nullopt;
   // The halves of a high/low split are narrowed on purpose (lwc-host-broken-split checks them).
   auto half = [&](const std::string& name) { return tables.high_names.match(name) || tables.low_names.match(name); };
   if (half(sink->field) || half(sink->through) || (sink->decl && writes_low_half(sink->decl, narrowing, context, tables))) return std::nullopt;
-  return Upload{narrowing, value, what, World::type_name(narrowing->getType()), sink->what, sink->field, sink->gpu};
+  return Upload{narrowing, value, what, World::type_name(narrowed), sink->what, sink->field, sink->gpu};
 }
 
 bool GpuSinks::uploaded(const RecordDecl* record, ASTContext& context) const {

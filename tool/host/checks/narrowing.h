@@ -25,7 +25,10 @@ struct Upload {
 
 // The matchers of every narrowing: conversions to a float vector or matrix type, casts to float,
 // implicit double-to-float conversions. Each match is bound to "narrowing".
-void register_narrowings(clang::ast_matchers::MatchFinder& finder, clang::ast_matchers::MatchFinder::MatchCallback* callback);
+void register_narrowings(clang::ast_matchers::MatchFinder& finder, clang::ast_matchers::MatchFinder::MatchCallback* callback, const Tables& tables);
+
+// `v.cast<float>()`: a call of one of the tables' narrowing methods with a float scalar as its template argument.
+bool narrowing_method_call(const clang::Expr* e, const World& world);
 
 // Where values reach the GPU in one unit: the tables' sinks, and the structs the unit copies into
 // mapped GPU memory (`memcpy(frame.mapped, &globals, ...)`) or hands to an upload call by address

@@ -1,0 +1,31 @@
+// A renderer on Eigen with world positions and transforms in double: Eigen converts only through
+// `cast<float>()`, which is where the rounding happens.
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+
+struct Observer {
+  Eigen::Vector3d position;
+};
+
+struct ObjectUniforms {
+  Eigen::Vector3f objectPosition;
+  float radius;
+  Eigen::Matrix4f model;
+};
+
+void FillObject(ObjectUniforms& uniforms, const Eigen::Vector3d& worldPosition, const Eigen::Affine3d& worldTransform, const Observer& observer)
+{
+  uniforms.objectPosition = worldPosition.cast<float>();
+  uniforms.model = worldTransform.matrix().cast<float>();
+  // Right: relative to the observer, in double.
+  uniforms.objectPosition = (worldPosition - observer.position).cast<float>();
+  // A direction is not a position.
+  const Eigen::Vector3d sunDirection = worldPosition.normalized();
+  Eigen::Vector3f direction = sunDirection.cast<float>();
+  (void)direction;
+}
+
+void FillWithoutObserver(ObjectUniforms& uniforms, const Eigen::Vector3d& worldPosition)
+{
+  uniforms.objectPosition = worldPosition.cast<float>();
+}
