@@ -2,6 +2,7 @@
 // beside it names the camera origin (`Camera::position`) that translated fixes subtract.
 #include <glm/glm.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <vector>
 
 #include "gl_mini.h"
 
@@ -58,4 +59,19 @@ struct LightUniforms {
 void FillLight(LightUniforms& light, const SceneNode& node)
 {
   light.lightPosition = glm::vec3(node.position);
+}
+
+// A vertex buffer of orbit points: the array handed to glBufferData is GPU data, whatever its name.
+struct TrailPoint {
+  float x, y, z;
+  float time;
+};
+
+void FillTrail(std::vector<TrailPoint>& points, const std::vector<glm::dvec3>& orbitPositions)
+{
+  for (size_t i = 0; i < orbitPositions.size(); ++i) {
+    const glm::dvec3 position = orbitPositions[i];
+    points[i].x = static_cast<float>(position.x);
+  }
+  glBufferData(GL_ARRAY_BUFFER, static_cast<long>(points.size() * sizeof(TrailPoint)), points.data(), GL_STATIC_DRAW);
 }

@@ -53,14 +53,23 @@ const Stmt* parent_of(ASTContext& context, const DynTypedNode& node, const Decl*
   return parents[0].get<Stmt>();
 }
 
-// A member declared through one of the shader-parameter macros, of a struct named like a GPU
-// block, or of a struct the unit uploads.
-bool gpu_field(const FieldDecl* field, ASTContext& context, const GpuSinks& sinks) {
+std::string where(const FieldDecl* field) {
+  const RecordDecl* record = field->getParent();
+  std::string of = record && record->getIdentifier() ? " of `" + record->getNameAsString() + "`" : "";
+  return "`" + field->getNameAsString() + "`" + of;
+}
+
+// What a member is to the GPU, in words ("" when nothing): a shader parameter when declared through
+// one of the shader-parameter macros or in a struct named like a GPU block; else a member of a
+// struct the unit uploads.
+std::string gpu_member(const FieldDecl* field, ASTContext& context, const GpuSinks& sinks) {
   const SourceManager& sm = context.getSourceManager();
   for (SourceLocation at = field->getLocation(); at.isMacroID(); at = sm.getImmediateMacroCallerLoc(at))
-    if (sinks.tables.gpu_macros.match(Lexer::getImmediateMacroName(at, sm, context.getLangOpts()).str())) return true;
+    if (sinks.tables.gpu_macros.match(Lexer::getImmediateMacroName(at, sm, context.getLangOpts()).str())) return "shader parameter " + where(field);
   const RecordDecl* record = field->getParent();
-  return record && ((record->getIdentifier() && sinks.tables.gpu_structs.match(record->getName().str())) || sinks.uploaded(record, context));
+  if (!record) return "";
+  if (record->getIdentifier() && sinks.tables.gpu_structs.match(record->getName().str())) return "shader parameter " + where(field);
+  return sinks.uploaded(record, context) ? "member " + where(field) + ", which this unit uploads" : "";
 }
 
 // The name an expression reads a pointer by: `frame.mapped`, `(char*)pData + offset`, `buffer->contents()`.
@@ -78,19 +87,20 @@ std::string pointer_name(const Expr* e) {
   return named && named->getIdentifier() ? named->getName().str() : "";
 }
 
-// The struct an argument passes by address: `&globals`, `&objects[i]`.
-const RecordDecl* addressed_record(const Expr* e) {
+// The struct an argument passes by address: `&globals`, `&objects[i]`, `vertices.data()` of a
+// container of them (an address call of the tables on a template of the struct).
+const RecordDecl* addressed_record(const Expr* e, const Tables& tables) {
   e = e->IgnoreParenImpCasts();
   if (auto* c = dyn_cast<ExplicitCastExpr>(e)) e = c->getSubExpr()->IgnoreParenImpCasts();
+  if (auto* call = dyn_cast<CXXMemberCallExpr>(e); call && call->getMethodDecl() && call->getMethodDecl()->getIdentifier() &&
+                                                    tables.address_calls.match(call->getMethodDecl()->getName().str())) {
+    auto* container = dyn_cast_or_null<ClassTemplateSpecializationDecl>(call->getObjectType()->getAsCXXRecordDecl());
+    if (!container || container->getTemplateArgs().size() == 0 || container->getTemplateArgs()[0].getKind() != TemplateArgument::Type) return nullptr;
+    return container->getTemplateArgs()[0].getAsType()->getAsRecordDecl();
+  }
   auto* address = dyn_cast<UnaryOperator>(e);
   if (!address || address->getOpcode() != UO_AddrOf) return nullptr;
   return address->getSubExpr()->getType()->getAsRecordDecl();
-}
-
-std::string where(const FieldDecl* field) {
-  const RecordDecl* record = field->getParent();
-  std::string of = record && record->getIdentifier() ? " of `" + record->getNameAsString() + "`" : "";
-  return "`" + field->getNameAsString() + "`" + of;
 }
 
 struct Sink {
@@ -101,7 +111,7 @@ struct Sink {
 };
 
 // The GPU member an assignment's left side names.
-std::optional<Sink> assigned_to(const Expr* lhs, ASTContext& context, const GpuSinks& tables) {
+std::optional<Sink> assigned_to(const Expr* lhs, ASTContext& context, const GpuSinks& sinks) {
   lhs = lhs->IgnoreParenImpCasts();
   if (auto* sub = dyn_cast<ArraySubscriptExpr>(lhs)) lhs = sub->getBase()->IgnoreParenImpCasts();
   if (auto* op = dyn_cast<CXXOperatorCallExpr>(lhs); op && op->getOperator() == OO_Subscript) lhs = op->getArg(0)->IgnoreParenImpCasts();
@@ -109,12 +119,13 @@ std::optional<Sink> assigned_to(const Expr* lhs, ASTContext& context, const GpuS
   if (!member) return std::nullopt;
   // `Params.Position.X = ...`: the component of a GPU member.
   if (auto* inner = dyn_cast<MemberExpr>(member->getBase()->IgnoreParenImpCasts()))
-    if (auto* outer = dyn_cast<FieldDecl>(inner->getMemberDecl()); outer && gpu_field(outer, context, tables))
-      return Sink{"shader parameter " + where(outer), outer->getNameAsString()};
+    if (auto* outer = dyn_cast<FieldDecl>(inner->getMemberDecl()))
+      if (std::string gpu = gpu_member(outer, context, sinks); !gpu.empty()) return Sink{gpu, outer->getNameAsString()};
   auto* field = dyn_cast<FieldDecl>(member->getMemberDecl());
   if (!field) return std::nullopt;
-  if (!gpu_field(field, context, tables)) return Sink{"member " + where(field), field->getNameAsString(), false, "", field};
-  return Sink{"shader parameter " + where(field), field->getNameAsString(), true, "", field};
+  std::string gpu = gpu_member(field, context, sinks);
+  if (gpu.empty()) return Sink{"member " + where(field), field->getNameAsString(), false, "", field};
+  return Sink{gpu, field->getNameAsString(), true, "", field};
 }
 
 std::optional<Sink> sink_of(const Expr* e, ASTContext& context, const GpuSinks& sinks, int hops);
@@ -210,7 +221,10 @@ std::optional<Sink> sink_of(const Expr* e, ASTContext& context, const GpuSinks& 
       }
       unsigned at = 0;
       for (const FieldDecl* field : record->fields())
-        if (at++ == index) return gpu_field(field, context, sinks) ? std::optional<Sink>(Sink{"shader parameter " + where(field), field->getNameAsString()}) : std::nullopt;
+        if (at++ == index) {
+          std::string gpu = gpu_member(field, context, sinks);
+          return gpu.empty() ? std::nullopt : std::optional<Sink>(Sink{gpu, field->getNameAsString()});
+        }
       return std::nullopt;
     }
     return std::nullopt;
@@ -278,10 +292,10 @@ bool GpuSinks::uploaded(const RecordDecl* record, ASTContext& context) const {
       if (!callee || !callee->getIdentifier()) continue;
       std::string name = callee->getName().str();
       if (tables.copy_calls.match(name) && call->getNumArgs() >= 2 && tables.mapped_pointers.match(pointer_name(call->getArg(0)))) {
-        if (const RecordDecl* r = addressed_record(call->getArg(1))) uploaded_->insert(r->getCanonicalDecl());
+        if (const RecordDecl* r = addressed_record(call->getArg(1), tables)) uploaded_->insert(r->getCanonicalDecl());
       } else if (tables.upload_calls.match(name)) {
         for (const Expr* arg : call->arguments())
-          if (const RecordDecl* r = addressed_record(arg)) uploaded_->insert(r->getCanonicalDecl());
+          if (const RecordDecl* r = addressed_record(arg, tables)) uploaded_->insert(r->getCanonicalDecl());
       }
     }
   }
