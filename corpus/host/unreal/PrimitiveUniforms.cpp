@@ -34,3 +34,11 @@ void SetPivot(FPrimitiveParameters& Parameters, const AActor* Actor)
 	Parameters.PivotPosition = FVector3f(Pivot);
 	Parameters.PivotPositionLow = FVector3f(Pivot - FVector(Parameters.PivotPosition));
 }
+
+FPrimitiveParameters* AllocateParameters();
+
+// The object is a call, which the rewrite would make twice: no rewrite.
+void SetFromAllocation(const FPrimitiveSceneProxy& Proxy)
+{
+	AllocateParameters()->ObjectOrigin = FVector3f(Proxy.GetBounds().Origin);
+}

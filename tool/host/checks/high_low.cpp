@@ -142,6 +142,19 @@ std::variant<Reporter::Change, std::string> declare(const FieldDecl* field, cons
   return Reporter::Change{CharSourceRange::getCharRange(brace, brace), declaration + " "};
 }
 
+// Whether evaluating `e` twice is the same as once: names, members, subscripts (a container's
+// `operator[]` too) with such indices, dereferences, constants.
+bool repeatable(const Expr* e, ASTContext& context) {
+  e = e->IgnoreParenImpCasts();
+  if (isa<DeclRefExpr, CXXThisExpr, IntegerLiteral>(e)) return true;
+  if (auto* m = dyn_cast<MemberExpr>(e)) return repeatable(m->getBase(), context);
+  if (auto* a = dyn_cast<ArraySubscriptExpr>(e)) return repeatable(a->getBase(), context) && repeatable(a->getIdx(), context);
+  if (auto* u = dyn_cast<UnaryOperator>(e); u && u->getOpcode() == UO_Deref) return repeatable(u->getSubExpr(), context);
+  if (auto* op = dyn_cast<CXXOperatorCallExpr>(e); op && op->getOperator() == OO_Subscript && op->getNumArgs() == 2)
+    return repeatable(op->getArg(0), context) && repeatable(op->getArg(1), context);
+  return !e->HasSideEffects(context);
+}
+
 // UE 5.4's DoubleFloat type for a narrowed UE type, when the unit declares it.
 const char* df_type(QualType narrowed, ASTContext& context) {
   const char* name = nullptr;
@@ -206,6 +219,8 @@ std::variant<HighLowFix, std::string> high_low_fix(const Upload& up, ASTContext&
   std::string target = source_text(at->member->getSourceRange(), context);
   std::string value = source_text(up.value_expr->getSourceRange(), context);
   if (object.empty() && !implicit_this) return std::string("the member's object could not be read");
+  // The rewrite names the object twice: once for each half.
+  if (!repeatable(base, context)) return "`" + object + "` calls a function, which the rewrite would call twice; keep the object in a local first";
 
   HighLowFix fix;
   fix.low = low;
