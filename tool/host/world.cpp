@@ -3,6 +3,7 @@
 #include <clang/AST/DeclCXX.h>
 #include <clang/AST/DeclTemplate.h>
 #include <clang/AST/ExprCXX.h>
+#include <clang/AST/ParentMapContext.h>
 #include <clang/Lex/Lexer.h>
 
 #include <algorithm>
@@ -172,11 +173,22 @@ bool World::is_matrix_type(QualType type) const {
   return tables_.matrix_types.match(type_name(type));
 }
 
-std::string World::text(SourceRange range) const {
-  const SourceManager& sm = context_.getSourceManager();
-  CharSourceRange chars = Lexer::makeFileCharRange(CharSourceRange::getTokenRange(range), sm, context_.getLangOpts());
-  if (chars.isInvalid()) return "";
-  return Lexer::getSourceText(chars, sm, context_.getLangOpts()).str();
+std::string World::text(SourceRange range) const { return source_text(range, context_); }
+
+std::string source_text(CharSourceRange range, ASTContext& context) {
+  CharSourceRange file = Lexer::makeFileCharRange(range, context.getSourceManager(), context.getLangOpts());
+  return file.isInvalid() ? "" : Lexer::getSourceText(file, context.getSourceManager(), context.getLangOpts()).str();
+}
+
+std::string source_text(SourceRange range, ASTContext& context) { return source_text(CharSourceRange::getTokenRange(range), context); }
+
+const FunctionDecl* enclosing_function(const Stmt* s, ASTContext& context) {
+  for (clang::DynTypedNode node = clang::DynTypedNode::create(*s);;) {
+    auto parents = context.getParents(node);
+    if (parents.empty()) return nullptr;
+    node = parents[0];
+    if (auto* f = node.get<FunctionDecl>()) return f;
+  }
 }
 
 Value World::by_name(const NamedDecl* decl, QualType type, const Expr* e) const {

@@ -81,6 +81,13 @@ class World {
   clang::ASTContext& context_;
 };
 
+// The source text of a range, as written (a token range for a SourceRange); "" inside a macro.
+std::string source_text(clang::CharSourceRange range, clang::ASTContext& context);
+std::string source_text(clang::SourceRange range, clang::ASTContext& context);
+
+// The function a statement or expression is in, if any.
+const clang::FunctionDecl* enclosing_function(const clang::Stmt* s, clang::ASTContext& context);
+
 // Skips what does not change a value: parentheses, implicit casts, temporaries, copies.
 const clang::Expr* strip(const clang::Expr* e);
 

@@ -14,15 +14,6 @@ using namespace clang::ast_matchers;
 
 namespace {
 
-const FunctionDecl* enclosing_function(const Expr* e, ASTContext& context) {
-  for (DynTypedNode node = DynTypedNode::create(*e);;) {
-    auto parents = context.getParents(node);
-    if (parents.empty()) return nullptr;
-    node = parents[0];
-    if (auto* f = node.get<FunctionDecl>()) return f;
-  }
-}
-
 // `Object.Member = <narrowing>;` as a statement of its own in a block.
 struct Assignment {
   const Expr* expr;          // the whole assignment (the `;` follows it)
@@ -58,13 +49,6 @@ std::optional<Assignment> assignment_statement(const Expr* narrowing, ASTContext
   return Assignment{assign, member, field};
 }
 
-std::string source_text(CharSourceRange range, ASTContext& context) {
-  CharSourceRange file = Lexer::makeFileCharRange(range, context.getSourceManager(), context.getLangOpts());
-  return file.isInvalid() ? "" : Lexer::getSourceText(file, context.getSourceManager(), context.getLangOpts()).str();
-}
-
-std::string source_text(SourceRange range, ASTContext& context) { return source_text(CharSourceRange::getTokenRange(range), context); }
-
 // The blanks before `at` on its line, or nullopt when something else comes first.
 std::optional<std::string> indent_of(SourceLocation at, const SourceManager& sm) {
   auto [file, offset] = sm.getDecomposedLoc(sm.getExpansionLoc(at));
@@ -99,8 +83,7 @@ std::string spelled(QualType type, ASTContext& context) {
 }
 
 // The new member's declaration beside `field`: after its shader-parameter macro (members of those
-// structs are bound by name), or at the end of a plain struct, where a new member sits at the same
-// offset in C++ as in the shader's block only if the struct is a whole number of 16-byte rows.
+// structs are bound by name), or at the end of a plain struct whose members end on a 16-byte row.
 std::variant<Reporter::Change, std::string> declare(const FieldDecl* field, const std::string& type, const std::string& name, ASTContext& context) {
   const SourceManager& sm = context.getSourceManager();
   const LangOptions& lang = context.getLangOpts();

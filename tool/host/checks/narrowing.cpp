@@ -313,13 +313,8 @@ Finding* report_upload(const Upload& up, const MatchFinder::MatchResult& match, 
 }
 
 std::optional<CameraInScope> camera_in_scope(const Expr* e, ASTContext& context, const Tables& tables) {
-  const FunctionDecl* function = nullptr;
-  for (DynTypedNode node = DynTypedNode::create(*e); !function;) {
-    auto parents = context.getParents(node);
-    if (parents.empty()) return std::nullopt;
-    node = parents[0];
-    function = node.get<FunctionDecl>();
-  }
+  const FunctionDecl* function = enclosing_function(e, context);
+  if (!function) return std::nullopt;
   std::vector<const VarDecl*> candidates(function->param_begin(), function->param_end());
   if (function->getBody())
     for (const BoundNodes& b : match(findAll(varDecl().bind("v")), *function->getBody(), context)) {
