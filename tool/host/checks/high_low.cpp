@@ -6,6 +6,7 @@
 #include <clang/ASTMatchers/ASTMatchers.h>
 #include <clang/Lex/Lexer.h>
 #include <fmt/format.h>
+#include <llvm/Support/Path.h>
 
 namespace lwc::host {
 
@@ -186,7 +187,7 @@ std::variant<HighLowFix, std::string> high_low_fix(const Upload& up, ASTContext&
     return "`" + source_text(up.narrowing->getSourceRange(), context).substr(0, source_text(up.narrowing->getSourceRange(), context).find('(')) +
            "(...)` packs the value with others; split it by hand";
   if (sm.getFileID(sm.getExpansionLoc(at->field->getLocation())) != sm.getFileID(sm.getExpansionLoc(at->expr->getBeginLoc())))
-    return "the member is declared in another file (" + sm.getFilename(sm.getExpansionLoc(at->field->getLocation())).str() +
+    return "the member is declared in another file (" + llvm::sys::path::filename(sm.getFilename(sm.getExpansionLoc(at->field->getLocation()))).str() +
            "), and a rewrite stays in one file";
   std::optional<std::string> indent = indent_of(at->expr->getBeginLoc(), sm);
   if (!indent || at->expr->getBeginLoc().isMacroID() || at->expr->getEndLoc().isMacroID())
