@@ -68,6 +68,8 @@ Tables Tables::load(const nlohmann::json& additions) {
   t.matrix_inverse = n("world-matrices/inverse-calls");
   t.from_world_calls = n("world-matrices/from-world-calls");
   t.from_world_names = n("world-matrices/from-world-names");
+  t.transform_calls = n("world-matrices/transform-position-calls");
+  t.inverse_transform_calls = n("world-matrices/inverse-transform-position-calls");
   t.offset_calls = n("camera-offsets/calls");
   t.offset_names = n("camera-offsets/names");
   t.double_scalars = n("double-scalars");
@@ -205,6 +207,40 @@ Value World::by_name(const NamedDecl* decl, QualType type, const Expr* e) const 
   return {};
 }
 
+Value World::transformed(Value matrix, const Expr* point, bool inverse, const Expr* e) const {
+  if (matrix.kind != Kind::matrix || !point->getType()->isRecordType()) return {};
+  // Into the world from another frame: a world position, unless the point is a direction (w = 0).
+  if (matrix.from_world == inverse) return is_direction(point) ? Value{} : Value{Kind::position, e};
+  return {Kind::relative, e};  // out of the world: view space, or an object's own frame
+}
+
+bool World::is_direction(const Expr* point) {
+  auto* construct = dyn_cast<CXXConstructExpr>(strip(point));
+  if (auto* cast = dyn_cast<CXXFunctionalCastExpr>(strip(point))) construct = dyn_cast<CXXConstructExpr>(strip(cast->getSubExpr()));
+  if (!construct || construct->getNumArgs() < 2) return false;
+  const Expr* w = strip(construct->getArg(construct->getNumArgs() - 1));
+  if (auto* f = dyn_cast<FloatingLiteral>(w)) return f->getValue().isZero();
+  if (auto* i = dyn_cast<IntegerLiteral>(w)) return i->getValue().isZero();
+  return false;
+}
+
+bool World::is_transform(const Expr* e) const {
+  for (e = strip(e); e;) {
+    if (auto* cast = dyn_cast<CXXFunctionalCastExpr>(e)) e = strip(cast->getSubExpr());
+    else if (auto* c = dyn_cast<CXXConstructExpr>(e); c && c->getNumArgs() == 1 && !isa<CXXTemporaryObjectExpr>(e)) e = strip(c->getArg(0));
+    else break;
+  }
+  if (auto* op = dyn_cast_or_null<CXXOperatorCallExpr>(e); op && op->getOperator() == OO_Star && op->getNumArgs() == 2)
+    for (int i : {0, 1})
+      if (is_matrix_type(op->getArg(i)->getType()) && !is_matrix_type(op->getArg(1 - i)->getType()))
+        return op->getArg(1 - i)->getType()->isRecordType();
+  if (auto* call = dyn_cast_or_null<CXXMemberCallExpr>(e); call && call->getMethodDecl() && call->getMethodDecl()->getIdentifier()) {
+    std::string name = call->getMethodDecl()->getName().str();
+    return tables_.transform_calls.match(name) || tables_.inverse_transform_calls.match(name);
+  }
+  return false;
+}
+
 Value World::classify(const Expr* e, int depth) const {
   e = strip(e);
   if (!e || depth > 6) return {};
@@ -219,6 +255,10 @@ Value World::classify(const Expr* e, int depth) const {
       // A product keeps the world translation of its world matrix (model * view is camera-relative:
       // the translations cancel in double).
       if (o == OO_Star) {
+        // A matrix applied to a vector (`M * p`, OSG's `p * M`): the point in the matrix's target frame.
+        bool a_matrix = is_matrix_type(op->getArg(0)->getType()), b_matrix = is_matrix_type(op->getArg(1)->getType());
+        const Expr* point = a_matrix ? op->getArg(1) : op->getArg(0);
+        if (a_matrix != b_matrix && point->getType()->isRecordType()) return transformed(a_matrix ? a : b, point, false, e);
         // FTranslationMatrix(-PreViewTranslation) * WorldToClip: translated already.
         if ((a.kind == Kind::camera_offset && b.kind == Kind::matrix) || (a.kind == Kind::matrix && b.kind == Kind::camera_offset))
           return {Kind::relative, e};
@@ -274,6 +314,8 @@ Value World::classify(const Expr* e, int depth) const {
       if (object.kind == Kind::matrix && tables_.position_from_matrix.match(name)) return {Kind::position, e};
       if (object.kind == Kind::matrix && tables_.matrix_keep.match(name)) return {Kind::matrix, e, object.from_world};
       if (object.kind == Kind::matrix && tables_.matrix_inverse.match(name)) return {Kind::matrix, e, !object.from_world};
+      if (tables_.transform_calls.match(name) || tables_.inverse_transform_calls.match(name))  // M.TransformPosition(p)
+        return call->getNumArgs() == 1 ? transformed(object, call->getArg(0), tables_.inverse_transform_calls.match(name), e) : Value{};
     } else if (call->getNumArgs() == 1 && (tables_.matrix_keep.match(name) || tables_.matrix_inverse.match(name))) {  // glm::inverse(M)
       Value arg = classify(call->getArg(0), depth + 1);
       if (arg.kind == Kind::matrix) return {Kind::matrix, e, arg.from_world != tables_.matrix_inverse.match(name)};
@@ -293,6 +335,13 @@ Value World::classify(const Expr* e, int depth) const {
   }
   if (auto* ref = dyn_cast<DeclRefExpr>(e)) {
     const ValueDecl* decl = ref->getDecl();
+    // A local initialised by a matrix applied to a point: the matrix says which frame it is in, not
+    // its name (`cameraPosition = inverse(globeTransform) * eye` is the eye in the globe's frame).
+    if (auto* var = dyn_cast<VarDecl>(decl); var && var->isLocalVarDecl() && var->getInit() && is_transform(var->getInit())) {
+      Value init = classify(var->getInit(), depth + 1);
+      if (init.kind != Kind::none) init.expr = e;
+      return init;
+    }
     Value named = by_name(decl, ref->getType(), e);
     if (named.kind != Kind::none) return named;
     // A name that says local, relative or translated is the author's word that it was made so

@@ -21,6 +21,7 @@ struct Tables {
   std::vector<std::pair<std::string, Names>> position_members;  // member name, the types it is a world position of
   Names matrix_calls, matrix_names, matrix_not, matrix_keep, matrix_inverse;
   Names from_world_calls, from_world_names;  // matrices that take world positions in (view, view-projection)
+  Names transform_calls, inverse_transform_calls;  // `M.TransformPosition(p)`, `M.InverseTransformPosition(p)`
   Names offset_calls, offset_names;
   Names double_scalars, float_scalars, matrix_types;
   Names gpu_macros, gpu_structs, upload_calls, address_calls;
@@ -77,6 +78,12 @@ class World {
 
  private:
   Value by_name(const clang::NamedDecl* decl, clang::QualType type, const clang::Expr* e) const;
+  // `matrix` applied to `point` (or its inverse applied): into the world, or out of it.
+  Value transformed(Value matrix, const clang::Expr* point, bool inverse, const clang::Expr* e) const;
+  // A homogeneous vector written with w = 0 (`dvec4(n, 0.0)`): a direction, which no translation moves.
+  static bool is_direction(const clang::Expr* point);
+  // `e` is a matrix applied to a point (through conversions), whatever the matrix.
+  bool is_transform(const clang::Expr* e) const;
   const Tables& tables_;
   clang::ASTContext& context_;
 };

@@ -57,6 +57,8 @@ struct TTransform {
   TVector<T> Translation;
   TVector<T> GetTranslation() const { return Translation; }
   TVector<T> GetLocation() const { return Translation; }
+  TVector<T> TransformPosition(const TVector<T>& V) const { return V + Translation; }
+  TVector<T> InverseTransformPosition(const TVector<T>& V) const { return V - Translation; }
   TMatrix<T> ToMatrixWithScale() const { return {}; }
 };
 

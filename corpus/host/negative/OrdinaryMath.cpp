@@ -40,3 +40,14 @@ void DrawLocal(const glm::dmat4& localMatrix, const glm::dvec3& localPosition, G
   float length = (float)glm::length(localPosition);
   glUniform3f(at, length, Scale(2.0), 0.0f);
 }
+
+// The eye moved, in double, into a globe's own frame before it is narrowed: a position in the
+// globe's frame, whatever its name says (the globe's transform is no world matrix the tables know).
+void DrawGlobe(const glm::dmat4& globeTransform, const glm::dmat4& viewMatrix, const glm::dvec3& eyeInWorld, GLint at)
+{
+  const glm::dvec3 cameraPosition = glm::dvec3(glm::inverse(globeTransform) * glm::dvec4(eyeInWorld, 1.0));
+  glUniform3fv(at, 1, glm::value_ptr(glm::vec3(cameraPosition)));
+  // A world point taken into view space: camera-relative.
+  const glm::dvec4 eyePosition = viewMatrix * glm::dvec4(eyeInWorld, 1.0);
+  glUniform3fv(at, 1, glm::value_ptr(glm::vec3(eyePosition)));
+}

@@ -40,6 +40,12 @@ void DrawNode(const SceneNode& node, const Camera& camera, const Locations& at)
   glUniform3fv(at.nodePosition, 1, glm::value_ptr(glm::vec3(node.position - camera.position)));
   // A direction is not a position.
   glUniform3fv(at.light, 1, glm::value_ptr(glm::vec3(node.lightDirection)));
+  // The node's anchor, taken into the world by its model matrix in double: a world position.
+  const glm::dvec3 anchor = glm::dvec3(node.modelMatrix * glm::dvec4(0.0, 0.0, 10.0, 1.0));
+  glUniform3fv(at.nodePosition, 1, glm::value_ptr(glm::vec3(anchor)));
+  // The light's axis, taken into the world: a direction (w = 0) whatever it is called.
+  const glm::dvec3 lightPosition = glm::dvec3(node.modelMatrix * glm::dvec4(0.0, 0.0, 1.0, 0.0));
+  glUniform3fv(at.light, 1, glm::value_ptr(glm::vec3(lightPosition)));
 }
 
 void FillUniforms(SceneUniforms& uniforms, const Camera& camera, float time)

@@ -7,6 +7,8 @@ void SetActorParameters(FParameters& Parameters, const AActor* Actor, const FVie
 	Parameters.ActorPosition = FVector3f(Actor->GetActorLocation());
 	const FVector Center = Actor->GetRootComponent()->GetComponentLocation();
 	Parameters.BoundsOrigin = FVector3f(Center);
+	// A point of the actor, taken into the world by the actor's transform: a world position.
+	Parameters.BoundsOrigin = FVector3f(Actor->GetActorTransform().TransformPosition(FVector(0, 0, 100)));
 }
 
 void SetPrimitiveParameters(FParameters* Parameters, const FPrimitiveSceneProxy& Proxy, const FSceneView* View)
@@ -34,12 +36,16 @@ void SetTranslated(FParameters& Parameters, const AActor* Actor, const FViewInfo
 	Parameters.LocalToWorld = FMatrix44f(FMatrix().ConcatTranslation(View.ViewMatrices.GetPreViewTranslation()));
 }
 
-// Not world space: a direction, a local value, and a float that stays on the CPU.
-void SetOthers(FParameters& Parameters, const FVector& WindDirection, const AActor* Actor)
+// Not world space: a direction, a local value, a point in the actor's own frame, and a float
+// that stays on the CPU.
+void SetOthers(FParameters& Parameters, const FVector& WindDirection, const AActor* Actor, const FVector& ViewLocation)
 {
 	Parameters.WindDirection = FVector3f(WindDirection);
 	const FVector LocalOffset(0, 0, 100);
 	Parameters.BoundsOrigin = FVector3f(LocalOffset);
+	// The eye taken into the actor's frame: local, whatever its name says.
+	const FVector EyePosition = Actor->GetActorTransform().InverseTransformPosition(ViewLocation);
+	Parameters.BoundsOrigin = FVector3f(EyePosition);
 	FVector3f ForTheLog(Actor->GetActorLocation());
 	(void)ForTheLog;
 }
