@@ -2,6 +2,7 @@
 // flag in the compile command of a unit that splits positions into high/low floats or runs a
 // TwoSum, and Metal shader compilation with fast math left on (its default) or turned on.
 #include <clang/AST/ExprCXX.h>
+#include <clang/AST/ParentMapContext.h>
 #include <clang/ASTMatchers/ASTMatchers.h>
 
 #include "host/check.h"
@@ -23,6 +24,9 @@ class FastMath : public Check {
     };
     error_free_ = names("error-free-functions");
     metal_switches_ = names("metal-switches");
+    metal_compiles_ = names("metal-compile-calls");
+    metal_options_ = names("metal-options-types");
+    metal_fresh_ = names("metal-fresh-calls");
     // The fast-math flag in effect: the last of the unit's flags that turn it on or off.
     const nlohmann::json& flags = rule.data.at("flags");
     const nlohmann::json& resets = rule.data.at("resets");
@@ -36,6 +40,8 @@ class FastMath : public Check {
   void register_matchers(MatchFinder& finder) override {
     auto project = unless(isExpansionInSystemHeader());
     std::vector<llvm::StringRef> switches(metal_switches_.globs.begin(), metal_switches_.globs.end());  // plain names
+    std::vector<llvm::StringRef> compiles(metal_compiles_.globs.begin(), metal_compiles_.globs.end());
+    finder.addMatcher(cxxMemberCallExpr(project, callee(cxxMethodDecl(hasAnyName(llvm::ArrayRef<llvm::StringRef>(compiles))))).bind("compile"), this);
     if (flag_.empty()) {
       // Without a fast-math flag only metal-cpp's switches can be at fault.
       finder.addMatcher(callExpr(project, callee(functionDecl(hasAnyName(llvm::ArrayRef<llvm::StringRef>(switches))).bind("callee"))).bind("call"), this);
@@ -50,15 +56,20 @@ class FastMath : public Check {
   void run(const MatchFinder::MatchResult& match) override {
     const SourceManager& sm = *match.SourceManager;
     const LangOptions& lang = match.Context->getLangOpts();
+    if (auto* compile = match.Nodes.getNodeAs<CXXMemberCallExpr>("compile")) {
+      if (auto form = default_options(*compile, *match.Context))
+        out_.report(rule_, sm, lang, compile->getSourceRange(),
+                    {{"what", expand(rule_.data.at("forms").at(*form).get<std::string>(), {{"call", compile->getMethodDecl()->getName().str()}})}});
+      return;
+    }
     if (auto* call = match.Nodes.getNodeAs<CallExpr>("call")) {
       const auto* callee = match.Nodes.getNodeAs<FunctionDecl>("callee");
       std::string name = callee->getIdentifier() ? callee->getName().str() : "";
       if (name.empty()) return;
-      // metal-cpp: setFastMathEnabled(true), setMathMode(MTL::MathModeFast) (2; 0 is safe, 1 relaxed).
-      Expr::EvalResult value;
-      if (metal_switches_.match(name) && call->getNumArgs() == 1 && call->getArg(0)->EvaluateAsInt(value, *match.Context)) {
-        bool fast = name == "setMathMode" ? value.Val.getInt() == 2 : value.Val.getInt() != 0;
-        if (fast) out_.report(rule_, sm, lang, call->getSourceRange(), {{"what", expand(rule_.data.at("forms").at("metal").get<std::string>(), {{"call", name}})}});
+      // metal-cpp: setFastMathEnabled(true), setMathMode(MTL::MathModeFast or MathModeRelaxed).
+      if (metal_switches_.match(name)) {
+        std::optional<bool> fast = switch_is_fast(*call, *match.Context);
+        if (fast && *fast) out_.report(rule_, sm, lang, call->getSourceRange(), {{"what", expand(rule_.data.at("forms").at("metal").get<std::string>(), {{"call", name}})}});
         return;
       }
       if (error_free_.match(name)) split_site(match, call);
@@ -71,6 +82,73 @@ class FastMath : public Check {
   }
 
  private:
+  // Whether a metal-cpp switch turns reassociation on: setFastMathEnabled(true), or setMathMode
+  // with anything but MathModeSafe (0): MathModeRelaxed (1) keeps Inf and NaN but reassociates
+  // like MathModeFast (2). Unknown when the argument is not a constant.
+  static std::optional<bool> switch_is_fast(const CallExpr& call, ASTContext& context) {
+    Expr::EvalResult value;
+    if (call.getNumArgs() != 1 || !call.getArg(0)->EvaluateAsInt(value, context)) return std::nullopt;
+    return value.Val.getInt() != 0;
+  }
+
+  // Metal source compiled (`device->newLibrary(source, options, &error)`) with fast math left at
+  // its default: no options ("metal-no-options"), or options made here (`CompileOptions::alloc()->init()`)
+  // that nothing turns to safe math ("metal-default"). Options from elsewhere, or handed to other
+  // code that may set them, are not judged.
+  std::optional<std::string> default_options(const CXXMemberCallExpr& compile, ASTContext& context) const {
+    const CXXMethodDecl* method = compile.getMethodDecl();
+    for (unsigned i = 0; i < compile.getNumArgs() && i < method->getNumParams(); ++i) {
+      QualType type = method->getParamDecl(i)->getType();
+      if (!type->isPointerType() || !metal_options_.match(World::type_name(type->getPointeeType()))) continue;
+      const Expr* options = compile.getArg(i)->IgnoreParenImpCasts();
+      if (options->isNullPointerConstant(context, Expr::NPC_ValueDependentIsNotNull)) return "metal-no-options";
+      auto* ref = dyn_cast<DeclRefExpr>(options);
+      auto* var = ref ? dyn_cast<VarDecl>(ref->getDecl()) : nullptr;
+      if (!var || !var->isLocalVarDecl() || !made_here(var->getInit())) return std::nullopt;
+      return left_fast(*var, compile, context) ? std::optional<std::string>("metal-default") : std::nullopt;
+    }
+    return std::nullopt;
+  }
+
+  // `MTL::CompileOptions::alloc()->init()`: a call chain that starts at a fresh allocation.
+  bool made_here(const Expr* init) const {
+    for (auto* call = dyn_cast_or_null<CallExpr>(init ? init->IgnoreParenImpCasts() : nullptr); call;) {
+      const FunctionDecl* callee = call->getDirectCallee();
+      if (callee && callee->getIdentifier() && metal_fresh_.match(callee->getName().str())) return true;
+      auto* member = dyn_cast<CXXMemberCallExpr>(call);
+      call = member ? dyn_cast<CallExpr>(member->getImplicitObjectArgument()->IgnoreParenImpCasts()) : nullptr;
+    }
+    return false;
+  }
+
+  // Whether the options' function leaves fast math at its default: every use is a method of
+  // theirs other than a switch (`release()`), or a compile call. Any other use (handed to a
+  // function, stored) may set them elsewhere: not judged.
+  bool left_fast(const VarDecl& var, const CXXMemberCallExpr& compile, ASTContext& context) const {
+    const FunctionDecl* function = enclosing_function(&compile, context);
+    if (!function || !function->getBody()) return false;
+    auto refs = match(findAll(declRefExpr(to(varDecl(equalsNode(&var)))).bind("ref")), *function->getBody(), context);
+    for (const auto& bound : refs) {
+      auto* ref = bound.getNodeAs<DeclRefExpr>("ref");
+      clang::DynTypedNode node = clang::DynTypedNode::create(*ref);
+      auto parents = context.getParents(node);
+      while (!parents.empty() && parents[0].get<ImplicitCastExpr>()) parents = context.getParents(parents[0]);
+      if (parents.empty()) return false;
+      if (auto* member = parents[0].get<MemberExpr>()) {
+        auto* call = context.getParents(*member).empty() ? nullptr : context.getParents(*member)[0].get<CXXMemberCallExpr>();
+        if (!call) return false;
+        // A switch decides (and is reported itself when it turns fast math on).
+        const CXXMethodDecl* method = call->getMethodDecl();
+        if (method && method->getIdentifier() && metal_switches_.match(method->getName().str())) return false;
+        continue;
+      }
+      auto* call = parents[0].get<CXXMemberCallExpr>();
+      const CXXMethodDecl* method = call ? call->getMethodDecl() : nullptr;
+      if (!method || !method->getIdentifier() || !metal_compiles_.match(method->getName().str())) return false;
+    }
+    return true;
+  }
+
   // The first split or error-free site of a unit compiled with fast math is where it is reported.
   void split_site(const MatchFinder::MatchResult& match, const Expr* at) {
     if (reported_ || flag_.empty()) return;
@@ -79,7 +157,7 @@ class FastMath : public Check {
     out_.report(rule_, *match.SourceManager, match.Context->getLangOpts(), at->getSourceRange(), {{"what", form}});
   }
 
-  Names error_free_, metal_switches_;
+  Names error_free_, metal_switches_, metal_compiles_, metal_options_, metal_fresh_;
   std::string flag_;  // "" when fast math is off for this unit
   bool reported_ = false;
 };
