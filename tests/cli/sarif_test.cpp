@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -10,10 +11,13 @@
 namespace lwc {
 namespace {
 
-std::string corpus_sarif() {
-  std::string out = test::scratch("sarif") + "/corpus.sarif";
-  auto r = test::run("cd " + test::source_dir() + " && " + test::binary() + " lint corpus --format sarif --fail-on none --output " + out);
-  EXPECT_EQ(r.exit_code, 0);
+// The shader corpus through `lwcport lint`, or with `host`, the host corpus through `lwcport host`
+// (whose fixes may edit two files: one artifact change each).
+std::string corpus_sarif(bool host = false) {
+  std::string out = test::scratch("sarif") + (host ? "/host.sarif" : "/corpus.sarif");
+  auto r = test::run(host ? "cd " + test::source_dir() + "/corpus/host && " + test::binary() + " host . --format sarif --fail-on none --output " + out
+                          : "cd " + test::source_dir() + " && " + test::binary() + " lint corpus --format sarif --fail-on none --output " + out);
+  EXPECT_EQ(r.exit_code, 0) << r.out;
   return out;
 }
 
@@ -21,9 +25,26 @@ std::string corpus_sarif() {
 // copy, in @microsoft/jest-sarif): the same check in every clone, with nothing read from beside it.
 TEST(Sarif, CorpusPassesTheOasisSchema) {
   std::string schema = test::source_dir() + "/tests/tools/node_modules/@microsoft/jest-sarif/lib/schemas/sarif-2.1.0-rtm.5.json";
-  auto r = test::run("node " + test::source_dir() + "/tests/tools/validate-sarif.js " + schema + " " + corpus_sarif() + " 2>&1");
-  EXPECT_EQ(r.exit_code, 0) << schema << "\n" << r.out;
-  EXPECT_NE(r.out.find("valid"), std::string::npos) << r.out;
+  for (bool host : {false, true}) {
+    auto r = test::run("node " + test::source_dir() + "/tests/tools/validate-sarif.js " + schema + " " + corpus_sarif(host) + " 2>&1");
+    EXPECT_EQ(r.exit_code, 0) << schema << "\n" << r.out;
+    EXPECT_NE(r.out.find("valid"), std::string::npos) << r.out;
+  }
+}
+
+// A host fix that edits a header: one artifact change per file, the finding's own first. Run in
+// corpus/host, every header under it is the project's (include/ue_mini.h too).
+TEST(Sarif, HostFixThatEditsTwoFilesHasAnArtifactChangeForEach) {
+  nlohmann::json log = nlohmann::json::parse(test::read(corpus_sarif(true)));
+  std::set<std::string> headers;
+  for (const auto& result : log["runs"][0]["results"]) {
+    if (!result.contains("fixes")) continue;
+    const auto& changes = result["fixes"][0]["artifactChanges"];
+    EXPECT_EQ(changes[0]["artifactLocation"]["uri"], result["locations"][0]["physicalLocation"]["artifactLocation"]["uri"]) << result.dump();
+    ASSERT_LE(changes.size(), 2u) << result.dump();
+    if (changes.size() == 2) headers.insert(changes[1]["artifactLocation"]["uri"].get<std::string>());
+  }
+  EXPECT_EQ(headers, (std::set<std::string>{"header/SkyUniforms.h", "include/ue_mini.h"}));
 }
 
 TEST(Sarif, CorpusPassesTheMultitoolWithNoErrorsOrWarnings) {

@@ -32,13 +32,15 @@ std::vector<std::string> example_flags(const std::string& code) {
   return out;
 }
 
+// `path`: a file, or a folder whose units are analysed with its headers reported on.
 HostResult analyze_file(const std::string& path, const nlohmann::json& tables = nlohmann::json::object()) {
   HostOptions options;
   options.tables = tables;
   options.paths = {path};
   options.clang_args = include_flags();
   options.clang_args.insert(options.clang_args.begin(), "-std=c++20");
-  for (const std::string& f : example_flags(test::read(path))) options.clang_args.push_back(f);
+  if (!fs::is_directory(path))
+    for (const std::string& f : example_flags(test::read(path))) options.clang_args.push_back(f);
   return analyze_host(options);
 }
 
@@ -56,8 +58,19 @@ std::string compile_errors(const std::string& path) {
 
 std::string fixed_text(const HostFile& file, bool unsafe) {
   std::vector<Edit> edits;
-  for (const Fix* fix : choose_fixes(file.findings, unsafe)) edits.insert(edits.end(), fix->edits.begin(), fix->edits.end());
+  for (const Fix* fix : choose_fixes(file.findings, unsafe))
+    for (const Edit& e : fix->edits)
+      if (e.path.empty()) edits.push_back(e);
   return apply_edits(Source(file.path, file.text), edits);
+}
+
+// The headers beside a corpus unit (`<name>.h`): a fix may declare a member in one of them.
+std::vector<fs::path> headers_beside(const fs::path& unit) {
+  std::vector<fs::path> headers;
+  for (const auto& e : fs::directory_iterator(unit.parent_path()))
+    if (e.path().extension() == ".h") headers.push_back(e.path());
+  std::sort(headers.begin(), headers.end());
+  return headers;
 }
 
 std::vector<std::string> host_rules() {
@@ -133,17 +146,29 @@ TEST(HostRegistry, EveryHostRuleHasACheckAndADocsPageAndEveryCheckItsRule) {
 
 // corpus/host/<dir>/<name>.cpp: the findings <name>.cpp.expected.json lists (LWCPORT_UPDATE_GOLDEN=1
 // rewrites them; review the diff), and with every fix applied, <name>.cpp.fixed, which compiles.
+// Headers beside it are the project's: a fix that edits one leaves <header>.h.fixed, and the
+// fixed unit compiles against the fixed header.
 TEST(HostCorpus, FindingsAndFixedFilesAreTheGoldenOnesAndCompile) {
   std::string root = test::source_dir() + "/corpus/host";
   bool update = std::getenv("LWCPORT_UPDATE_GOLDEN") != nullptr;
+  // Run from outside the corpus, as from any build folder: a run reports on the folders under its
+  // working directory, and the corpus's include/ stands for library headers, not the project's.
+  struct Back {
+    fs::path to = fs::current_path();
+    ~Back() { fs::current_path(to); }
+  } back;
+  fs::current_path(test::scratch("host-corpus-cwd"));
   int files = 0;
   for (const auto& e : fs::recursive_directory_iterator(root)) {
     if (e.path().extension() != ".cpp") continue;
     ++files;
     std::string path = e.path().string();
     ASSERT_EQ(compile_errors(path), "") << path;
+    std::vector<fs::path> headers = headers_beside(e.path());
     HostOptions options;
-    options.paths = {path};  // compile_flags.txt beside the corpus gives the flags
+    // compile_flags.txt beside the corpus gives the flags; a folder with headers is analysed as
+    // a folder, so that its headers are reported on (and fixed) as a project's are.
+    options.paths = {headers.empty() ? path : e.path().parent_path().string()};
     // A folder's .lwcport.json extends the tables, as for `lwcport host` run in that folder.
     std::string config = e.path().parent_path().string() + "/.lwcport.json";
     if (fs::exists(config)) options.tables = nlohmann::json::parse(test::read(config)).value("host", nlohmann::json::object());
@@ -153,29 +178,54 @@ TEST(HostCorpus, FindingsAndFixedFilesAreTheGoldenOnesAndCompile) {
     ASSERT_NE(file, nullptr) << path;
     nlohmann::json findings = nlohmann::json::array();
     Source source(path, file->text);
-    for (const Finding& f : file->findings) findings.push_back(finding_json(locate(source, f)));
+    std::map<std::string, Source> others;  // the headers a fix edits, by the path the run names them
+    for (const HostFile& h : result.files) others.emplace(h.path, Source(h.path, h.text));
+    auto other = [&](const std::string& p) -> const Source* { return others.count(p) ? &others.at(p) : nullptr; };
+    for (const Finding& f : file->findings) {
+      nlohmann::json j = finding_json(locate(source, f, other));
+      if (j.contains("fix"))  // a header's path, as the golden keeps it: beside the unit
+        for (auto& edit : j["fix"]["edits"])
+          if (edit.contains("path")) edit["path"] = fs::relative(edit["path"].get<std::string>(), e.path().parent_path()).string();
+      findings.push_back(j);
+    }
     std::string got = nlohmann::json{{"findings", findings}}.dump(2) + "\n";
     // Every fix applied, in rounds as `lwcport host --fix` applies them (fixes that clash, as two
     // that add a member at the end of one struct, wait for the next round and its re-analysis).
-    std::string copy = test::scratch("host-corpus-fixed") + "/" + e.path().filename().string();
+    std::string scratch = test::scratch("host-corpus-fixed");
+    std::string copy = scratch + "/" + e.path().filename().string();
+    for (const fs::path& h : headers) test::write(scratch + "/" + h.filename().string(), test::read(h.string()));
     std::string fixed = file->text;
     size_t applied = 0, remaining = file->findings.size();
     for (int round = 0; round < 4; ++round) {
-      HostResult now = round == 0 ? result : analyze_file(copy, options.tables);
+      HostResult now = round == 0 ? result : analyze_file(headers.empty() ? copy : scratch, options.tables);
       const HostFile* current = file_named(now, round == 0 ? path : copy);
       remaining = current ? current->findings.size() : 0;
       if (!current || choose_fixes(current->findings, true).empty()) break;
       applied += choose_fixes(current->findings, true).size();
       fixed = fixed_text(*current, true);
       test::write(copy, fixed);
+      // The edits a fix makes in a header (named by the path the run shows, which is absolute here).
+      for (const fs::path& h : headers) {
+        std::string into = scratch + "/" + h.filename().string();
+        const HostFile* header = file_named(now, round == 0 ? h.string() : into);
+        std::vector<Edit> edits;
+        for (const Fix* fix : choose_fixes(current->findings, true))
+          for (const Edit& edit : fix->edits)
+            if (!edit.path.empty() && fs::weakly_canonical(edit.path) == fs::weakly_canonical(round == 0 ? h : fs::path(into))) edits.push_back(edit);
+        if (header && !edits.empty()) test::write(into, apply_edits(Source(header->path, header->text), edits));
+      }
     }
     if (update) {
       test::write(path + ".expected.json", got);
       test::write(path + ".fixed", fixed);
+      for (const fs::path& h : headers) test::write(h.string() + ".fixed", test::read(scratch + "/" + h.filename().string()));
     }
     EXPECT_EQ(got, test::read(path + ".expected.json")) << path;
     EXPECT_EQ(fixed, test::read(path + ".fixed")) << path;
-    EXPECT_EQ(compile_errors(path + ".fixed"), "") << path << ".fixed";
+    for (const fs::path& h : headers) EXPECT_EQ(test::read(scratch + "/" + h.filename().string()), test::read(h.string() + ".fixed")) << h;
+    // Against the fixed headers: the copy, which includes the copies.
+    test::write(copy, fixed);
+    EXPECT_EQ(compile_errors(headers.empty() ? path + ".fixed" : copy), "") << path << ".fixed";
     // Each fix removed its finding and added none: what remains is what had no fix.
     EXPECT_EQ(remaining, file->findings.size() - applied) << path;
   }
@@ -300,6 +350,34 @@ TEST(HostCli, FixSplitsEverySiteOfOneMemberInOneRun) {
   EXPECT_EQ(declared, 1u) << text;
   EXPECT_EQ(split, 2u) << text;
   EXPECT_EQ(compile_errors(dir + "/a.cpp"), "");
+}
+
+// A fix that declares its member in the project's header edits two files: --diff shows both, and
+// two units that would declare the same member there clash; the second splits into the member the
+// first declared, in the next round. Both units then compile against the fixed header.
+TEST(HostCli, FixDeclaresTheMemberInTheProjectHeaderOnceForTwoUnits) {
+  std::string dir = test::scratch("host-fix-header");
+  std::string corpus = test::source_dir() + "/corpus/host/header";
+  test::write(dir + "/SkyUniforms.h", test::read(corpus + "/SkyUniforms.h"));
+  test::write(dir + "/a.cpp", test::read(corpus + "/SkySetup.cpp"));
+  test::write(dir + "/b.cpp", "#include <glm/glm.hpp>\n\n#include \"SkyUniforms.h\"\n\nvoid Noon(SkyUniforms& sky, const glm::dvec3& sunWorldPosition)\n{\n"
+                              "  sky.sunPosition = glm::vec3(sunWorldPosition);\n}\n");
+  std::string host = "cd " + dir + " && " + test::binary() + " host . --unsafe-fixes";
+  std::string flags = " -- -std=c++20 " + include_flag();
+  test::Run diff = test::run(host + " --diff" + flags);
+  EXPECT_NE(diff.out.find("+++ b/SkyUniforms.h"), std::string::npos) << diff.out;
+  EXPECT_NE(diff.out.find("+  glm::vec3 sunPositionLow;"), std::string::npos) << diff.out;
+  EXPECT_NE(diff.out.find("+  sky.sunPositionLow = "), std::string::npos) << diff.out;
+  EXPECT_EQ(test::read(dir + "/SkyUniforms.h"), test::read(corpus + "/SkyUniforms.h"));  // --diff writes nothing
+  test::Run fixed = test::run(host + " --fix --format json" + flags + " 2>&1");
+  EXPECT_NE(fixed.out.find("Fixed 2 finding(s) in 3 file(s)."), std::string::npos) << fixed.out;
+  std::string header = test::read(dir + "/SkyUniforms.h");
+  EXPECT_EQ(header, test::read(corpus + "/SkyUniforms.h.fixed"));
+  EXPECT_EQ(test::read(dir + "/a.cpp"), test::read(corpus + "/SkySetup.cpp.fixed"));
+  EXPECT_NE(test::read(dir + "/b.cpp").find("sky.sunPositionLow = static_cast<glm::vec3>(sunWorldPosition - static_cast<glm::dvec3>(sky.sunPosition));"),
+            std::string::npos) << test::read(dir + "/b.cpp");
+  EXPECT_EQ(compile_errors(dir + "/a.cpp"), "");
+  EXPECT_EQ(compile_errors(dir + "/b.cpp"), "");
 }
 
 // A suppression comment silences a host finding like a shader one; a stale one is reported.

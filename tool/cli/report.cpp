@@ -13,7 +13,7 @@
 
 namespace lwc {
 
-ReportedFinding locate(const Source& source, const Finding& f) {
+ReportedFinding locate(const Source& source, const Finding& f, const std::function<const Source*(const std::string&)>& other) {
   ReportedFinding r;
   r.rule = f.rule;
   r.severity = f.severity;
@@ -45,9 +45,13 @@ ReportedFinding locate(const Source& source, const Finding& f) {
   if (!f.fixes.empty()) {
     const Fix& fix = f.fixes.front();
     ReportedFix rf{fix.title, fix.applicability, fix.reason, fix.strategy, {}, fix.library, fix.notes};
-    for (const Edit& e : fix.edits)
-      rf.edits.push_back({source.position(e.span.begin), source.position(e.span.end), in_line_endings(source, e.text)});
-    r.fix = std::move(rf);
+    bool placed = true;
+    for (const Edit& e : fix.edits) {
+      const Source* in = e.path.empty() ? &source : other ? other(e.path) : nullptr;
+      if (!in) placed = false;
+      else rf.edits.push_back({in->position(e.span.begin), in->position(e.span.end), in_line_endings(*in, e.text), e.path});
+    }
+    if (placed) r.fix = std::move(rf);
   }
   return r;
 }
@@ -80,7 +84,10 @@ nlohmann::json finding_json(const ReportedFinding& f) {
                       {"end", position_json(f.end)}};
   if (f.fix) {
     nlohmann::json edits = nlohmann::json::array();
-    for (const ReportedEdit& e : f.fix->edits) edits.push_back({{"start", position_json(e.start)}, {"end", position_json(e.end)}, {"text", e.text}});
+    for (const ReportedEdit& e : f.fix->edits) {
+      edits.push_back({{"start", position_json(e.start)}, {"end", position_json(e.end)}, {"text", e.text}});
+      if (!e.path.empty()) edits.back()["path"] = e.path;
+    }
     j["fix"] = {{"title", f.fix->title},
                 {"applicability", applicability_name(f.fix->applicability)},
                 {"reason", f.fix->reason},
@@ -112,7 +119,7 @@ ReportedFinding finding_from_json(const nlohmann::json& j) {
     fix.applicability = x.at("applicability") == "safe" ? Applicability::safe : Applicability::unsafe;
     fix.reason = x.at("reason");
     fix.strategy = x.value("strategy", "");
-    for (const auto& e : x.at("edits")) fix.edits.push_back({position(e.at("start")), position(e.at("end")), e.at("text")});
+    for (const auto& e : x.at("edits")) fix.edits.push_back({position(e.at("start")), position(e.at("end")), e.at("text"), e.value("path", "")});
     fix.library = x.value("library", std::vector<std::string>{});
     fix.notes = x.value("notes", std::vector<std::string>{});
     f.fix = std::move(fix);
@@ -228,13 +235,20 @@ nlohmann::json sarif_result(const std::string& path, const ReportedFinding& f) {
     if (!f.line_hash.empty()) result["partialFingerprints"]["primaryLocationLineHash"] = f.line_hash;
   }
   if (f.fix) {
-    nlohmann::json replacements = nlohmann::json::array();
+    // One artifact change per file the fix edits: the finding's own first, then the others.
+    std::vector<std::string> files = {""};
     for (const ReportedEdit& e : f.fix->edits)
-      replacements.push_back({{"deletedRegion", sarif_region(e.start, e.end)}, {"insertedContent", {{"text", e.text}}}});
-    nlohmann::json change = {{"artifactLocation", artifact_location(path)}, {"replacements", replacements}};
+      if (std::find(files.begin(), files.end(), e.path) == files.end()) files.push_back(e.path);
+    nlohmann::json changes = nlohmann::json::array();
+    for (const std::string& file : files) {
+      nlohmann::json replacements = nlohmann::json::array();
+      for (const ReportedEdit& e : f.fix->edits)
+        if (e.path == file) replacements.push_back({{"deletedRegion", sarif_region(e.start, e.end)}, {"insertedContent", {{"text", e.text}}}});
+      if (!replacements.empty()) changes.push_back({{"artifactLocation", artifact_location(file.empty() ? path : file)}, {"replacements", replacements}});
+    }
     nlohmann::json fix = {
         {"description", {{"text", fmt::format("{} ({}: {}).", f.fix->title, applicability_name(f.fix->applicability), f.fix->reason)}}},
-        {"artifactChanges", nlohmann::json::array({change})}};
+        {"artifactChanges", changes}};
     result["fixes"] = nlohmann::json::array({fix});
     result["properties"] = {{"fixApplicability", applicability_name(f.fix->applicability)}};
     // What must change outside the shader (new uniforms, host code): SARIF's fix has no place for it.

@@ -1,5 +1,6 @@
 #pragma once
 #include <map>
+#include <functional>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -19,6 +20,7 @@ std::string json_text(const nlohmann::json& value, int indent = -1);
 struct ReportedEdit {
   Position start, end;
   std::string text;  // with the file's line endings
+  std::string path = "";  // another file than the finding's, "" for its own
 };
 
 struct ReportedFix {
@@ -61,7 +63,9 @@ struct FileReport {
   std::string era{};  // what its code is written for (rules/analyze.h: file_era)
 };
 
-ReportedFinding locate(const Source& source, const Finding& finding);
+// `other`: the file an edit of another file (Edit::path) is in, to place it; none for shader code.
+ReportedFinding locate(const Source& source, const Finding& finding,
+                       const std::function<const Source*(const std::string&)>& other = nullptr);
 // Gives each finding of a file its fingerprint (rule, text, occurrence) and, when asked, the
 // line hash GitHub code scanning computes for its start line.
 void add_fingerprints(FileReport& report, const Source& source, bool line_hashes);

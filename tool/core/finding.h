@@ -18,6 +18,9 @@ bool parse_severity(std::string_view text, Severity& out);
 struct Edit {
   Span span;
   std::string text;
+  // Another file than the finding's (a host fix that also declares a member in a header); "" for
+  // the finding's own file, which is every shader fix.
+  std::string path = "";
   bool operator==(const Edit&) const = default;
 };
 // The text with the edits (sorted by begin, not overlapping) applied as written.

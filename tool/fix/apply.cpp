@@ -10,6 +10,7 @@ namespace {
 // Two edits conflict when their spans intersect, or when both insert at the same offset (their
 // order would be arbitrary).
 bool conflict(const Edit& a, const Edit& b) {
+  if (a.path != b.path) return false;
   if (a.span.begin == a.span.end && b.span.begin == b.span.end) return a.span.begin == b.span.begin;
   return a.span.begin < b.span.end && b.span.begin < a.span.end;
 }

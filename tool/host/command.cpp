@@ -2,6 +2,7 @@
 // suppressions, exit code), and --fix / --diff through fix's.
 #include <fmt/format.h>
 
+#include <map>
 #include <set>
 
 #include "cli/commands.h"
@@ -38,21 +39,41 @@ HostResult analyze(const Options& o, const ProjectConfig& config) {
   return result;
 }
 
-// --fix and --diff: each file's chosen fixes applied once (--diff prints them instead).
+// --fix and --diff: the chosen fixes applied once (--diff prints them instead).
 struct Applied {
   int fixed = 0, failed = 0;
   std::set<std::string> files;  // written
 };
 
+// Every finding of the run, each fix's edits naming their file: a fix may edit two files (a
+// member declared in a header), and two units' fixes may clash there, so fixes are chosen over
+// the whole run, not file by file.
+std::vector<Finding> with_edit_paths(const HostResult& result) {
+  std::vector<Finding> all;
+  for (const HostFile& file : result.files)
+    for (Finding f : file.findings) {
+      for (Fix& fix : f.fixes)
+        for (Edit& e : fix.edits)
+          if (e.path.empty()) e.path = file.path;
+      all.push_back(std::move(f));
+    }
+  return all;
+}
+
 Applied apply(const Options& o, const HostResult& result, std::ostream& out, std::ostream& err) {
   Applied done;
+  std::vector<Finding> all = with_edit_paths(result);
+  std::vector<const Fix*> chosen = choose_fixes(all, o.unsafe_fixes);
   for (const HostFile& file : result.files) {
-    Source source(file.path, file.text);
     std::vector<Edit> edits;
-    std::vector<const Fix*> chosen = choose_fixes(file.findings, o.unsafe_fixes);
-    for (const Fix* fix : chosen) edits.insert(edits.end(), fix->edits.begin(), fix->edits.end());
+    int fixes = 0;  // counted in the file of the finding: its first edit's
+    for (const Fix* fix : chosen) {
+      for (const Edit& e : fix->edits)
+        if (e.path == file.path) edits.push_back(e);
+      fixes += fix->edits.front().path == file.path;
+    }
     if (edits.empty()) continue;
-    std::string text = apply_edits(source, edits);
+    std::string text = apply_edits(Source(file.path, file.text), edits);
     if (o.diff) {
       out << unified_diff(file.path, file.text, text);
       continue;
@@ -62,7 +83,7 @@ Applied apply(const Options& o, const HostResult& result, std::ostream& out, std
       ++done.failed;
       continue;
     }
-    done.fixed += static_cast<int>(chosen.size());
+    done.fixed += fixes;
     done.files.insert(file.path);
   }
   return done;
@@ -78,8 +99,7 @@ int run_host(const Options& o, std::ostream& out, std::ostream& err) {
   if (!result.errors.empty() && result.units == 0) return 2;
   if (o.diff) {
     apply(o, result, out, err);
-    bool any = false;
-    for (const HostFile& f : result.files) any = any || !choose_fixes(f.findings, o.unsafe_fixes).empty();
+    bool any = !choose_fixes(with_edit_paths(result), o.unsafe_fixes).empty();
     return any && o.fail_on ? 1 : 0;
   }
   if (o.fix_in_place) {
@@ -99,10 +119,16 @@ int run_host(const Options& o, std::ostream& out, std::ostream& err) {
   }
   LintOutput output(o, out, err);
   if (!output.open(*configs)) return 2;
+  std::map<std::string, Source> sources;  // every file, for the edits a fix makes in another one
+  for (const HostFile& file : result.files) sources.emplace(file.path, Source(file.path, file.text));
+  auto other = [&](const std::string& path) -> const Source* {
+    auto it = sources.find(path);
+    return it == sources.end() ? nullptr : &it->second;
+  };
   for (const HostFile& file : result.files) {
-    Source source(file.path, file.text);
+    const Source& source = sources.at(file.path);
     FileReport report{file.path, {}};
-    for (const Finding& f : file.findings) report.findings.push_back(locate(source, f));
+    for (const Finding& f : file.findings) report.findings.push_back(locate(source, f, other));
     add_fingerprints(report, source, o.report.format == Format::sarif);
     output.file(report);
   }

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <mutex>
 #include <thread>
+#include <tuple>
 
 #include "host/check.h"
 #include "host/checks/narrowing.h"
@@ -42,15 +43,17 @@ Finding* Reporter::report(const RuleInfo& rule, const SourceManager& sm, const L
 
 Fix* Reporter::fix(Finding& finding, const RuleInfo& rule, std::string_view kind, const Vars& vars, const std::vector<Change>& changes,
                    const SourceManager& sm, const LangOptions& lang) {
+  // The finding's own file; an edit elsewhere (a member declared in a header) names its file.
+  std::string own;
+  for (const auto& [path, file] : files_)
+    if (!file.findings.empty() && &finding >= &file.findings.front() && &finding <= &file.findings.back()) own = path;
   std::vector<Edit> edits;
-  std::string path;
   for (const Change& c : changes) {
     auto at = place(sm, lang, c.range);
-    if (!at || (!path.empty() && at->first != path)) return nullptr;  // a rewrite stays in one file
-    path = at->first;
-    edits.push_back({at->second, c.text});
+    if (!at) return nullptr;  // outside the files this run reports on (a system or third-party header)
+    edits.push_back({at->second, c.text, at->first == own ? "" : at->first});
   }
-  std::sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) { return a.span.begin < b.span.begin; });
+  std::sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) { return std::tie(a.path, a.span.begin) < std::tie(b.path, b.span.begin); });
   finding.fixes.push_back(make_fix(rule, kind, vars, std::move(edits)));
   return &finding.fixes.back();
 }
@@ -347,6 +350,10 @@ HostResult analyze_host(const HostOptions& options) {
   if (sources.empty() && result.errors.empty()) result.errors.push_back("no C++ sources to analyse");
   for (auto& [path, f] : files) {
     f.path = host::shown(path, cwd);
+    for (Finding& finding : f.findings)
+      for (Fix& fix : finding.fixes)
+        for (Edit& e : fix.edits)
+          if (!e.path.empty()) e.path = host::shown(e.path, cwd);
     sort_findings(f.findings);
     result.files.push_back(std::move(f));
   }

@@ -43,7 +43,7 @@ void SetFromAllocation(const FPrimitiveSceneProxy& Proxy)
 	AllocateParameters()->ObjectOrigin = FVector3f(Proxy.GetBounds().Origin);
 }
 
-// The struct is declared in ue_mini.h: a rewrite stays in one file, so no high/low rewrite.
+// The struct is declared in ue_mini.h, which stands for an engine header outside the project: no high/low rewrite.
 void SetSharedParameters(FParameters& Parameters, const AActor* Actor)
 {
 	Parameters.ActorPosition = FVector3f(Actor->GetActorLocation());

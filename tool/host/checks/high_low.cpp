@@ -186,9 +186,6 @@ std::variant<HighLowFix, std::string> high_low_fix(const Upload& up, ASTContext&
   if (auto* construct = dyn_cast<CXXConstructExpr>(strip(up.narrowing)); construct && construct->getNumArgs() != 1)
     return "`" + source_text(up.narrowing->getSourceRange(), context).substr(0, source_text(up.narrowing->getSourceRange(), context).find('(')) +
            "(...)` packs the value with others; split it by hand";
-  if (sm.getFileID(sm.getExpansionLoc(at->field->getLocation())) != sm.getFileID(sm.getExpansionLoc(at->expr->getBeginLoc())))
-    return "the member is declared in another file (" + llvm::sys::path::filename(sm.getFilename(sm.getExpansionLoc(at->field->getLocation()))).str() +
-           "), and a rewrite stays in one file";
   std::optional<std::string> indent = indent_of(at->expr->getBeginLoc(), sm);
   if (!indent || at->expr->getBeginLoc().isMacroID() || at->expr->getEndLoc().isMacroID())
     return std::string("the assignment does not start its line, or is inside a macro");
@@ -208,6 +205,7 @@ std::variant<HighLowFix, std::string> high_low_fix(const Upload& up, ASTContext&
 
   HighLowFix fix;
   fix.low = low;
+  fix.member = at->field;
   CharSourceRange whole = CharSourceRange::getTokenRange(at->expr->getSourceRange());
   std::string type_of_low;  // "" for the member's own type
   if (matrix) {
@@ -262,6 +260,10 @@ std::variant<HighLowFix, std::string> high_low_fix(const Upload& up, ASTContext&
     fix.changes.push_back({CharSourceRange::getCharRange(after, after), "\n" + *indent + object + low + " = " + rest + ";"});
     fix.form = "a difference in double";
     fix.read = "a DoubleFloat pair (high `" + name + "`, low `" + low + "`), added only in DoubleFloat arithmetic";
+    // A struct found by its upload, not named as a GPU block, may be a vertex layout: the new
+    // member makes each element larger and needs an attribute of its own.
+    if (up.sink.starts_with("member "))
+      fix.read += "; where the struct is a vertex layout, its stride grows and `" + low + "` needs a vertex attribute of its own";
   }
   if (!field_named(at->field->getParent(), low)) {
     auto declaration = declare(at->field, type_of_low, low, context);
@@ -289,8 +291,15 @@ void PortedUploadCheck::upload(const Upload& up, const MatchFinder::MatchResult&
   vars["low"] = "`" + split.low + "`";
   vars["form"] = split.form;
   vars["read"] = split.read;
-  if (out_.fix(*finding, rule_, "high-low", vars, split.changes, *match.SourceManager, match.Context->getLangOpts()) && finding->facts.count("port"))
-    finding->facts["port"] = up.value.kind == Kind::position ? "high-low-position" : "high-low-matrix";
+  if (!out_.fix(*finding, rule_, "high-low", vars, split.changes, *match.SourceManager, match.Context->getLangOpts())) {
+    // The new member would go into a file the run does not report on (a system or library header).
+    const SourceManager& sm = *match.SourceManager;
+    SourceLocation declared = sm.getExpansionLoc(split.member->getLocation());
+    finding->withheld.push_back("high-low: the member is declared in " + llvm::sys::path::filename(sm.getFilename(declared)).str() +
+                                ", outside the files this run reports on");
+    return;
+  }
+  if (finding->facts.count("port")) finding->facts["port"] = up.value.kind == Kind::position ? "high-low-position" : "high-low-matrix";
 }
 
 }  // namespace lwc::host

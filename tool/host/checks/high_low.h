@@ -17,6 +17,7 @@ struct HighLowFix {
   std::string low;   // the new member: `ActorPositionLow`, `LocalToWorldPostTranslation`
   std::string form;  // what splits it: "`FDFVector3`", "`FDFMatrix::MakeToRelativeWorldMatrix`", "a difference in double"
   std::string read;  // how a shader reads the pair: "`MakeDFVector3(ObjectOrigin, ObjectOriginLow)`"
+  const clang::FieldDecl* member = nullptr;  // the high half, beside which the low one is declared
 };
 
 // The rewrite, or why there is none ("the parameter struct is declared in another file").
