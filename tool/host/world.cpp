@@ -243,7 +243,8 @@ bool World::is_transform(const Expr* e) const {
 
 Value World::classify(const Expr* e, int depth) const {
   e = strip(e);
-  if (!e || depth > 6) return {};
+  if (!e) return {};
+  if (depth > 6) return {Kind::none, nullptr, false, true};
   // A conversion to another vector or matrix type keeps what the value is (FVector(FVector3f), glm::dvec3(v)).
   if (auto* cast = dyn_cast<CXXFunctionalCastExpr>(e)) return classify(cast->getSubExpr(), depth + 1);
   if (auto* construct = dyn_cast<CXXConstructExpr>(e); construct && construct->getNumArgs() >= 1 && !isa<CXXTemporaryObjectExpr>(e))
@@ -252,6 +253,9 @@ Value World::classify(const Expr* e, int depth) const {
     OverloadedOperatorKind o = op->getOperator();
     if ((o == OO_Plus || o == OO_Minus || o == OO_Star) && op->getNumArgs() == 2) {
       Value a = classify(op->getArg(0), depth + 1), b = classify(op->getArg(1), depth + 1);
+      // A factor not followed to its end may be the one that cancels the other's translation
+      // (`Correction() * view * model` seen only as `... * model`): nothing is known of the product.
+      if (o == OO_Star && (a.cut || b.cut)) return {Kind::none, nullptr, false, true};
       // A product keeps the world translation of its world matrix (model * view is camera-relative:
       // the translations cancel in double).
       if (o == OO_Star) {

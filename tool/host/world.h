@@ -57,6 +57,7 @@ struct Value {
   Kind kind = Kind::none;
   const clang::Expr* expr = nullptr;  // the code it comes from, e.g. `Actor->GetActorLocation()` (its text is read only when reported)
   bool from_world = false;  // a matrix that takes world positions in (world to view or clip), not one that gives them
+  bool cut = false;  // followed no further (the depth limit): a product with it is not known either
 };
 
 class World {

@@ -29,3 +29,18 @@ void FillWithoutObserver(ObjectUniforms& uniforms, const Eigen::Vector3d& worldP
 {
   uniforms.objectPosition = worldPosition.cast<float>();
 }
+
+// A model-view product in double (the translations cancel), behind a factor no table knows, then
+// inverted: camera-relative, not a world matrix, however deep the product is.
+Eigen::Matrix4d DepthCorrection();
+
+struct ViewState {
+  Eigen::Matrix4f modelViewInverse;
+};
+
+void KeepView(ViewState& state, const Eigen::Matrix4d& view, const Eigen::Matrix4d& model)
+{
+  Eigen::Matrix4d mv = DepthCorrection() * view * model;
+  Eigen::Matrix4d mvInv = mv.inverse();
+  state.modelViewInverse = mvInv.cast<float>();
+}
