@@ -75,6 +75,7 @@ Tables Tables::load(const nlohmann::json& additions) {
   t.double_scalars = n("double-scalars");
   t.float_scalars = n("float-scalars");
   t.matrix_types = n("matrix-types");
+  t.row_vector_types = n("row-vector-matrix-types");
   t.gpu_macros = n("gpu-struct-macros");
   t.gpu_structs = n("gpu-struct-names");
   t.upload_calls = n("upload-calls");
@@ -175,6 +176,8 @@ bool World::is_matrix_type(QualType type) const {
   return tables_.matrix_types.match(type_name(type));
 }
 
+bool World::is_row_vector(QualType type) const { return tables_.row_vector_types.match(type_name(type)); }
+
 std::string World::text(SourceRange range) const { return source_text(range, context_); }
 
 std::string source_text(CharSourceRange range, ASTContext& context) {
@@ -268,6 +271,15 @@ Value World::classify(const Expr* e, int depth) const {
           return {Kind::relative, e};
         if (a.kind == Kind::matrix && b.kind == Kind::matrix && a.from_world != b.from_world) return {Kind::model_view, e};
         if (a.kind == Kind::model_view || b.kind == Kind::model_view) return {Kind::model_view, e};
+        // A world-to-view matrix after a matrix the tables do not know (`view * M` for glm or Eigen,
+        // `M * View` for UE): M hands it world positions, so M is a model matrix and the product is
+        // camera-relative. Not known well enough to call it camera-dependent either.
+        if (a_matrix && b_matrix) {
+          bool row = is_row_vector(op->getArg(0)->getType());
+          const Value& first = row ? a : b;
+          const Value& then = row ? b : a;
+          if (then.kind == Kind::matrix && then.from_world && first.kind == Kind::none) return {Kind::relative, e};
+        }
         Value product = a.kind == Kind::matrix ? a : b.kind == Kind::matrix ? b : Value{};
         if (product.kind != Kind::none) product.expr = e;
         return product;

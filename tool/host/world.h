@@ -24,6 +24,7 @@ struct Tables {
   Names transform_calls, inverse_transform_calls;  // `M.TransformPosition(p)`, `M.InverseTransformPosition(p)`
   Names offset_calls, offset_names;
   Names double_scalars, float_scalars, matrix_types;
+  Names row_vector_types;  // matrices applied as `p * M` (UE, OSG, DirectXMath): in a product the left factor acts first
   Names gpu_macros, gpu_structs, upload_calls, address_calls;
   Names copy_calls, mapped_pointers;  // `memcpy(mapped, &block, size)`: a copy into mapped GPU memory
   Names narrowing_methods;  // `v.cast<float>()` (Eigen): a method whose template argument is the scalar it converts to
@@ -70,6 +71,8 @@ class World {
   // struct of doubles), 'f' for float, 0 for anything else.
   char scalar(clang::QualType type) const;
   bool is_matrix_type(clang::QualType type) const;
+  // Matrices of this type act on row vectors (`p * M`), so in `A * B` the left factor acts first.
+  bool is_row_vector(clang::QualType type) const;
   // The type's name without qualifiers, namespace or template arguments (`FVector3f`, `vec`).
   static std::string type_name(clang::QualType type);
   // The source text of a range, as written.

@@ -129,8 +129,9 @@ struct FViewMatrices {
   const FVector& GetViewOrigin() const { return ViewOrigin; }
   const FMatrix& GetViewProjectionMatrix() const { return ViewProjection; }
   const FMatrix& GetTranslatedViewProjectionMatrix() const { return TranslatedViewProjection; }
+  const FMatrix& GetViewMatrix() const { return View; }
   FVector PreViewTranslation, ViewOrigin;
-  FMatrix ViewProjection, TranslatedViewProjection;
+  FMatrix ViewProjection, TranslatedViewProjection, View;
 };
 
 struct FSceneView {

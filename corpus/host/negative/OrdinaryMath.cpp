@@ -51,3 +51,11 @@ void DrawGlobe(const glm::dmat4& globeTransform, const glm::dmat4& viewMatrix, c
   const glm::dvec4 eyePosition = viewMatrix * glm::dvec4(eyeInWorld, 1.0);
   glUniform3fv(at, 1, glm::value_ptr(glm::vec3(eyePosition)));
 }
+
+// glm's matrices act on column vectors, so the right factor acts first: a matrix the tables do not
+// know, then the view. It hands the view world positions, so it is a model matrix and the product
+// is camera-relative.
+void DrawPlaced(const glm::dmat4& viewMatrix, const glm::dmat4& placement, GLint at)
+{
+  glUniformMatrix4fv(at, 1, GL_FALSE, glm::value_ptr(glm::mat4(viewMatrix * placement)));
+}

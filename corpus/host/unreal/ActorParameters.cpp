@@ -49,3 +49,13 @@ void SetOthers(FParameters& Parameters, const FVector& WindDirection, const AAct
 	FVector3f ForTheLog(Actor->GetActorLocation());
 	(void)ForTheLog;
 }
+
+// UE's matrices act on row vectors, so the left factor acts first. A matrix the tables do not
+// know, then the view: it hands the view world positions, so it is a model matrix and the
+// product is camera-relative. The other way round, the view acts first and its world translation
+// stays in the product.
+void SetPlaced(FParameters& Parameters, const FMatrix& Placement, const FMatrix& Projection, const FViewInfo& View)
+{
+	Parameters.LocalToWorld = FMatrix44f(Placement * View.ViewMatrices.GetViewMatrix());
+	Parameters.WorldToClip = FMatrix44f(View.ViewMatrices.GetViewMatrix() * Projection);
+}
