@@ -247,7 +247,10 @@ bool World::is_transform(const Expr* e) const {
 Value World::classify(const Expr* e, int depth) const {
   e = strip(e);
   if (!e) return {};
-  if (depth > 6) return {Kind::none, nullptr, false, true};
+  // Every step counts (a cast, a member, a local's initialiser), so real chains of locals take
+  // ten or more; the products and sums on the way branch, so the limit also bounds the work.
+  constexpr int max_steps = 12;
+  if (depth > max_steps) return {Kind::none, nullptr, false, true};
   // A conversion to another vector or matrix type keeps what the value is (FVector(FVector3f), glm::dvec3(v)).
   if (auto* cast = dyn_cast<CXXFunctionalCastExpr>(e)) return classify(cast->getSubExpr(), depth + 1);
   if (auto* construct = dyn_cast<CXXConstructExpr>(e); construct && construct->getNumArgs() >= 1 && !isa<CXXTemporaryObjectExpr>(e))

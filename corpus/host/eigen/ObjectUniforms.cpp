@@ -44,3 +44,13 @@ void KeepView(ViewState& state, const Eigen::Matrix4d& view, const Eigen::Matrix
   Eigen::Matrix4d mvInv = mv.inverse();
   state.modelViewInverse = mvInv.cast<float>();
 }
+
+// The view reached through more steps than the world model follows (each copy is two): that factor
+// is cut off, and a product with a factor cut off is not known; it is not `model`'s world matrix.
+void KeepViewBeyondTheLimit(ViewState& state, const Eigen::Matrix4d& view, const Eigen::Matrix4d& model)
+{
+  Eigen::Matrix4d v1 = view, v2 = v1, v3 = v2, v4 = v3, v5 = v4, v6 = v5, v7 = v6;
+  Eigen::Matrix4d mv = DepthCorrection() * v7 * model;
+  Eigen::Matrix4d mvInv = mv.inverse();
+  state.modelViewInverse = mvInv.cast<float>();
+}
