@@ -57,6 +57,18 @@ TEST(CommandLine, AMistakeIsOneLineThatPointsAtHelp) {
   }
 }
 
+TEST(CommandLine, AShortOptionTakesItsValueAttachedOrSeparate) {
+  std::string dir = test::scratch("short-options");
+  test::write(dir + "/a.usf", kTwoFindings);
+  auto attached = test::run("cd " + dir + " && " + test::binary() + " lint -j1 -oreport.json --format json a.usf");
+  EXPECT_EQ(attached.exit_code, 1) << attached.out;
+  EXPECT_EQ(nlohmann::json::parse(test::read(dir + "/report.json"))["findings"].size(), 2u);
+  auto separate = test::run("cd " + dir + " && " + test::binary() + " lint -j 1 -o separate.json --format json a.usf");
+  EXPECT_EQ(test::read(dir + "/separate.json"), test::read(dir + "/report.json"));
+  // A flag that takes no value is not read as one with its value attached.
+  EXPECT_EQ(errors_of(test::binary() + " lint -vx a.usf").out, "lwcport: error: unknown option -vx (see `lwcport lint --help`)\n");
+}
+
 TEST(CommandLine, StandardInputTakesItsNameLanguageConfigAndSuppressionsFromStdinFilename) {
   std::string dir = test::scratch("stdin");
   test::write(dir + "/a.usf", kTwoFindings);

@@ -360,6 +360,13 @@ Options parse_options(const std::vector<std::string>& args) {
     if (a.rfind("--", 0) == 0 && a.find('=') != std::string::npos) {
       inline_value = a.substr(a.find('=') + 1);
       a = a.substr(0, a.find('='));
+    } else if (a.size() > 2 && a[1] != '-') {  // `-j2`, `-pbuild`: a short option with its value attached
+      for (const Flag& f : kFlags)
+        if (f.alias && f.value && a.compare(0, 2, f.alias) == 0) {
+          inline_value = a.substr(2);
+          a = a.substr(0, 2);
+          break;
+        }
     }
     const Flag* flag = nullptr;
     for (const Flag& f : kFlags)
