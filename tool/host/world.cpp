@@ -84,6 +84,8 @@ Tables Tables::load(const nlohmann::json& additions) {
   t.mapped_pointers = n("mapped-pointers");
   t.narrowing_methods = n("narrowing-methods");
   t.upload_constructors = n("upload-constructors");
+  t.stride_calls = n("vertex-strides/calls");
+  t.stride_members = n("vertex-strides/members");
   t.high_names = n("splits/high-names");
   t.low_names = n("splits/low-names");
   for (const nlohmann::json* root : {&b, &additions}) {

@@ -30,6 +30,9 @@ struct Tables {
   Names narrowing_methods;  // `v.cast<float>()` (Eigen): a method whose template argument is the scalar it converts to
   std::vector<std::pair<Names, Names>> upload_methods;  // method names, and the classes they upload through (osg::Uniform::set)
   Names upload_constructors;  // classes whose construction uploads its arguments (`new osg::Uniform(name, value)`)
+  // Where a vertex stride is given: `sizeof(S)` passed to one of these calls, or stored in (or
+  // constructed into) one of these members, makes S a vertex layout.
+  Names stride_calls, stride_members;
   Names high_names, low_names;  // the two halves of a high/low split
   // How a function reaches the camera: from a parameter or local of one of `types`, either the
   // view's PreViewTranslation (added to a world position) or the camera's world origin (subtracted).

@@ -12,4 +12,6 @@ void glUniform3f(GLint location, GLfloat v0, GLfloat v1, GLfloat v2);
 void glUniform3fv(GLint location, GLsizei count, const GLfloat* value);
 void glUniformMatrix4fv(GLint location, GLsizei count, GLboolean transpose, const GLfloat* value);
 void glBufferData(unsigned target, long size, const void* data, unsigned usage);
+void glNamedBufferData(unsigned buffer, long size, const void* data, unsigned usage);
+void glVertexArrayVertexBuffer(unsigned vaobj, unsigned bindingindex, unsigned buffer, long offset, GLsizei stride);
 }

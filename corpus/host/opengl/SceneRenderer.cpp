@@ -81,3 +81,20 @@ void FillTrail(std::vector<TrailPoint>& points, const std::vector<glm::dvec3>& o
   }
   glBufferData(GL_ARRAY_BUFFER, static_cast<long>(points.size() * sizeof(TrailPoint)), points.data(), GL_STATIC_DRAW);
 }
+
+// Orbit points with their time in double: 24 bytes, a vertex layout (its stride is given as
+// `sizeof`), so a member added at the end needs no 16-byte row, only an attribute of its own.
+struct OrbitVertex {
+  float x, y, z;
+  double time;
+};
+
+void FillOrbit(std::vector<OrbitVertex>& vertices, const std::vector<glm::dvec3>& positions, unsigned vertexArray, unsigned buffer)
+{
+  glVertexArrayVertexBuffer(vertexArray, 0, buffer, 0, sizeof(OrbitVertex));
+  for (size_t i = 0; i < positions.size(); ++i) {
+    const glm::dvec3 position = positions[i];
+    vertices[i].x = static_cast<float>(position.x);
+  }
+  glNamedBufferData(buffer, static_cast<long>(vertices.size() * sizeof(OrbitVertex)), vertices.data(), GL_STATIC_DRAW);
+}

@@ -2,6 +2,7 @@
 // copying it into the frame's mapped uniform buffer is what makes its members GPU data.
 #include <cstring>
 #include <glm/glm.hpp>
+#include <vector>
 
 struct Frame {
   void* mapped = nullptr;  // vkMapMemory's pointer into this frame's uniform buffer
@@ -32,4 +33,27 @@ void UpdateFrame(Frame& frame, const glm::dvec3& eyeWorldPosition, const glm::dv
 void Remember(History& history, const glm::dvec3& worldPosition)
 {
   history.lastPosition = glm::vec3(worldPosition);
+}
+
+// A point list copied into a mapped vertex buffer. Vulkan's binding description (declared here as
+// vulkan_core.h does) gives the stride as `sizeof`: a vertex layout, which no shader block mirrors.
+struct VkVertexInputBindingDescription {
+  unsigned binding;
+  unsigned stride;
+  int inputRate;
+};
+
+struct PointVertex {
+  glm::vec3 position;
+  double time;
+};
+
+VkVertexInputBindingDescription PointBinding() { return {0, sizeof(PointVertex), 0}; }
+
+void UploadPoints(void* mappedVertices, std::vector<PointVertex>& points, const std::vector<glm::dvec3>& worldPositions)
+{
+  for (size_t i = 0; i < points.size(); ++i) {
+    points[i].position = glm::vec3(worldPositions[i]);
+  }
+  std::memcpy(mappedVertices, points.data(), points.size() * sizeof(PointVertex));
 }

@@ -83,9 +83,31 @@ std::string spelled(QualType type, ASTContext& context) {
   return TypeName::getFullyQualifiedName(type.getNonReferenceType().getUnqualifiedType(), context, policy);
 }
 
+// The type of `value` as the code names it. An element of a container is typed by the library's
+// member typedefs (`std::vector<glm::dvec3>::const_reference`, spelled out through its allocator
+// traits); the container's declaration names the element as written (`glm::dvec3`).
+std::string spelled_type_of(const Expr* value, ASTContext& context) {
+  QualType type = value->getType();
+  const Expr* container = nullptr;
+  if (auto* op = dyn_cast<CXXOperatorCallExpr>(strip(value)); op && op->getOperator() == OO_Subscript) container = op->getArg(0);
+  else if (auto* call = dyn_cast<CXXMemberCallExpr>(strip(value))) container = call->getImplicitObjectArgument();
+  const ValueDecl* decl = nullptr;
+  if (auto* ref = dyn_cast_or_null<DeclRefExpr>(container ? strip(container) : nullptr)) decl = ref->getDecl();
+  else if (auto* member = dyn_cast_or_null<MemberExpr>(container ? strip(container) : nullptr)) decl = member->getMemberDecl();
+  if (decl)
+    if (auto* written = decl->getType().getNonReferenceType()->getAs<TemplateSpecializationType>();
+        written && !written->template_arguments().empty() && written->template_arguments()[0].getKind() == TemplateArgument::Type) {
+      QualType element = written->template_arguments()[0].getAsType();
+      if (context.hasSameUnqualifiedType(element, type.getNonReferenceType())) type = element;
+    }
+  return spelled(type, context);
+}
+
 // The new member's declaration beside `field`: after its shader-parameter macro (members of those
-// structs are bound by name), or at the end of a plain struct whose members end on a 16-byte row.
-std::variant<Reporter::Change, std::string> declare(const FieldDecl* field, const std::string& type, const std::string& name, ASTContext& context) {
+// structs are bound by name), or at the end of a plain struct: a vertex layout (attributes are read
+// at their own offsets), or a block whose members end on a 16-byte row.
+std::variant<Reporter::Change, std::string> declare(const FieldDecl* field, const std::string& type, const std::string& name, bool vertex,
+                                                    ASTContext& context) {
   const SourceManager& sm = context.getSourceManager();
   const LangOptions& lang = context.getLangOpts();
   const RecordDecl* record = field->getParent();
@@ -111,9 +133,9 @@ std::variant<Reporter::Change, std::string> declare(const FieldDecl* field, cons
   if (!last || last->isBitField()) return struct_name + " does not end with a plain member";
   int64_t end = static_cast<int64_t>(context.getASTRecordLayout(record).getFieldOffset(last->getFieldIndex()) / 8) +
                 context.getTypeSizeInChars(last->getType()).getQuantity();
-  if (end % 16 != 0)
+  if (end % 16 != 0 && !vertex)
     return fmt::format("{}'s members end at byte {}, not on a 16-byte row: a member added at the end would not sit at the same offset "
-                       "as in the shader's block",
+                       "as in the shader's block (were it a vertex layout, its stride given as `sizeof` would say so)",
                        struct_name, end);
   SourceLocation brace = record->getBraceRange().getEnd();
   if (brace.isMacroID()) return struct_name + " ends inside a macro";
@@ -218,7 +240,7 @@ std::variant<HighLowFix, std::string> high_low_fix(const Upload& up, ASTContext&
     std::string source = value;
     std::string prefix;
     // The matrix is read twice (its origin and itself); a call is made once, into a local.
-    if (up.value_expr->HasSideEffects(context)) {
+    if (!repeatable(up.value_expr, context)) {
       source = name + "Absolute";
       if (!unused_name(source, function, context)) return "`" + source + "` is taken";
       prefix = "const auto& " + source + " = " + value + ";\n" + *indent;
@@ -242,31 +264,37 @@ std::variant<HighLowFix, std::string> high_low_fix(const Upload& up, ASTContext&
     QualType wide = up.value_expr->getType();
     const CXXMethodDecl* method = isa<CXXMemberCallExpr>(up.narrowing) ? cast<CXXMemberCallExpr>(up.narrowing)->getMethodDecl() : nullptr;
     bool by_method = method && method->getTemplateSpecializationArgs();  // `v.cast<float>()`, widened by `cast<double>()`
+    std::string wide_type = spelled_type_of(up.value_expr, context);
     if (!by_method && !widens_from_float(wide.getNonReferenceType()))
-      return "`" + spelled(wide, context) + "` has no constructor from its float twin to subtract the high half in double";
+      return "`" + wide_type + "` has no constructor from its float twin to subtract the high half in double";
     std::string source = value;
-    if (up.value_expr->HasSideEffects(context)) {
+    // The value is read twice (narrowed, then subtracted from): a call is made once, into a local.
+    if (!repeatable(up.value_expr, context)) {
       source = name + "World";
       if (!unused_name(source, function, context)) return "`" + source + "` is taken";
       SourceLocation begin = sm.getExpansionLoc(at->expr->getBeginLoc());
-      fix.changes.push_back({CharSourceRange::getCharRange(begin, begin), "const " + spelled(wide, context) + " " + source + " = " + value + ";\n" + *indent});
+      fix.changes.push_back({CharSourceRange::getCharRange(begin, begin), "const " + wide_type + " " + source + " = " + value + ";\n" + *indent});
       fix.changes.push_back({CharSourceRange::getTokenRange(up.value_expr->getSourceRange()), source});
     }
     SourceLocation after = Lexer::findLocationAfterToken(sm.getExpansionLoc(at->expr->getEndLoc()), tok::semi, sm, lang, false);
     if (after.isInvalid()) return std::string("the assignment has no `;` right after it");
     std::string narrow = spelled(at->field->getType(), context);
     std::string rest = by_method ? "(" + source + " - " + target + "." + method->getNameAsString() + "<double>())." + method->getNameAsString() + "<float>()"
-                                 : "static_cast<" + narrow + ">(" + source + " - static_cast<" + spelled(wide, context) + ">(" + target + "))";
+                                 : "static_cast<" + narrow + ">(" + source + " - static_cast<" + wide_type + ">(" + target + "))";
     fix.changes.push_back({CharSourceRange::getCharRange(after, after), "\n" + *indent + object + low + " = " + rest + ";"});
     fix.form = "a difference in double";
     fix.read = "a DoubleFloat pair (high `" + name + "`, low `" + low + "`), added only in DoubleFloat arithmetic";
     // A struct found by its upload, not named as a GPU block, may be a vertex layout: the new
     // member makes each element larger and needs an attribute of its own.
-    if (up.sink.starts_with("member "))
+    std::string struct_name = at->field->getParent()->getNameAsString();
+    if (up.vertex)
+      fix.read += "; `" + struct_name + "` is a vertex layout (its stride is given as `sizeof`, so it follows): `" + low +
+                  "` needs a vertex attribute of its own, at `offsetof(" + struct_name + ", " + low + ")`";
+    else if (up.sink.starts_with("member "))
       fix.read += "; where the struct is a vertex layout, its stride grows and `" + low + "` needs a vertex attribute of its own";
   }
   if (!field_named(at->field->getParent(), low)) {
-    auto declaration = declare(at->field, type_of_low, low, context);
+    auto declaration = declare(at->field, type_of_low, low, up.vertex, context);
     if (auto* why = std::get_if<std::string>(&declaration)) return *why;
     fix.changes.push_back(std::get<Reporter::Change>(declaration));
   }
@@ -291,6 +319,7 @@ void PortedUploadCheck::upload(const Upload& up, const MatchFinder::MatchResult&
   vars["low"] = "`" + split.low + "`";
   vars["form"] = split.form;
   vars["read"] = split.read;
+  vars["holder"] = up.vertex ? "the vertex layout `" + split.member->getParent()->getNameAsString() + "`" : "the parameter struct";
   if (!out_.fix(*finding, rule_, "high-low", vars, split.changes, *match.SourceManager, match.Context->getLangOpts())) {
     // The new member would go into a file the run does not report on (a system or library header).
     const SourceManager& sm = *match.SourceManager;

@@ -280,7 +280,8 @@ std::optional<Upload> find_upload(const MatchFinder::MatchResult& match, const G
   // The halves of a high/low split are narrowed on purpose (lwc-host-broken-split checks them).
   auto half = [&](const std::string& name) { return tables.high_names.match(name) || tables.low_names.match(name); };
   if (half(sink->field) || half(sink->through) || (sink->decl && writes_low_half(sink->decl, narrowing, context, tables))) return std::nullopt;
-  return Upload{narrowing, value, what, World::type_name(narrowed), sink->what, sink->field, sink->gpu};
+  bool vertex = sink->gpu && sink->decl && sinks.vertex_layout(sink->decl->getParent(), context);
+  return Upload{narrowing, value, what, World::type_name(narrowed), sink->what, sink->field, sink->gpu, vertex};
 }
 
 bool GpuSinks::uploaded(const RecordDecl* record, ASTContext& context) const {
@@ -300,6 +301,41 @@ bool GpuSinks::uploaded(const RecordDecl* record, ASTContext& context) const {
     }
   }
   return uploaded_->count(record->getCanonicalDecl()) > 0;
+}
+
+bool GpuSinks::vertex_layout(const RecordDecl* record, ASTContext& context) const {
+  if (!strides_) {
+    strides_.emplace();
+    auto sizes = match(findAll(unaryExprOrTypeTraitExpr(ofKind(UETT_SizeOf), unless(isExpansionInSystemHeader())).bind("size")), context);
+    for (const BoundNodes& b : sizes) {
+      const auto* size = b.getNodeAs<UnaryExprOrTypeTraitExpr>("size");
+      const RecordDecl* sized = size->getTypeOfArgument()->getAsRecordDecl();
+      if (!sized) continue;
+      // Up through conversions (`(GLsizei)sizeof(V)`) to what takes the size.
+      const Stmt* current = size;
+      const Stmt* parent = parent_of(context, DynTypedNode::create(*current));
+      while (parent && isa<ImplicitCastExpr, ParenExpr, ExplicitCastExpr>(parent)) current = parent, parent = parent_of(context, DynTypedNode::create(*parent));
+      const NamedDecl* takes = nullptr;  // the call, or the member the size is stored in
+      bool call = false;
+      if (auto* c = dyn_cast_or_null<CallExpr>(parent); c && c->getCallee() != current) takes = c->getDirectCallee(), call = true;
+      else if (auto* bin = dyn_cast_or_null<BinaryOperator>(parent); bin && bin->getOpcode() == BO_Assign && bin->getRHS() == current) {
+        if (auto* m = dyn_cast<MemberExpr>(bin->getLHS()->IgnoreParenImpCasts())) takes = m->getMemberDecl();
+      } else if (auto* construct = dyn_cast_or_null<CXXConstructExpr>(parent)) {  // Vulkan-Hpp: `VertexInputBindingDescription(0, sizeof(V))`
+        for (unsigned i = 0; i < construct->getNumArgs() && i < construct->getConstructor()->getNumParams(); ++i)
+          if (construct->getArg(i) == current) takes = construct->getConstructor()->getParamDecl(i);
+      } else if (auto* list = dyn_cast_or_null<InitListExpr>(parent)) {  // `{0, sizeof(V), ...}`
+        // The parents are the list as written, whose elements are not yet converted to the members' types.
+        if (list->isSyntacticForm() && list->getSemanticForm()) list = list->getSemanticForm();
+        unsigned index = 0;
+        if (const RecordDecl* r = list->getType()->getAsRecordDecl())
+          for (const FieldDecl* field : r->fields())
+            if (index < list->getNumInits() && list->getInit(index++)->IgnoreParenImpCasts() == cast<Expr>(current)->IgnoreParenImpCasts()) takes = field;
+      }
+      if (!takes || !takes->getIdentifier()) continue;
+      if ((call ? tables.stride_calls : tables.stride_members).match(takes->getName().str())) strides_->insert(sized->getCanonicalDecl());
+    }
+  }
+  return strides_->count(record->getCanonicalDecl()) > 0;
 }
 
 Finding* report_upload(const Upload& up, const MatchFinder::MatchResult& match, const RuleInfo& rule, Reporter& out, const Tables& tables,

@@ -21,6 +21,7 @@ struct Upload {
   std::string sink;            // where it goes, e.g. "shader parameter `ActorPosition` of `FParameters`"
   std::string field;           // the member it is stored in ("" for an upload call)
   bool gpu = true;             // false: stored in a member of CPU-side data (lwc-host-float-world-storage)
+  bool vertex = false;         // the member's struct is a vertex layout (GpuSinks::vertex_layout)
 };
 
 // The matchers of every narrowing: conversions to a float vector or matrix type, casts to float,
@@ -39,10 +40,13 @@ class GpuSinks {
  public:
   explicit GpuSinks(const Tables& tables) : tables(tables) {}
   bool uploaded(const clang::RecordDecl* record, clang::ASTContext& context) const;
+  // Whether the unit gives `sizeof(record)` as a vertex stride (`glVertexAttribPointer(..., sizeof(V), ...)`,
+  // `binding.stride = sizeof(V)`): then the struct is a vertex layout, which no shader block mirrors.
+  bool vertex_layout(const clang::RecordDecl* record, clang::ASTContext& context) const;
   const Tables& tables;
 
  private:
-  mutable std::optional<std::set<const clang::Decl*>> uploaded_;
+  mutable std::optional<std::set<const clang::Decl*>> uploaded_, strides_;
 };
 
 // The upload a match is, when its value is a world value (a position, a world matrix or a
