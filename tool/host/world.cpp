@@ -208,6 +208,9 @@ Value World::by_name(const NamedDecl* decl, QualType type, const Expr* e) const 
     if (tables_.from_world_names.match(name)) return {Kind::matrix, e, true};
     return {};
   }
+  // A lone number named as a position is a position on some axis (a scroll wheel's, a slider's, a
+  // time line's); a world position's component is reached through its vector (`position.x`).
+  if (type.getNonReferenceType()->isArithmeticType()) return {};
   if (tables_.position_names.match(name) && !tables_.position_not.match(name)) return {Kind::position, e};
   return {};
 }

@@ -59,3 +59,13 @@ void DrawPlaced(const glm::dmat4& viewMatrix, const glm::dmat4& placement, GLint
 {
   glUniformMatrix4fv(at, 1, GL_FALSE, glm::value_ptr(glm::mat4(viewMatrix * placement)));
 }
+
+// A lone number named as a position: the scroll wheel's, not a point in the world.
+struct InputState {
+  float wheel;
+};
+
+void OnScroll(InputState& input, double position)
+{
+  input.wheel = static_cast<float>(position);
+}
