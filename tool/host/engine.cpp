@@ -311,6 +311,9 @@ HostResult analyze_host(const HostOptions& options) {
       // Our finding reports a unit's first error: no caret diagnostics, no "N errors generated", no
       // "Error while processing".
       tool.appendArgumentsAdjuster(tooling::getInsertArgumentAdjuster("-fno-caret-diagnostics", tooling::ArgumentInsertPosition::END));
+      // Compiler warnings are not our findings, and a project's -Werror must not turn one that this
+      // Clang gives (and the project's own compiler may not) into a unit we cannot read.
+      tool.appendArgumentsAdjuster(tooling::getInsertArgumentAdjuster("-w", tooling::ArgumentInsertPosition::END));
       tool.setPrintErrorMessage(false);
       host::Diagnostics diagnostics(cwd);
       tool.setDiagnosticConsumer(&diagnostics);
