@@ -288,8 +288,8 @@ std::variant<HighLowFix, std::string> high_low_fix(const Upload& up, ASTContext&
     // member makes each element larger and needs an attribute of its own.
     std::string struct_name = at->field->getParent()->getNameAsString();
     if (up.vertex)
-      fix.read += "; `" + struct_name + "` is a vertex layout (its stride is given as `sizeof`, so it follows): `" + low +
-                  "` needs a vertex attribute of its own, at `offsetof(" + struct_name + ", " + low + ")`";
+      fix.read += "; the stride is given as `sizeof`, so it follows, and `" + low + "` needs a vertex attribute of its own, at `offsetof(" +
+                  struct_name + ", " + low + ")`";
     else if (up.sink.starts_with("member "))
       fix.read += "; where the struct is a vertex layout, its stride grows and `" + low + "` needs a vertex attribute of its own";
   }
