@@ -51,8 +51,12 @@ const HostFile* file_named(const HostResult& r, const std::string& path) {
 }
 
 // Clang's verdict on a text: "" when it compiles, else its errors.
+// Whether a corpus unit (or its `.fixed` twin) is Objective-C++.
+bool objective_c(const std::string& path) { return path.ends_with(".mm") || path.ends_with(".mm.fixed"); }
+
 std::string compile_errors(const std::string& path) {
-  test::Run r = test::run(std::string(LWCPORT_CLANG) + " -fsyntax-only -std=c++20 -x c++ " + include_flag() + " " + path + " 2>&1");
+  std::string language = objective_c(path) ? "objective-c++" : "c++";
+  test::Run r = test::run(std::string(LWCPORT_CLANG) + " -fsyntax-only -std=c++20 -x " + language + " " + include_flag() + " " + path + " 2>&1");
   return r.exit_code == 0 ? "" : r.out.empty() ? "clang failed" : r.out;
 }
 
@@ -160,7 +164,7 @@ TEST(HostCorpus, FindingsAndFixedFilesAreTheGoldenOnesAndCompile) {
   fs::current_path(test::scratch("host-corpus-cwd"));
   int files = 0;
   for (const auto& e : fs::recursive_directory_iterator(root)) {
-    if (e.path().extension() != ".cpp") continue;
+    if (e.path().extension() != ".cpp" && e.path().extension() != ".mm") continue;
     ++files;
     std::string path = e.path().string();
     ASSERT_EQ(compile_errors(path), "") << path;
@@ -243,7 +247,7 @@ TEST(HostCli, RunsThroughLwcportWithLintsOutputsAndReportsWhatClangCannotCompile
   for (const auto& finding : parsed.at("findings")) count += finding.at("rule").get<std::string>().rfind("lwc-host-", 0) == 0;
   size_t golden = 0;  // what the corpus goldens list
   for (const auto& e : fs::recursive_directory_iterator(corpus))
-    if (e.path().string().ends_with(".cpp.expected.json")) golden += nlohmann::json::parse(test::read(e.path().string())).at("findings").size();
+    if (e.path().string().ends_with(".cpp.expected.json") || e.path().string().ends_with(".mm.expected.json")) golden += nlohmann::json::parse(test::read(e.path().string())).at("findings").size();
   EXPECT_EQ(count, golden);
   EXPECT_GE(count, 20u);
   // Every message, hint and fix text filled in: no `{name}` of a template left.

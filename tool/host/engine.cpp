@@ -112,7 +112,7 @@ std::optional<std::pair<std::string, Span>> Reporter::place(const SourceManager&
 namespace {
 
 bool is_source(const fs::path& p) {
-  static const std::set<std::string> kSources = {".cpp", ".cc", ".cxx", ".c++", ".C", ".mm"};
+  static const std::set<std::string> kSources = {".cpp", ".cc", ".cxx", ".c++", ".C", ".mm", ".m"};
   return kSources.count(p.extension().string()) > 0;
 }
 

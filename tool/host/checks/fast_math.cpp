@@ -1,7 +1,9 @@
 // lwc-host-fast-math: reassociation allowed where error-free transformations run: a fast-math
 // flag in the compile command of a unit that splits positions into high/low floats or runs a
-// TwoSum, and Metal shader compilation with fast math left on (its default) or turned on.
+// TwoSum, and Metal shader compilation with fast math left on (its default) or turned on, in
+// metal-cpp (C++) and in Objective-C.
 #include <clang/AST/ExprCXX.h>
+#include <clang/AST/ExprObjC.h>
 #include <clang/AST/ParentMapContext.h>
 #include <clang/ASTMatchers/ASTMatchers.h>
 
@@ -42,6 +44,9 @@ class FastMath : public Check {
     std::vector<llvm::StringRef> switches(metal_switches_.globs.begin(), metal_switches_.globs.end());  // plain names
     std::vector<llvm::StringRef> compiles(metal_compiles_.globs.begin(), metal_compiles_.globs.end());
     finder.addMatcher(cxxMemberCallExpr(project, callee(cxxMethodDecl(hasAnyName(llvm::ArrayRef<llvm::StringRef>(compiles))))).bind("compile"), this);
+    // Objective-C: `[device newLibraryWithSource:...]`, `[options setFastMathEnabled:YES]`, and a
+    // property set (`options.mathMode = ...`), which Clang also gives as its setter's message.
+    finder.addMatcher(objcMessageExpr(project).bind("message"), this);
     if (flag_.empty()) {
       // Without a fast-math flag only metal-cpp's switches can be at fault.
       finder.addMatcher(callExpr(project, callee(functionDecl(hasAnyName(llvm::ArrayRef<llvm::StringRef>(switches))).bind("callee"))).bind("call"), this);
@@ -58,8 +63,11 @@ class FastMath : public Check {
     const LangOptions& lang = match.Context->getLangOpts();
     if (auto* compile = match.Nodes.getNodeAs<CXXMemberCallExpr>("compile")) {
       if (auto form = default_options(*compile, *match.Context))
-        out_.report(rule_, sm, lang, compile->getSourceRange(),
-                    {{"what", expand(rule_.data.at("forms").at(*form).get<std::string>(), {{"call", compile->getMethodDecl()->getName().str()}})}});
+        out_.report(rule_, sm, lang, compile->getSourceRange(), {{"what", this->form(*form, compile->getMethodDecl()->getName().str(), false)}});
+      return;
+    }
+    if (auto* message = match.Nodes.getNodeAs<ObjCMessageExpr>("message")) {
+      objc_message(*message, match);
       return;
     }
     if (auto* call = match.Nodes.getNodeAs<CallExpr>("call")) {
@@ -69,7 +77,7 @@ class FastMath : public Check {
       // metal-cpp: setFastMathEnabled(true), setMathMode(MTL::MathModeFast or MathModeRelaxed).
       if (metal_switches_.match(name)) {
         std::optional<bool> fast = switch_is_fast(*call, *match.Context);
-        if (fast && *fast) out_.report(rule_, sm, lang, call->getSourceRange(), {{"what", expand(rule_.data.at("forms").at("metal").get<std::string>(), {{"call", name}})}});
+        if (fast && *fast) out_.report(rule_, sm, lang, call->getSourceRange(), {{"what", form("metal", name, false)}});
         return;
       }
       if (error_free_.match(name)) split_site(match, call);
@@ -82,6 +90,107 @@ class FastMath : public Check {
   }
 
  private:
+  // A Metal form's message, with the safe setting spelled for metal-cpp or for Objective-C.
+  std::string form(const std::string& key, const std::string& call, bool objc) const {
+    return expand(rule_.data.at("forms").at(key).get<std::string>(), {{"call", call}, {"safe", rule_.data.at("safe-settings").at(objc ? "objc" : "c++").get<std::string>()}});
+  }
+
+  // An Objective-C message: a switch set to fast math (sent, or a property set), or a compile
+  // with default options.
+  void objc_message(const ObjCMessageExpr& message, const MatchFinder::MatchResult& match) {
+    if (message.getSelector().isNull()) return;
+    std::string name = message.getSelector().getNameForSlot(0).str();
+    ASTContext& context = *match.Context;
+    if (metal_switches_.match(name)) {
+      Expr::EvalResult value;
+      if (message.getNumArgs() != 1 || !unwrapped(message.getArg(0))->EvaluateAsInt(value, context) || value.Val.getInt() == 0) return;
+      // A property set (`options.fastMathEnabled = YES`) is reported as written, by its property's name.
+      SourceRange range = message.getSourceRange();
+      if (message.isImplicit())
+        for (const auto& parent : context.getParents(message))
+          if (auto* pseudo = parent.get<PseudoObjectExpr>()) {
+            range = pseudo->getSyntacticForm()->getSourceRange();
+            if (auto* set = dyn_cast<BinaryOperator>(pseudo->getSyntacticForm()))
+              if (auto* property = dyn_cast<ObjCPropertyRefExpr>(set->getLHS()->IgnoreParens()); property && property->isExplicitProperty())
+                name = property->getExplicitProperty()->getName().str();
+          }
+      out_.report(rule_, *match.SourceManager, context.getLangOpts(), range, {{"what", form("metal", name, true)}});
+      return;
+    }
+    if (!metal_compiles_.match(name) || !message.getMethodDecl()) return;
+    const ObjCMethodDecl* method = message.getMethodDecl();
+    for (unsigned i = 0; i < message.getNumArgs() && i < method->param_size(); ++i) {
+      QualType type = method->parameters()[i]->getType();
+      if (!type->isObjCObjectPointerType() || !metal_options_.match(World::type_name(type->getPointeeType()))) continue;
+      const Expr* options = message.getArg(i)->IgnoreParenImpCasts();
+      std::optional<std::string> found;
+      if (options->isNullPointerConstant(context, Expr::NPC_ValueDependentIsNotNull)) found = "metal-no-options";
+      auto* ref = dyn_cast<DeclRefExpr>(options);
+      auto* var = ref ? dyn_cast<VarDecl>(ref->getDecl()) : nullptr;
+      if (var && var->isLocalVarDecl() && made_here_objc(var->getInit()) && left_fast_objc(*var, message, context)) found = "metal-default";
+      if (found) out_.report(rule_, *match.SourceManager, context.getLangOpts(), message.getSourceRange(), {{"what", form(*found, name, true)}});
+      return;
+    }
+  }
+
+  // Through conversions and the opaque values of a property set, to the expression as written.
+  static const Expr* unwrapped(const Expr* e) {
+    for (;;) {
+      e = e->IgnoreParenImpCasts();
+      if (auto* opaque = dyn_cast<OpaqueValueExpr>(e); opaque && opaque->getSourceExpr()) e = opaque->getSourceExpr();
+      else return e;
+    }
+  }
+
+  // `[[MTLCompileOptions alloc] init]`, `[MTLCompileOptions new]`: messages that start at a fresh allocation.
+  bool made_here_objc(const Expr* init) const {
+    for (auto* message = dyn_cast_or_null<ObjCMessageExpr>(init ? init->IgnoreParenImpCasts() : nullptr); message;) {
+      if (!message->getSelector().isNull() && metal_fresh_.match(message->getSelector().getNameForSlot(0).str())) return true;
+      message = message->getReceiverKind() == ObjCMessageExpr::Instance ? dyn_cast<ObjCMessageExpr>(message->getInstanceReceiver()->IgnoreParenImpCasts()) : nullptr;
+    }
+    return false;
+  }
+
+  // Whether the options' function leaves fast math at its default: every use is a message to
+  // them or a property of theirs other than a switch, or the compile. Any other use (handed to a
+  // function, stored) may set them elsewhere: not judged.
+  bool left_fast_objc(const VarDecl& var, const ObjCMessageExpr& compile, ASTContext& context) const {
+    const FunctionDecl* function = enclosing_function(&compile, context);
+    if (!function || !function->getBody()) return false;
+    for (const auto& bound : match(findAll(declRefExpr(to(varDecl(equalsNode(&var)))).bind("ref")), *function->getBody(), context)) {
+      const Stmt* use = bound.getNodeAs<DeclRefExpr>("ref");
+      auto parents = context.getParents(*use);
+      while (!parents.empty() && (parents[0].get<ImplicitCastExpr>() || parents[0].get<OpaqueValueExpr>())) {
+        use = parents[0].get<Stmt>();
+        parents = context.getParents(parents[0]);
+      }
+      bool accounted = false;
+      for (const auto& parent : parents) {
+        if (auto* message = parent.get<ObjCMessageExpr>()) {
+          std::string name = message->getSelector().isNull() ? "" : message->getSelector().getNameForSlot(0).str();
+          if (message->getReceiverKind() == ObjCMessageExpr::Instance && message->getInstanceReceiver() == use) {
+            if (metal_switches_.match(name)) return false;  // a switch decides (and is reported itself when fast)
+            accounted = true;
+          } else if (message == &compile || metal_compiles_.match(name)) {
+            accounted = true;
+          }
+        } else if (auto* pseudo = parent.get<PseudoObjectExpr>()) {
+          // A property of theirs, read or set: a set is also its setter's message, to them.
+          for (const Expr* semantic : pseudo->semantics())
+            if (auto* setter = dyn_cast<ObjCMessageExpr>(semantic); setter && !setter->getSelector().isNull() &&
+                                                                    setter->getReceiverKind() == ObjCMessageExpr::Instance &&
+                                                                    metal_switches_.match(setter->getSelector().getNameForSlot(0).str()))
+              if (auto* receiver = dyn_cast<DeclRefExpr>(unwrapped(setter->getInstanceReceiver())); receiver && receiver->getDecl() == &var) return false;
+          accounted = true;
+        } else if (parent.get<ObjCPropertyRefExpr>()) {
+          accounted = true;
+        }
+      }
+      if (!accounted) return false;
+    }
+    return true;
+  }
+
   // Whether a metal-cpp switch turns reassociation on: setFastMathEnabled(true), or setMathMode
   // with anything but MathModeSafe (0): MathModeRelaxed (1) keeps Inf and NaN but reassociates
   // like MathModeFast (2). Unknown when the argument is not a constant.
