@@ -4,6 +4,8 @@
 #include <clang/AST/DeclTemplate.h>
 #include <clang/AST/ExprCXX.h>
 #include <clang/AST/ParentMapContext.h>
+#include <clang/ASTMatchers/ASTMatchFinder.h>
+#include <clang/ASTMatchers/ASTMatchers.h>
 #include <clang/Lex/Lexer.h>
 
 #include <algorithm>
@@ -249,6 +251,18 @@ bool World::is_transform(const Expr* e) const {
   return false;
 }
 
+bool World::changed(const VarDecl* var) const {
+  using namespace clang::ast_matchers;
+  auto* function = dyn_cast<FunctionDecl>(var->getDeclContext());
+  if (var->getType().isConstQualified() || !function || !function->getBody()) return false;
+  auto ref = ignoringParenImpCasts(declRefExpr(to(varDecl(equalsNode(var)))));
+  auto change = stmt(anyOf(binaryOperator(isAssignmentOperator(), hasLHS(ref)), cxxOperatorCallExpr(isAssignmentOperator(), hasArgument(0, ref)),
+                           cxxMemberCallExpr(on(ref), callee(cxxMethodDecl(unless(isConst()))), hasParent(compoundStmt())),
+                           unaryOperator(hasOperatorName("&"), hasUnaryOperand(ref)),
+                           callExpr(forEachArgumentWithParam(ref, parmVarDecl(hasType(lValueReferenceType(pointee(unless(isConstQualified())))))))));
+  return !match(findAll(change.bind("change")), *function->getBody(), context_).empty();
+}
+
 Value World::classify(const Expr* e, int depth) const {
   e = strip(e);
   if (!e) return {};
@@ -361,7 +375,7 @@ Value World::classify(const Expr* e, int depth) const {
     const ValueDecl* decl = ref->getDecl();
     // A local initialised by a matrix applied to a point: the matrix says which frame it is in, not
     // its name (`cameraPosition = inverse(globeTransform) * eye` is the eye in the globe's frame).
-    if (auto* var = dyn_cast<VarDecl>(decl); var && var->isLocalVarDecl() && var->getInit() && is_transform(var->getInit())) {
+    if (auto* var = dyn_cast<VarDecl>(decl); var && var->isLocalVarDecl() && var->getInit() && is_transform(var->getInit()) && !changed(var)) {
       Value init = classify(var->getInit(), depth + 1);
       if (init.kind != Kind::none) init.expr = e;
       return init;
@@ -372,8 +386,8 @@ Value World::classify(const Expr* e, int depth) const {
     // (perhaps after its initialiser): not followed.
     std::string name = decl->getIdentifier() ? decl->getName().str() : "";
     if ((is_matrix_type(ref->getType()) ? tables_.matrix_not : tables_.position_not).match(name)) return {};
-    // A local initialised once: what it was initialised with.
-    if (auto* var = dyn_cast<VarDecl>(decl); var && var->isLocalVarDecl() && var->getInit()) {
+    // A local initialised once, and left so: what it was initialised with.
+    if (auto* var = dyn_cast<VarDecl>(decl); var && var->isLocalVarDecl() && var->getInit() && !changed(var)) {
       Value init = classify(var->getInit(), depth + 1);
       if (init.kind != Kind::none) init.expr = e;
       return init;

@@ -91,6 +91,9 @@ class World {
   static bool is_direction(const clang::Expr* point);
   // `e` is a matrix applied to a point (through conversions), whatever the matrix.
   bool is_transform(const clang::Expr* e) const;
+  // Whether a local is changed after its initialiser (assigned, a mutating method called for its
+  // effect as `v.normalize();`, passed by reference or by address): then it no longer holds it.
+  bool changed(const clang::VarDecl* var) const;
   const Tables& tables_;
   clang::ASTContext& context_;
 };

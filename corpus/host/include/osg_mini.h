@@ -12,6 +12,7 @@ struct Vec3d {
   // As in OpenSceneGraph: a double vector converts to a float one implicitly.
   operator Vec3f() const { return Vec3f(float(_v[0]), float(_v[1]), float(_v[2])); }
   Vec3d operator-(const Vec3d& o) const { return Vec3d(_v[0] - o._v[0], _v[1] - o._v[1], _v[2] - o._v[2]); }
+  double normalize();  // to unit length, in place; returns the old length
 };
 struct Uniform {
   Uniform(const char* name, const Vec3f& value);

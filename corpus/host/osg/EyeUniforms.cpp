@@ -9,3 +9,11 @@ void UpdateEye(osg::Uniform* eyeUniform, osg::StateSet* stateSet, const osg::Vec
   // Right: the difference of two positions, in double.
   eyeUniform->set(osg::Vec3f(eye - center));
 }
+
+// Right: a copy of the position made a direction in place before it is uploaded.
+void UpdateSun(osg::Uniform* sunDirection, const osg::Vec3d& position)
+{
+  osg::Vec3d sun = position;
+  sun.normalize();
+  sunDirection->set(osg::Vec3f(sun));
+}
