@@ -263,6 +263,21 @@ bool World::changed(const VarDecl* var) const {
   return !match(findAll(change.bind("change")), *function->getBody(), context_).empty();
 }
 
+bool World::changed_in_place(const MemberExpr* use) const {
+  using namespace clang::ast_matchers;
+  auto* object = dyn_cast<DeclRefExpr>(use->getBase()->IgnoreParenImpCasts());
+  const FunctionDecl* function = object ? enclosing_function(use, context_) : nullptr;
+  if (!function || !function->getBody()) return false;
+  auto same = ignoringParenImpCasts(memberExpr(member(equalsNode(use->getMemberDecl())),
+                                               hasObjectExpression(ignoringParenImpCasts(declRefExpr(to(equalsNode(object->getDecl())))))));
+  auto change = stmt(anyOf(binaryOperator(isAssignmentOperator(), unless(hasOperatorName("=")), hasLHS(same)),
+                           cxxOperatorCallExpr(isAssignmentOperator(), unless(hasOverloadedOperatorName("=")), hasArgument(0, same)),
+                           cxxMemberCallExpr(on(same), callee(cxxMethodDecl(unless(isConst()))), hasParent(compoundStmt())),
+                           unaryOperator(hasOperatorName("&"), hasUnaryOperand(same)),
+                           callExpr(forEachArgumentWithParam(same, parmVarDecl(hasType(lValueReferenceType(pointee(unless(isConstQualified())))))))));
+  return !match(findAll(change.bind("change")), *function->getBody(), context_).empty();
+}
+
 Value World::classify(const Expr* e, int depth) const {
   e = strip(e);
   if (!e) return {};
@@ -369,6 +384,7 @@ Value World::classify(const Expr* e, int depth) const {
     std::string base_type = type_name(member->getBase()->getType());
     for (const auto& [m, types] : tables_.position_members)
       if (m == name && types.match(base_type)) return {Kind::position, e};
+    if (changed_in_place(member)) return {};
     return by_name(decl, member->getType(), e);
   }
   if (auto* ref = dyn_cast<DeclRefExpr>(e)) {

@@ -94,6 +94,10 @@ class World {
   // Whether a local is changed after its initialiser (assigned, a mutating method called for its
   // effect as `v.normalize();`, passed by reference or by address): then it no longer holds it.
   bool changed(const clang::VarDecl* var) const;
+  // Whether the function holding `member` (`data.eyePos`) changes that member of that object in
+  // place: a mutating method called for its effect, a compound assignment, a pass by reference.
+  // A direction made from a position that way keeps the position's name.
+  bool changed_in_place(const clang::MemberExpr* member) const;
   const Tables& tables_;
   clang::ASTContext& context_;
 };

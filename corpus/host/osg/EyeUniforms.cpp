@@ -17,3 +17,15 @@ void UpdateSun(osg::Uniform* sunDirection, const osg::Vec3d& position)
   sun.normalize();
   sunDirection->set(osg::Vec3f(sun));
 }
+
+// Right: a member named as a position, made a direction in place before it is uploaded.
+struct LightingData {
+  osg::Vec3d eyePos;
+};
+
+void UpdateEyeDirection(osg::Uniform* eyeDirection, LightingData& data, const osg::Vec3d& eye)
+{
+  data.eyePos = eye;
+  data.eyePos.normalize();
+  eyeDirection->set(osg::Vec3f(data.eyePos));
+}
