@@ -180,6 +180,32 @@ bool World::is_matrix_type(QualType type) const {
   return tables_.matrix_types.match(type_name(type));
 }
 
+bool World::is_planar(QualType type) {
+  const CXXRecordDecl* record = type.getNonReferenceType()->getAsCXXRecordDecl();
+  if (!record || !record->hasDefinition()) return false;
+  // A template over its size: glm's vec<2, T, Q>, Eigen's Matrix<T, 2, 1>.
+  if (auto* spec = dyn_cast<ClassTemplateSpecializationDecl>(record)) {
+    std::vector<int64_t> extents;
+    for (const TemplateArgument& a : spec->getTemplateArgs().asArray())
+      if (a.getKind() == TemplateArgument::Integral) extents.push_back(a.getAsIntegral().getExtValue());
+    if (extents.size() >= 2 && (extents[0] == 1 || extents[1] == 1)) return extents[0] * extents[1] == 2;
+    if (!extents.empty()) return extents[0] == 2;
+  }
+  // Else its floating-point members, counted (`double x, y;`, OSG's `value_type _v[2];`).
+  int64_t count = 0;
+  for (const FieldDecl* field : record->getDefinition()->fields()) {
+    QualType t = field->getType().getCanonicalType();
+    int64_t n = 1;
+    if (auto* array = dyn_cast<ConstantArrayType>(t.getTypePtr())) {
+      n = array->getSize().getSExtValue();
+      t = array->getElementType();
+    }
+    if (!t->isRealFloatingType()) return false;
+    count += n;
+  }
+  return count == 2;
+}
+
 bool World::is_row_vector(QualType type) const { return tables_.row_vector_types.match(type_name(type)); }
 
 std::string World::text(SourceRange range) const { return source_text(range, context_); }
@@ -211,8 +237,9 @@ Value World::by_name(const NamedDecl* decl, QualType type, const Expr* e) const 
     return {};
   }
   // A lone number named as a position is a position on some axis (a scroll wheel's, a slider's, a
-  // time line's); a world position's component is reached through its vector (`position.x`).
-  if (type.getNonReferenceType()->isArithmeticType()) return {};
+  // time line's); a world position's component is reached through its vector (`position.x`). Two
+  // numbers named as a position are a point on a screen or a canvas (a pointer's `pos`).
+  if (type.getNonReferenceType()->isArithmeticType() || is_planar(type)) return {};
   if (tables_.position_names.match(name) && !tables_.position_not.match(name)) return {Kind::position, e};
   return {};
 }
@@ -359,7 +386,7 @@ Value World::classify(const Expr* e, int depth) const {
     if (!callee || !callee->getIdentifier()) return {};
     std::string name = callee->getName().str();
     if (tables_.offset_calls.match(name)) return {Kind::camera_offset, e};
-    if (tables_.position_calls.match(name) && !is_matrix_type(call->getType())) return {Kind::position, e};
+    if (tables_.position_calls.match(name) && !is_matrix_type(call->getType()) && !is_planar(call->getType())) return {Kind::position, e};
     if (tables_.matrix_calls.match(name) && is_matrix_type(call->getType())) return {Kind::matrix, e};
     if (tables_.from_world_calls.match(name) && is_matrix_type(call->getType())) return {Kind::matrix, e, true};
     if (auto* member = dyn_cast<CXXMemberCallExpr>(call)) {

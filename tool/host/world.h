@@ -74,6 +74,9 @@ class World {
   // struct of doubles), 'f' for float, 0 for anything else.
   char scalar(clang::QualType type) const;
   bool is_matrix_type(clang::QualType type) const;
+  // A vector of two numbers (glm::dvec2, osg::Vec2d, Eigen::Vector2d, FVector2D): a point on a
+  // screen, a texture or a map, never a position in a 3D world.
+  static bool is_planar(clang::QualType type);
   // Matrices of this type act on row vectors (`p * M`), so in `A * B` the left factor acts first.
   bool is_row_vector(clang::QualType type) const;
   // The type's name without qualifiers, namespace or template arguments (`FVector3f`, `vec`).

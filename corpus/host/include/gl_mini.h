@@ -9,6 +9,7 @@ typedef unsigned char GLboolean;
 #define GL_STATIC_DRAW 0x88E4
 extern "C" {
 void glUniform3f(GLint location, GLfloat v0, GLfloat v1, GLfloat v2);
+void glUniform2fv(GLint location, GLsizei count, const GLfloat* value);
 void glUniform3fv(GLint location, GLsizei count, const GLfloat* value);
 void glUniformMatrix4fv(GLint location, GLsizei count, GLboolean transpose, const GLfloat* value);
 void glBufferData(unsigned target, long size, const void* data, unsigned usage);

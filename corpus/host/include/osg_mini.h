@@ -2,6 +2,16 @@
 // operator from double to float, and uniforms (not OpenSceneGraph's code).
 #pragma once
 namespace osg {
+struct Vec2f {
+  float _v[2];
+  Vec2f(float x, float y) : _v{x, y} {}
+};
+struct Vec2d {
+  double _v[2];
+  Vec2d(double x, double y) : _v{x, y} {}
+  operator Vec2f() const { return Vec2f(float(_v[0]), float(_v[1])); }
+  Vec2d operator-(const Vec2f& o) const { return Vec2d(_v[0] - o._v[0], _v[1] - o._v[1]); }
+};
 struct Vec3f {
   float _v[3];
   Vec3f(float x, float y, float z) : _v{x, y, z} {}

@@ -69,3 +69,9 @@ void OnScroll(InputState& input, double position)
 {
   input.wheel = static_cast<float>(position);
 }
+
+// Two numbers named as a position: a cursor's place on the screen, not a point in a 3D world.
+void DrawCursor(const glm::dvec2& pos, GLint at)
+{
+  glUniform2fv(at, 1, glm::value_ptr(glm::vec2(pos)));
+}
