@@ -180,30 +180,34 @@ bool World::is_matrix_type(QualType type) const {
   return tables_.matrix_types.match(type_name(type));
 }
 
-bool World::is_planar(QualType type) {
+int World::components(QualType type) {
   const CXXRecordDecl* record = type.getNonReferenceType()->getAsCXXRecordDecl();
-  if (!record || !record->hasDefinition()) return false;
-  // A template over its size: glm's vec<2, T, Q>, Eigen's Matrix<T, 2, 1>.
+  if (!record || !record->hasDefinition()) return -1;
   if (auto* spec = dyn_cast<ClassTemplateSpecializationDecl>(record)) {
     std::vector<int64_t> extents;
     for (const TemplateArgument& a : spec->getTemplateArgs().asArray())
       if (a.getKind() == TemplateArgument::Integral) extents.push_back(a.getAsIntegral().getExtValue());
-    if (extents.size() >= 2 && (extents[0] == 1 || extents[1] == 1)) return extents[0] * extents[1] == 2;
-    if (!extents.empty()) return extents[0] == 2;
+    if (extents.size() >= 2 && (extents[0] == 1 || extents[1] == 1)) return int(extents[0] * extents[1]);
+    if (!extents.empty()) return int(extents[0]);
   }
-  // Else its floating-point members, counted (`double x, y;`, OSG's `value_type _v[2];`).
-  int64_t count = 0;
+  int count = 0;
   for (const FieldDecl* field : record->getDefinition()->fields()) {
     QualType t = field->getType().getCanonicalType();
-    int64_t n = 1;
+    int n = 1;
     if (auto* array = dyn_cast<ConstantArrayType>(t.getTypePtr())) {
-      n = array->getSize().getSExtValue();
+      n = int(array->getSize().getSExtValue());
       t = array->getElementType();
     }
-    if (!t->isRealFloatingType()) return false;
+    if (t->isRecordType()) return -1;
+    if (!t->isRealFloatingType()) return 0;
     count += n;
   }
-  return count == 2;
+  return count == 0 ? -1 : count;
+}
+
+bool World::may_hold_position(QualType type) {
+  int n = components(type);
+  return n < 0 || n == 3 || n == 4;
 }
 
 bool World::is_row_vector(QualType type) const { return tables_.row_vector_types.match(type_name(type)); }
@@ -238,8 +242,9 @@ Value World::by_name(const NamedDecl* decl, QualType type, const Expr* e) const 
   }
   // A lone number named as a position is a position on some axis (a scroll wheel's, a slider's, a
   // time line's); a world position's component is reached through its vector (`position.x`). Two
-  // numbers named as a position are a point on a screen or a canvas (a pointer's `pos`).
-  if (type.getNonReferenceType()->isArithmeticType() || is_planar(type)) return {};
+  // numbers named as a position are a point on a screen or a canvas (a pointer's `pos`), and a
+  // record that is no vector is a record (a GPS fix with its speed and satellite count).
+  if (type.getNonReferenceType()->isArithmeticType() || !may_hold_position(type)) return {};
   if (tables_.position_names.match(name) && !tables_.position_not.match(name)) return {Kind::position, e};
   return {};
 }
@@ -386,7 +391,7 @@ Value World::classify(const Expr* e, int depth) const {
     if (!callee || !callee->getIdentifier()) return {};
     std::string name = callee->getName().str();
     if (tables_.offset_calls.match(name)) return {Kind::camera_offset, e};
-    if (tables_.position_calls.match(name) && !is_matrix_type(call->getType()) && !is_planar(call->getType())) return {Kind::position, e};
+    if (tables_.position_calls.match(name) && !is_matrix_type(call->getType()) && may_hold_position(call->getType())) return {Kind::position, e};
     if (tables_.matrix_calls.match(name) && is_matrix_type(call->getType())) return {Kind::matrix, e};
     if (tables_.from_world_calls.match(name) && is_matrix_type(call->getType())) return {Kind::matrix, e, true};
     if (auto* member = dyn_cast<CXXMemberCallExpr>(call)) {

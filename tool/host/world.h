@@ -74,9 +74,14 @@ class World {
   // struct of doubles), 'f' for float, 0 for anything else.
   char scalar(clang::QualType type) const;
   bool is_matrix_type(clang::QualType type) const;
-  // A vector of two numbers (glm::dvec2, osg::Vec2d, Eigen::Vector2d, FVector2D): a point on a
-  // screen, a texture or a map, never a position in a 3D world.
-  static bool is_planar(clang::QualType type);
+  // How many numbers a record holds, when it is plainly a vector: its size as a template argument
+  // (glm's vec<3, T, Q>, Eigen's Matrix<T, 3, 1>) or its floating-point members (`double x, y, z;`,
+  // OSG's `_v[3]`). 0 for a record that is no vector (a member of another kind: `int satellites;`),
+  // -1 where it cannot tell (not a record, or its numbers kept in a member of record type).
+  static int components(clang::QualType type);
+  // Whether a value of this type can hold a position in a 3D world: a number, or a vector of 3
+  // numbers, or 4 (homogeneous); not two numbers, a point on a screen or a canvas.
+  static bool may_hold_position(clang::QualType type);
   // Matrices of this type act on row vectors (`p * M`), so in `A * B` the left factor acts first.
   bool is_row_vector(clang::QualType type) const;
   // The type's name without qualifiers, namespace or template arguments (`FVector3f`, `vec`).

@@ -75,3 +75,18 @@ void DrawCursor(const glm::dvec2& pos, GLint at)
 {
   glUniform2fv(at, 1, glm::value_ptr(glm::vec2(pos)));
 }
+
+// A record named as a position that is no vector: a GPS fix, whose speed is no coordinate.
+struct GpsFix {
+  double latitudeDeg, longitudeDeg, altitude;
+  int satellites;
+  double speedKnots;
+};
+struct TelemetryPacket {
+  float airspeed;
+};
+
+void Relay(TelemetryPacket& packet, const GpsFix& pos)
+{
+  packet.airspeed = pos.speedKnots;
+}
