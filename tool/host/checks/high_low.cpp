@@ -185,6 +185,73 @@ bool widens_from_float(QualType type) {
   return false;
 }
 
+// A 4x4 double matrix of a library whose columns the split can be written with: glm's
+// `mat<4, 4, T>` (column 3 is `m[3]`) or Eigen's `Matrix<T, 4, 4>` (`m.col(3)`).
+enum class ColumnMatrix { none, glm, eigen };
+
+ColumnMatrix column_matrix(QualType type) {
+  auto* spec = dyn_cast_or_null<ClassTemplateSpecializationDecl>(type.getNonReferenceType()->getAsCXXRecordDecl());
+  auto* ns = spec ? dyn_cast<NamespaceDecl>(spec->getEnclosingNamespaceContext()) : nullptr;
+  if (!ns || !ns->getIdentifier()) return ColumnMatrix::none;
+  std::vector<int64_t> extents;
+  for (const TemplateArgument& a : spec->getTemplateArgs().asArray())
+    if (a.getKind() == TemplateArgument::Integral) extents.push_back(a.getAsIntegral().getExtValue());
+  if (extents.size() < 2 || extents[0] != 4 || extents[1] != 4) return ColumnMatrix::none;
+  if (ns->getName() == "glm" && spec->getName() == "mat") return ColumnMatrix::glm;
+  if (ns->getName() == "Eigen" && spec->getName() == "Matrix") return ColumnMatrix::eigen;
+  return ColumnMatrix::none;
+}
+
+// `ns::name` when the namespace of `like`'s type declares the type `name` (`glm::vec3`,
+// `Eigen::Vector3f`), and, with `same`, names `like`'s own type by it (`glm::dmat4`); else "".
+std::string library_type(QualType like, const char* name, ASTContext& context, bool same = false) {
+  const CXXRecordDecl* record = like.getNonReferenceType()->getAsCXXRecordDecl();
+  auto* ns = record ? dyn_cast<NamespaceDecl>(record->getEnclosingNamespaceContext()) : nullptr;
+  if (!ns) return "";
+  for (const NamedDecl* d : ns->lookup(&context.Idents.get(name)))
+    if (auto* type = dyn_cast<TypeDecl>(d)) {
+      if (same && !context.hasSameUnqualifiedType(context.getTypeDeclType(type), like.getNonReferenceType())) continue;
+      return ns->getNameAsString() + "::" + name;
+    }
+  return "";
+}
+
+// The split of a glm or Eigen local-to-world matrix, written out: the new member takes the float
+// nearest the translation (the high half, as UE's PostTranslation), the matrix uploaded is a copy
+// with that subtracted from its translation column in double (exact: what is left is small), and
+// the shader joins them as `MakeDFMatrix(PostTranslation, M)`. "" when done, else why not.
+std::string column_split(const Upload& up, const std::string& name, const std::string& low, const std::string& indent, const std::string& object,
+                         const FunctionDecl* function, ASTContext& context, HighLowFix& fix, std::string& type_of_low) {
+  ColumnMatrix library = column_matrix(up.value_expr->getType());
+  if (library == ColumnMatrix::none)
+    return "a matrix outside glm and Eigen is split with UE 5.4's `FDFMatrix`, which this unit does not declare; split its translation by hand";
+  type_of_low = library_type(up.value_expr->getType(), library == ColumnMatrix::glm ? "vec3" : "Vector3f", context);
+  if (type_of_low.empty()) return std::string("the unit does not declare the float 3-vector the translation's high half needs");
+  std::string local = name + "Relative";
+  if (!unused_name(local, function, context)) return "`" + local + "` is taken";
+  std::string wide = library_type(up.value_expr->getType(), library == ColumnMatrix::glm ? "dmat4" : "Matrix4d", context, true);
+  if (wide.empty()) wide = spelled_type_of(up.value_expr, context);
+  std::string high = object + low;
+  std::string column = library == ColumnMatrix::glm ? local + "[3]" : local + ".col(3).head<3>()";
+  std::string take = library == ColumnMatrix::glm ? type_of_low + "(" + column + ")" : column + ".cast<float>()";
+  std::string give = library == ColumnMatrix::glm ? wide + "::col_type(" + high + ", 0.0)" : high + ".cast<double>()";
+  const SourceManager& sm = context.getSourceManager();
+  SourceLocation begin = sm.getExpansionLoc(up.narrowing->getBeginLoc());
+  for (const Stmt* s = up.narrowing;;) {  // the start of the statement: the assignment's left side
+    auto parents = context.getParents(*s);
+    if (parents.empty() || !parents[0].get<Expr>()) break;
+    s = parents[0].get<Expr>();
+    begin = sm.getExpansionLoc(s->getBeginLoc());
+  }
+  fix.changes.push_back({CharSourceRange::getCharRange(begin, begin), wide + " " + local + " = " + source_text(up.value_expr->getSourceRange(), context) +
+                                                                          ";\n" + indent + high + " = " + take + ";\n" + indent + column + " -= " + give +
+                                                                          ";\n" + indent});
+  fix.changes.push_back({CharSourceRange::getTokenRange(up.value_expr->getSourceRange()), local});
+  fix.form = "its translation's nearest float taken out in double";
+  fix.read = "`MakeDFMatrix(" + low + ", " + name + ")` (as in `lwc_doublefloat`, the DoubleFloat library lwcport's shader fixes write)";
+  return "";
+}
+
 }  // namespace
 
 bool writes_low_half(const FieldDecl* field, const Expr* e, ASTContext& context, const Tables& tables) {
@@ -233,8 +300,10 @@ std::variant<HighLowFix, std::string> high_low_fix(const Upload& up, ASTContext&
   if (matrix) {
     if (up.value.from_world)
       return std::string("a world-to-view or world-to-clip matrix: pre-translate it by the camera (UE 5.4 `FDFInverseMatrix::MakeFromRelativeWorldMatrix`) by hand");
-    if (!declared(context, "FDFMatrix") || !declared(context, "FDFVector3"))
-      return std::string("a matrix is split with UE 5.4's `FDFMatrix`, which this unit does not declare");
+    if (!declared(context, "FDFMatrix") || !declared(context, "FDFVector3")) {
+      std::string why = column_split(up, name, low, *indent, object, function, context, fix, type_of_low);
+      if (!why.empty()) return why;
+    } else {
     std::string local = name + "DF";
     if (!unused_name(local, function, context)) return "`" + local + "` is taken";
     std::string source = value;
@@ -251,6 +320,7 @@ std::variant<HighLowFix, std::string> high_low_fix(const Upload& up, ASTContext&
     fix.form = "`FDFMatrix::MakeToRelativeWorldMatrix`";
     fix.read = "`MakeDFMatrix(" + low + ", " + name + ")`";
     type_of_low = "FVector3f";
+    }
   } else if (const char* df = df_type(up.narrowing->getType(), context)) {
     std::string local = name + "DF";
     if (!unused_name(local, function, context)) return "`" + local + "` is taken";
