@@ -271,8 +271,9 @@ TEST(HostCli, RunsThroughLwcportWithLintsOutputsAndReportsWhatClangCannotCompile
   EXPECT_NE(broken.out.find("broken.cpp:5:2: use of undeclared identifier 'undeclared'"), std::string::npos) << broken.out;
   EXPECT_NE(broken.out.find("broken.cpp:4:20: warning: `FVector3f(A->GetActorLocation())`"), std::string::npos) << broken.out;
 
-  // A project's -Werror does not make this Clang's warnings (which its own compiler may not give) a failed unit.
-  test::write(dir + "/strict.cpp", "#include \"ue_mini.h\"\nvoid F(FParameters& P, const AActor* A)\n{\n\tint unused;\n\tP.ActorPosition = FVector3f(A->GetActorLocation());\n}\n");
+  // A project's -Werror does not make this Clang's warnings (which its own compiler may not give) a
+  // failed unit, nor does `register`, which GCC accepts in C++17 with a warning.
+  test::write(dir + "/strict.cpp", "#include \"ue_mini.h\"\nvoid F(FParameters& P, const AActor* A)\n{\n\tregister int unused;\n\tP.ActorPosition = FVector3f(A->GetActorLocation());\n}\n");
   test::Run strict = test::run("cd " + dir + " && " + test::binary() + " host strict.cpp --format json -- -std=c++20 -Wall -Werror " + include_flag());
   nlohmann::json strict_findings = nlohmann::json::parse(strict.out).at("findings");
   ASSERT_EQ(strict_findings.size(), 1u) << strict.out;

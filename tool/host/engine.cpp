@@ -314,6 +314,9 @@ HostResult analyze_host(const HostOptions& options) {
       // Compiler warnings are not our findings, and a project's -Werror must not turn one that this
       // Clang gives (and the project's own compiler may not) into a unit we cannot read.
       tool.appendArgumentsAdjuster(tooling::getInsertArgumentAdjuster("-w", tooling::ArgumentInsertPosition::END));
+      // Nor may the one warning Clang makes an error by default where GCC only warns: `register` in
+      // C++17, which older code keeps (osgEarth's bundled libraries).
+      tool.appendArgumentsAdjuster(tooling::getInsertArgumentAdjuster("-Wno-register", tooling::ArgumentInsertPosition::END));
       tool.setPrintErrorMessage(false);
       host::Diagnostics diagnostics(cwd);
       tool.setDiagnosticConsumer(&diagnostics);
