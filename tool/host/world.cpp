@@ -136,6 +136,11 @@ char World::scalar(QualType type) const {
       type = array->getElementType();
       continue;
     }
+    // A vector of the compiler's own (Apple's simd_double3, an ext_vector_type).
+    if (auto* vector = type->getAs<VectorType>()) {
+      type = vector->getElementType();
+      continue;
+    }
     if (auto* builtin = type->getAs<BuiltinType>()) {
       if (builtin->getKind() == BuiltinType::Double || builtin->getKind() == BuiltinType::LongDouble) return 'd';
       if (builtin->getKind() == BuiltinType::Float || builtin->getKind() == BuiltinType::Half || builtin->getKind() == BuiltinType::Float16)
@@ -181,6 +186,7 @@ bool World::is_matrix_type(QualType type) const {
 }
 
 int World::components(QualType type) {
+  if (auto* vector = type.getNonReferenceType()->getAs<VectorType>()) return int(vector->getNumElements());
   const CXXRecordDecl* record = type.getNonReferenceType()->getAsCXXRecordDecl();
   if (!record || !record->hasDefinition()) return -1;
   if (auto* spec = dyn_cast<ClassTemplateSpecializationDecl>(record)) {
@@ -198,7 +204,7 @@ int World::components(QualType type) {
       n = int(array->getSize().getSExtValue());
       t = array->getElementType();
     }
-    if (t->isRecordType()) return -1;
+    if (t->isRecordType() || t->isVectorType()) return -1;
     if (!t->isRealFloatingType()) return 0;
     count += n;
   }
@@ -254,6 +260,11 @@ Value World::transformed(Value matrix, const Expr* point, bool inverse, const Ex
   // Into the world from another frame: a world position, unless the point is a direction (w = 0).
   if (matrix.from_world == inverse) return is_direction(point) ? Value{} : Value{Kind::position, e};
   return {Kind::relative, e};  // out of the world: view space, or an object's own frame
+}
+
+bool World::names_a_value(const Expr* e) {
+  e = strip(e);
+  return isa<DeclRefExpr, MemberExpr, ArraySubscriptExpr>(e) || (isa<CallExpr>(e) && !isa<CXXOperatorCallExpr>(e));
 }
 
 bool World::is_direction(const Expr* point) {
@@ -356,6 +367,7 @@ Value World::classify(const Expr* e, int depth) const {
       if (a.kind == Kind::position && b.kind == Kind::position && o == OO_Minus) return {Kind::relative, e};
       if ((a.kind == Kind::position && b.kind == Kind::camera_offset) || (a.kind == Kind::camera_offset && b.kind == Kind::position))
         return {Kind::relative, e};
+      if (a.kind == Kind::position && o == OO_Minus && b.kind == Kind::none && names_a_value(op->getArg(1))) return {};
       if (a.kind == Kind::position) return {Kind::position, e};
       if (b.kind == Kind::position && o == OO_Plus) return {Kind::position, e};
       return {};
@@ -378,6 +390,7 @@ Value World::classify(const Expr* e, int depth) const {
     if (a.kind == Kind::position && b.kind == Kind::position && bin->getOpcode() == BO_Sub) return {Kind::relative, e};
     if ((a.kind == Kind::position && b.kind == Kind::camera_offset) || (a.kind == Kind::camera_offset && b.kind == Kind::position))
       return {Kind::relative, e};
+    if (a.kind == Kind::position && bin->getOpcode() == BO_Sub && b.kind == Kind::none && names_a_value(bin->getRHS())) return {};
     if (a.kind == Kind::position || (b.kind == Kind::position && bin->getOpcode() == BO_Add)) return {Kind::position, e};
     return {};
   }

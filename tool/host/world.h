@@ -74,7 +74,8 @@ class World {
   // struct of doubles), 'f' for float, 0 for anything else.
   char scalar(clang::QualType type) const;
   bool is_matrix_type(clang::QualType type) const;
-  // How many numbers a record holds, when it is plainly a vector: its size as a template argument
+  // How many numbers a vector holds: a compiler vector's (simd_double3) size, or for a record that is
+  // plainly a vector, its size as a template argument
   // (glm's vec<3, T, Q>, Eigen's Matrix<T, 3, 1>) or its floating-point members (`double x, y, z;`,
   // OSG's `_v[3]`). 0 for a record that is no vector (a member of another kind: `int satellites;`),
   // -1 where it cannot tell (not a record, or its numbers kept in a member of record type).
@@ -95,6 +96,10 @@ class World {
   Value by_name(const clang::NamedDecl* decl, clang::QualType type, const clang::Expr* e) const;
   // `matrix` applied to `point` (or its inverse applied): into the world, or out of it.
   Value transformed(Value matrix, const clang::Expr* point, bool inverse, const clang::Expr* e) const;
+  // A value taken from somewhere (a variable, a member, an element, a call), not made on the spot
+  // from constants: a world position minus such a value the tables do not know is relative to it
+  // (`pos - lastPos`), while minus a constant (`Location - FVector(0, 0, 10)`) it is a world position still.
+  static bool names_a_value(const clang::Expr* e);
   // A homogeneous vector written with w = 0 (`dvec4(n, 0.0)`): a direction, which no translation moves.
   static bool is_direction(const clang::Expr* point);
   // `e` is a matrix applied to a point (through conversions), whatever the matrix.

@@ -90,3 +90,9 @@ void Relay(TelemetryPacket& packet, const GpsFix& pos)
 {
   packet.airspeed = pos.speedKnots;
 }
+
+// A world position minus a point the tables do not know: relative to that point.
+void DrawFromAnchor(const glm::dvec3& worldPosition, const glm::dvec3& anchor, GLint at)
+{
+  glUniform3fv(at, 1, glm::value_ptr(glm::vec3(worldPosition - anchor)));
+}

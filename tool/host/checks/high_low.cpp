@@ -335,7 +335,8 @@ std::variant<HighLowFix, std::string> high_low_fix(const Upload& up, ASTContext&
     const CXXMethodDecl* method = isa<CXXMemberCallExpr>(up.narrowing) ? cast<CXXMemberCallExpr>(up.narrowing)->getMethodDecl() : nullptr;
     bool by_method = method && method->getTemplateSpecializationArgs();  // `v.cast<float>()`, widened by `cast<double>()`
     std::string wide_type = spelled_type_of(up.value_expr, context);
-    if (!by_method && !widens_from_float(wide.getNonReferenceType()))
+    bool vector = wide->isVectorType();  // a compiler vector (simd_double3): converted by `__builtin_convertvector`
+    if (!by_method && !vector && !widens_from_float(wide.getNonReferenceType()))
       return "`" + wide_type + "` has no constructor from its float twin to subtract the high half in double";
     std::string source = value;
     // The value is read twice (narrowed, then subtracted from): a call is made once, into a local.
@@ -350,6 +351,7 @@ std::variant<HighLowFix, std::string> high_low_fix(const Upload& up, ASTContext&
     if (after.isInvalid()) return std::string("the assignment has no `;` right after it");
     std::string narrow = spelled(at->field->getType(), context);
     std::string rest = by_method ? "(" + source + " - " + target + "." + method->getNameAsString() + "<double>())." + method->getNameAsString() + "<float>()"
+                       : vector  ? "__builtin_convertvector(" + source + " - __builtin_convertvector(" + target + ", " + wide_type + "), " + narrow + ")"
                                  : "static_cast<" + narrow + ">(" + source + " - static_cast<" + wide_type + ">(" + target + "))";
     fix.changes.push_back({CharSourceRange::getCharRange(after, after), "\n" + *indent + object + low + " = " + rest + ";"});
     fix.form = "a difference in double";

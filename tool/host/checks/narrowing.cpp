@@ -23,6 +23,8 @@ void register_narrowings(MatchFinder& finder, MatchFinder::MatchCallback* callba
                                       unless(hasParent(implicitCastExpr(hasParent(explicitCastExpr())))))
                         .bind("narrowing"),
                     callback);
+  // A compiler vector converted (`__builtin_convertvector(v, simd_float3)`, what Apple's `simd_float(v)` does).
+  finder.addMatcher(convertVectorExpr(project).bind("narrowing"), callback);
   // A converting method: Eigen's `v.cast<float>()`.
   if (!tables.narrowing_methods.globs.empty()) {
     std::vector<StringRef> names(tables.narrowing_methods.globs.begin(), tables.narrowing_methods.globs.end());
@@ -264,6 +266,8 @@ std::optional<Upload> find_upload(const MatchFinder::MatchResult& match, const G
         call->getType()->isBuiltinType() != call->getArg(0)->getType()->isBuiltinType())
       return std::nullopt;
     value = call->getArg(0);
+  } else if (auto* vector = dyn_cast<ConvertVectorExpr>(converted)) {
+    value = vector->getSrcExpr();
   } else if (auto* construct = dyn_cast<CXXConstructExpr>(converted)) {
     if (construct->getNumArgs() == 0 || construct->getConstructor()->isCopyOrMoveConstructor()) return std::nullopt;
     value = construct->getArg(0);
