@@ -196,17 +196,26 @@ int World::components(QualType type) {
     if (extents.size() >= 2 && (extents[0] == 1 || extents[1] == 1)) return int(extents[0] * extents[1]);
     if (!extents.empty()) return int(extents[0]);
   }
+  return numbers_in(record->getDefinition());
+}
+
+int World::numbers_in(const RecordDecl* record) {
   int count = 0;
-  for (const FieldDecl* field : record->getDefinition()->fields()) {
+  for (const FieldDecl* field : record->fields()) {
     QualType t = field->getType().getCanonicalType();
     int n = 1;
     if (auto* array = dyn_cast<ConstantArrayType>(t.getTypePtr())) {
       n = int(array->getSize().getSExtValue());
       t = array->getElementType();
     }
-    if (t->isRecordType() || t->isVectorType()) return -1;
-    if (!t->isRealFloatingType()) return 0;
+    // UE 5's `union { struct { T X, Y; }; T XY[2]; }`: the members of an anonymous struct are the
+    // record's own; those of a union all view the same numbers, so its first one counts.
+    if (field->isAnonymousStructOrUnion()) n = numbers_in(t->getAsRecordDecl());
+    else if (t->isRecordType() || t->isVectorType()) return -1;
+    else if (!t->isRealFloatingType()) return 0;
+    if (n <= 0) return n;
     count += n;
+    if (record->isUnion()) break;
   }
   return count == 0 ? -1 : count;
 }

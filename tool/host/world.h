@@ -80,6 +80,8 @@ class World {
   // OSG's `_v[3]`). 0 for a record that is no vector (a member of another kind: `int satellites;`),
   // -1 where it cannot tell (not a record, or its numbers kept in a member of record type).
   static int components(clang::QualType type);
+  // The numbers a record's members hold, as `components` counts them.
+  static int numbers_in(const clang::RecordDecl* record);
   // Whether a value of this type can hold a position in a 3D world: a number, or a vector of 3
   // numbers, or 4 (homogeneous); not two numbers, a point on a screen or a canvas.
   static bool may_hold_position(clang::QualType type);

@@ -62,6 +62,20 @@ struct TTransform {
   TMatrix<T> ToMatrixWithScale() const { return {}; }
 };
 
+// As in UE 5: the two numbers are X and Y, and also XY[2], in a union.
+template <typename T>
+struct TVector2 {
+  union {
+    struct {
+      T X, Y;
+    };
+    T XY[2];
+  };
+  TVector2() : X(0), Y(0) {}
+  template <typename U>
+  explicit TVector2(const TVector2<U>& V) : X(T(V.X)), Y(T(V.Y)) {}
+};
+
 template <typename T>
 struct TBoxSphereBounds {
   TVector<T> Origin, BoxExtent;
@@ -72,6 +86,8 @@ struct TBoxSphereBounds {
 using FVector = UE::Math::TVector<double>;
 using FVector3d = UE::Math::TVector<double>;
 using FVector3f = UE::Math::TVector<float>;
+using FVector2D = UE::Math::TVector2<double>;
+using FVector2f = UE::Math::TVector2<float>;
 using FVector4 = UE::Math::TVector4<double>;
 using FVector4f = UE::Math::TVector4<float>;
 using FMatrix = UE::Math::TMatrix<double>;
@@ -160,4 +176,5 @@ BEGIN_SHADER_PARAMETER_STRUCT(FParameters, )
   SHADER_PARAMETER(FVector3f, BoundsOrigin)
   SHADER_PARAMETER(FVector3f, WindDirection)
   SHADER_PARAMETER(float, Height)
+  SHADER_PARAMETER(FVector2f, CursorPosition)
 END_SHADER_PARAMETER_STRUCT()

@@ -59,3 +59,9 @@ void SetPlaced(FParameters& Parameters, const FMatrix& Placement, const FMatrix&
 	Parameters.LocalToWorld = FMatrix44f(Placement * View.ViewMatrices.GetViewMatrix());
 	Parameters.WorldToClip = FMatrix44f(View.ViewMatrices.GetViewMatrix() * Projection);
 }
+
+// Right: two numbers named as a position are a point on the screen.
+void SetCursor(FParameters& Parameters, const FVector2D& Position)
+{
+	Parameters.CursorPosition = FVector2f(Position);
+}
