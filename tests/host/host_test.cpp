@@ -236,6 +236,64 @@ TEST(HostCorpus, FindingsAndFixedFilesAreTheGoldenOnesAndCompile) {
   EXPECT_GE(files, 2);
 }
 
+// The high/low fixes' arithmetic, run: the golden fixed files (which the corpus test holds equal to
+// what the fixes write) are compiled into a program that fills their blocks from an Earth-radius
+// position, and the two halves must give the double back far closer than one float can.
+TEST(HostFixes, SplitHalvesGiveTheDoubleBack) {
+  const std::string corpus = test::source_dir() + "/corpus/host";
+  struct Case {
+    const char* language;
+    std::string program;
+  };
+  const std::string check = R"(
+static double worst_pair = 0, worst_float = 0;
+static void compare(double pair, double plain, double exact) {
+  worst_pair = std::fmax(worst_pair, std::fabs(pair - exact));
+  worst_float = std::fmax(worst_float, std::fabs(plain - exact));
+}
+)";
+  const std::string report = "  std::printf(\"%.17g %.17g\\n\", worst_pair, worst_float);\n  return 0;\n}\n";
+  std::vector<Case> cases = {
+      // glm: a model matrix split into a relative matrix and its PostTranslation.
+      {"c++", "#include <cmath>\n#include <cstdio>\n#include \"" + corpus + "/opengl/ObjectBlock.cpp.fixed\"\n" + check +
+                  "extern \"C\" void glBufferSubData(unsigned, long, long, const void*) {}\n"
+                  "int main() {\n  SceneNode node{glm::dmat4(1.0), glm::dvec4(1.0)};\n"
+                  "  node.modelMatrix[3] = glm::dvec4(6378137.123456789, -1234567.987654321, 4321098.7654321, 1.0);\n"
+                  "  ObjectBlock block;\n  UploadObject(block, node);\n"
+                  "  for (int i = 0; i < 3; ++i) compare(double(block.modelPostTranslation[i]) + double(block.model[3][i]), double(float(node.modelMatrix[3][i])), node.modelMatrix[3][i]);\n" +
+                  report},
+      // Eigen: a matrix split into a relative one and its PostTranslation.
+      {"c++", "#include <cmath>\n#include <cstdio>\n#include \"" + corpus + "/eigen/ObjectUniforms.cpp.fixed\"\n" + check +
+                  "Eigen::Matrix4d DepthCorrection() { return Eigen::Matrix4d::Identity(); }\n" +
+                  "int main() {\n  Eigen::Vector3d p(6378137.123456789, -1234567.987654321, 4321098.7654321);\n"
+                  "  Eigen::Affine3d t = Eigen::Affine3d::Identity();\n  t.translation() = p;\n"
+                  "  ObjectUniforms u;\n  FillObject(u, p, t, Observer{p});\n"
+                  "  for (int i = 0; i < 3; ++i) compare(double(u.modelPostTranslation[i]) + double(u.model(i, 3)), double(float(p[i])), p[i]);\n"
+ +
+                  report},
+      // Apple's simd vectors, split with __builtin_convertvector.
+      {"objective-c++", "#include <cmath>\n#include <cstdio>\n#include \"" + corpus + "/metal/FrameUniforms.mm.fixed\"\n" + check +
+                            "int main() {\n  Body sun{simd_double3{6378137.123456789, -1234567.987654321, 4321098.7654321}}, eye{};\n"
+                            "  FrameUniforms frame{};\n  FillFrame(frame, eye, sun, simd_double2{0.0, 0.0});\n"
+                            "  for (int i = 0; i < 3; ++i) compare(double(frame.sunPosition[i]) + double(frame.sunPositionLow[i]), double(float(sun.position[i])), sun.position[i]);\n" +
+                            report},
+  };
+  std::string dir = test::scratch("host-split-run");
+  for (size_t i = 0; i < cases.size(); ++i) {
+    std::string source = dir + "/case" + std::to_string(i) + ".cpp", program = dir + "/case" + std::to_string(i);
+    test::write(source, cases[i].program);
+    test::Run built = test::run(std::string(LWCPORT_CLANG) + " -std=c++20 -x " + cases[i].language + " " + include_flag() + " " + source +
+                                " -x none -lstdc++ -lm -o " + program + " 2>&1");
+    ASSERT_EQ(built.exit_code, 0) << built.out;
+    test::Run ran = test::run(program);
+    ASSERT_EQ(ran.exit_code, 0) << ran.out;
+    double pair = 0, plain = 0;
+    std::istringstream(ran.out) >> pair >> plain;
+    EXPECT_LT(pair, 1e-6) << cases[i].program;  // nanometres at 6,400 km
+    EXPECT_GT(plain, 1e-2) << cases[i].program;  // one float: decimetres
+  }
+}
+
 // Through the lwcport program (which runs lwcport-host): every output format, the exit code, and
 // a compile error reported on its file with the run going on.
 TEST(HostCli, RunsThroughLwcportWithLintsOutputsAndReportsWhatClangCannotCompile) {
