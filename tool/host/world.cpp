@@ -3,6 +3,7 @@
 #include <clang/AST/DeclCXX.h>
 #include <clang/AST/DeclTemplate.h>
 #include <clang/AST/ExprCXX.h>
+#include <clang/AST/ExprObjC.h>
 #include <clang/AST/ParentMapContext.h>
 #include <clang/ASTMatchers/ASTMatchFinder.h>
 #include <clang/ASTMatchers/ASTMatchers.h>
@@ -404,6 +405,10 @@ Value World::classify(const Expr* e, int depth) const {
     return {};
   }
   if (auto* unary = dyn_cast<UnaryOperator>(e); unary && unary->getOpcode() == UO_Minus) return classify(unary->getSubExpr(), depth + 1);
+  // An Objective-C property read (`sun.position`): judged by the property's name, as a member is.
+  if (auto* pseudo = dyn_cast<PseudoObjectExpr>(e))
+    if (auto* property = dyn_cast<ObjCPropertyRefExpr>(pseudo->getSyntacticForm()->IgnoreParens()); property && property->isExplicitProperty())
+      return by_name(property->getExplicitProperty(), pseudo->getType(), e);
   if (auto* cond = dyn_cast<ConditionalOperator>(e)) {
     Value a = classify(cond->getTrueExpr(), depth + 1);
     return a.kind != Kind::none ? a : classify(cond->getFalseExpr(), depth + 1);

@@ -2,6 +2,7 @@
 #include "host/checks/high_low.h"
 
 #include <clang/AST/ExprCXX.h>
+#include <clang/AST/ExprObjC.h>
 #include <clang/ASTMatchers/ASTMatchers.h>
 #include <clang/Lex/Lexer.h>
 
@@ -302,6 +303,13 @@ bool GpuSinks::uploaded(const RecordDecl* record, ASTContext& context) const {
         for (const Expr* arg : call->arguments())
           if (const RecordDecl* r = addressed_record(arg, tables)) uploaded_->insert(r->getCanonicalDecl());
       }
+    }
+    // Objective-C: a message named by its first part (`[encoder setFragmentBytes:&light length:... atIndex:0]`).
+    for (const BoundNodes& b : match(findAll(objcMessageExpr(unless(isExpansionInSystemHeader())).bind("message")), context)) {
+      const ObjCMessageExpr* message = b.getNodeAs<ObjCMessageExpr>("message");
+      if (message->getSelector().isNull() || !tables.upload_calls.match(message->getSelector().getNameForSlot(0).str())) continue;
+      for (const Expr* arg : message->arguments())
+        if (const RecordDecl* r = addressed_record(arg, tables)) uploaded_->insert(r->getCanonicalDecl());
     }
   }
   return uploaded_->count(record->getCanonicalDecl()) > 0;
