@@ -10,6 +10,7 @@
 #include <clang/Lex/Lexer.h>
 
 #include <algorithm>
+#include <optional>
 
 #include "rules/rule.h"
 #include "world/pattern.h"
@@ -175,14 +176,18 @@ char World::scalar(QualType type) const {
   return 0;
 }
 
+std::vector<int64_t> template_numbers(QualType type) {
+  std::vector<int64_t> numbers;
+  if (auto* spec = dyn_cast_or_null<ClassTemplateSpecializationDecl>(type.getNonReferenceType()->getAsCXXRecordDecl()))
+    for (const TemplateArgument& a : spec->getTemplateArgs().asArray())
+      if (a.getKind() == TemplateArgument::Integral) numbers.push_back(a.getAsIntegral().getExtValue());
+  return numbers;
+}
+
 bool World::is_matrix_type(QualType type) const {
   // Eigen's Matrix<double, 3, 1> is a vector: a template whose first two numbers are extents, one of them 1.
-  if (auto* spec = dyn_cast_or_null<ClassTemplateSpecializationDecl>(type.getNonReferenceType()->getAsCXXRecordDecl())) {
-    std::vector<int64_t> extents;
-    for (const TemplateArgument& a : spec->getTemplateArgs().asArray())
-      if (a.getKind() == TemplateArgument::Integral) extents.push_back(a.getAsIntegral().getExtValue());
-    if (extents.size() >= 2 && (extents[0] == 1 || extents[1] == 1)) return false;
-  }
+  std::vector<int64_t> extents = template_numbers(type);
+  if (extents.size() >= 2 && (extents[0] == 1 || extents[1] == 1)) return false;
   return tables_.matrix_types.match(type_name(type));
 }
 
@@ -190,13 +195,9 @@ int World::components(QualType type) {
   if (auto* vector = type.getNonReferenceType()->getAs<VectorType>()) return int(vector->getNumElements());
   const CXXRecordDecl* record = type.getNonReferenceType()->getAsCXXRecordDecl();
   if (!record || !record->hasDefinition()) return -1;
-  if (auto* spec = dyn_cast<ClassTemplateSpecializationDecl>(record)) {
-    std::vector<int64_t> extents;
-    for (const TemplateArgument& a : spec->getTemplateArgs().asArray())
-      if (a.getKind() == TemplateArgument::Integral) extents.push_back(a.getAsIntegral().getExtValue());
-    if (extents.size() >= 2 && (extents[0] == 1 || extents[1] == 1)) return int(extents[0] * extents[1]);
-    if (!extents.empty()) return int(extents[0]);
-  }
+  std::vector<int64_t> extents = template_numbers(type);
+  if (extents.size() >= 2 && (extents[0] == 1 || extents[1] == 1)) return int(extents[0] * extents[1]);
+  if (!extents.empty()) return int(extents[0]);
   return numbers_in(record->getDefinition());
 }
 
@@ -304,16 +305,29 @@ bool World::is_transform(const Expr* e) const {
   return false;
 }
 
+namespace {
+
+// A change to what `target` matches, in `body`: an assignment (a plain `=` only with `plain`), a
+// mutating method called for its effect as `v.normalize();`, its address taken, a pass by
+// non-const reference.
+bool changes(const ast_matchers::internal::Matcher<Expr>& target, bool plain, const Stmt& body, ASTContext& context) {
+  using namespace clang::ast_matchers;
+  auto assigned = plain ? binaryOperator(isAssignmentOperator(), hasLHS(target)) : binaryOperator(isAssignmentOperator(), unless(hasOperatorName("=")), hasLHS(target));
+  auto operator_assigned = plain ? cxxOperatorCallExpr(isAssignmentOperator(), hasArgument(0, target))
+                                 : cxxOperatorCallExpr(isAssignmentOperator(), unless(hasOverloadedOperatorName("=")), hasArgument(0, target));
+  auto change = stmt(anyOf(assigned, operator_assigned, cxxMemberCallExpr(on(target), callee(cxxMethodDecl(unless(isConst()))), hasParent(compoundStmt())),
+                           unaryOperator(hasOperatorName("&"), hasUnaryOperand(target)),
+                           callExpr(forEachArgumentWithParam(target, parmVarDecl(hasType(lValueReferenceType(pointee(unless(isConstQualified())))))))));
+  return !match(findAll(change.bind("change")), body, context).empty();
+}
+
+}  // namespace
+
 bool World::changed(const VarDecl* var) const {
   using namespace clang::ast_matchers;
   auto* function = dyn_cast<FunctionDecl>(var->getDeclContext());
   if (var->getType().isConstQualified() || !function || !function->getBody()) return false;
-  auto ref = ignoringParenImpCasts(declRefExpr(to(varDecl(equalsNode(var)))));
-  auto change = stmt(anyOf(binaryOperator(isAssignmentOperator(), hasLHS(ref)), cxxOperatorCallExpr(isAssignmentOperator(), hasArgument(0, ref)),
-                           cxxMemberCallExpr(on(ref), callee(cxxMethodDecl(unless(isConst()))), hasParent(compoundStmt())),
-                           unaryOperator(hasOperatorName("&"), hasUnaryOperand(ref)),
-                           callExpr(forEachArgumentWithParam(ref, parmVarDecl(hasType(lValueReferenceType(pointee(unless(isConstQualified())))))))));
-  return !match(findAll(change.bind("change")), *function->getBody(), context_).empty();
+  return changes(ignoringParenImpCasts(declRefExpr(to(varDecl(equalsNode(var))))), true, *function->getBody(), context_);
 }
 
 bool World::changed_in_place(const MemberExpr* use) const {
@@ -321,14 +335,10 @@ bool World::changed_in_place(const MemberExpr* use) const {
   auto* object = dyn_cast<DeclRefExpr>(use->getBase()->IgnoreParenImpCasts());
   const FunctionDecl* function = object ? enclosing_function(use, context_) : nullptr;
   if (!function || !function->getBody()) return false;
+  // A plain `=` keeps what the name says: the member is given a value, not changed from one.
   auto same = ignoringParenImpCasts(memberExpr(member(equalsNode(use->getMemberDecl())),
                                                hasObjectExpression(ignoringParenImpCasts(declRefExpr(to(equalsNode(object->getDecl())))))));
-  auto change = stmt(anyOf(binaryOperator(isAssignmentOperator(), unless(hasOperatorName("=")), hasLHS(same)),
-                           cxxOperatorCallExpr(isAssignmentOperator(), unless(hasOverloadedOperatorName("=")), hasArgument(0, same)),
-                           cxxMemberCallExpr(on(same), callee(cxxMethodDecl(unless(isConst()))), hasParent(compoundStmt())),
-                           unaryOperator(hasOperatorName("&"), hasUnaryOperand(same)),
-                           callExpr(forEachArgumentWithParam(same, parmVarDecl(hasType(lValueReferenceType(pointee(unless(isConstQualified())))))))));
-  return !match(findAll(change.bind("change")), *function->getBody(), context_).empty();
+  return changes(same, false, *function->getBody(), context_);
 }
 
 Value World::classify(const Expr* e, int depth) const {
@@ -450,7 +460,10 @@ Value World::classify(const Expr* e, int depth) const {
     const ValueDecl* decl = ref->getDecl();
     // A local initialised by a matrix applied to a point: the matrix says which frame it is in, not
     // its name (`cameraPosition = inverse(globeTransform) * eye` is the eye in the globe's frame).
-    if (auto* var = dyn_cast<VarDecl>(decl); var && var->isLocalVarDecl() && var->getInit() && is_transform(var->getInit()) && !changed(var)) {
+    auto* var = dyn_cast<VarDecl>(decl);
+    std::optional<bool> kept;  // whether a local still holds its initialiser: a walk of its function, made once
+    auto holds_initialiser = [&] { return kept ? *kept : *(kept = var && var->isLocalVarDecl() && var->getInit() && !changed(var)); };
+    if (var && var->getInit() && is_transform(var->getInit()) && holds_initialiser()) {
       Value init = classify(var->getInit(), depth + 1);
       if (init.kind != Kind::none) init.expr = e;
       return init;
@@ -462,7 +475,7 @@ Value World::classify(const Expr* e, int depth) const {
     std::string name = decl->getIdentifier() ? decl->getName().str() : "";
     if ((is_matrix_type(ref->getType()) ? tables_.matrix_not : tables_.position_not).match(name)) return {};
     // A local initialised once, and left so: what it was initialised with.
-    if (auto* var = dyn_cast<VarDecl>(decl); var && var->isLocalVarDecl() && var->getInit() && !changed(var)) {
+    if (holds_initialiser()) {
       Value init = classify(var->getInit(), depth + 1);
       if (init.kind != Kind::none) init.expr = e;
       return init;

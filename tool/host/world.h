@@ -124,6 +124,10 @@ std::string source_text(clang::SourceRange range, clang::ASTContext& context);
 // The function a statement or expression is in, if any.
 const clang::FunctionDecl* enclosing_function(const clang::Stmt* s, clang::ASTContext& context);
 
+// The numbers a class template is given (`vec<3, double, Q>`: 3 and Q; Eigen's `Matrix<double, 4, 4>`:
+// 4, 4 and its options), in order; none for anything else.
+std::vector<int64_t> template_numbers(clang::QualType type);
+
 // Skips what does not change a value: parentheses, implicit casts, temporaries, copies.
 const clang::Expr* strip(const clang::Expr* e);
 

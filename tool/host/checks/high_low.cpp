@@ -193,9 +193,7 @@ ColumnMatrix column_matrix(QualType type) {
   auto* spec = dyn_cast_or_null<ClassTemplateSpecializationDecl>(type.getNonReferenceType()->getAsCXXRecordDecl());
   auto* ns = spec ? dyn_cast<NamespaceDecl>(spec->getEnclosingNamespaceContext()) : nullptr;
   if (!ns || !ns->getIdentifier()) return ColumnMatrix::none;
-  std::vector<int64_t> extents;
-  for (const TemplateArgument& a : spec->getTemplateArgs().asArray())
-    if (a.getKind() == TemplateArgument::Integral) extents.push_back(a.getAsIntegral().getExtValue());
+  std::vector<int64_t> extents = template_numbers(type);
   if (extents.size() < 2 || extents[0] != 4 || extents[1] != 4) return ColumnMatrix::none;
   if (ns->getName() == "glm" && spec->getName() == "mat") return ColumnMatrix::glm;
   if (ns->getName() == "Eigen" && spec->getName() == "Matrix") return ColumnMatrix::eigen;
@@ -220,8 +218,8 @@ std::string library_type(QualType like, const char* name, ASTContext& context, b
 // nearest the translation (the high half, as UE's PostTranslation), the matrix uploaded is a copy
 // with that subtracted from its translation column in double (exact: what is left is small), and
 // the shader joins them as `MakeDFMatrix(PostTranslation, M)`. "" when done, else why not.
-std::string column_split(const Upload& up, const std::string& name, const std::string& low, const std::string& indent, const std::string& object,
-                         const FunctionDecl* function, ASTContext& context, HighLowFix& fix, std::string& type_of_low) {
+std::string column_split(const Upload& up, const Assignment& at, const std::string& name, const std::string& low, const std::string& indent,
+                         const std::string& object, const FunctionDecl* function, ASTContext& context, HighLowFix& fix, std::string& type_of_low) {
   ColumnMatrix library = column_matrix(up.value_expr->getType());
   if (library == ColumnMatrix::none)
     return "a matrix outside glm and Eigen is split with UE 5.4's `FDFMatrix`, which this unit does not declare; split its translation by hand";
@@ -235,14 +233,7 @@ std::string column_split(const Upload& up, const std::string& name, const std::s
   std::string column = library == ColumnMatrix::glm ? local + "[3]" : local + ".col(3).head<3>()";
   std::string take = library == ColumnMatrix::glm ? type_of_low + "(" + column + ")" : column + ".cast<float>()";
   std::string give = library == ColumnMatrix::glm ? wide + "::col_type(" + high + ", 0.0)" : high + ".cast<double>()";
-  const SourceManager& sm = context.getSourceManager();
-  SourceLocation begin = sm.getExpansionLoc(up.narrowing->getBeginLoc());
-  for (const Stmt* s = up.narrowing;;) {  // the start of the statement: the assignment's left side
-    auto parents = context.getParents(*s);
-    if (parents.empty() || !parents[0].get<Expr>()) break;
-    s = parents[0].get<Expr>();
-    begin = sm.getExpansionLoc(s->getBeginLoc());
-  }
+  SourceLocation begin = context.getSourceManager().getExpansionLoc(at.expr->getBeginLoc());
   fix.changes.push_back({CharSourceRange::getCharRange(begin, begin), wide + " " + local + " = " + source_text(up.value_expr->getSourceRange(), context) +
                                                                           ";\n" + indent + high + " = " + take + ";\n" + indent + column + " -= " + give +
                                                                           ";\n" + indent});
@@ -301,7 +292,7 @@ std::variant<HighLowFix, std::string> high_low_fix(const Upload& up, ASTContext&
     if (up.value.from_world)
       return std::string("a world-to-view or world-to-clip matrix: pre-translate it by the camera (UE 5.4 `FDFInverseMatrix::MakeFromRelativeWorldMatrix`) by hand");
     if (!declared(context, "FDFMatrix") || !declared(context, "FDFVector3")) {
-      std::string why = column_split(up, name, low, *indent, object, function, context, fix, type_of_low);
+      std::string why = column_split(up, *at, name, low, *indent, object, function, context, fix, type_of_low);
       if (!why.empty()) return why;
     } else {
     std::string local = name + "DF";
