@@ -227,6 +227,15 @@ bool World::may_hold_position(QualType type) {
   return n < 0 || n == 3 || n == 4;
 }
 
+bool World::is_linear_only(QualType type) const {
+  if (!is_matrix_type(type)) return false;
+  std::vector<int64_t> extents = template_numbers(type);
+  if (extents.size() >= 2) return extents[0] <= 3 && extents[1] <= 3;
+  const CXXRecordDecl* record = type.getNonReferenceType()->getAsCXXRecordDecl();
+  int n = record && record->hasDefinition() ? numbers_in(record->getDefinition()) : -1;
+  return n > 0 && n <= 9;
+}
+
 bool World::is_row_vector(QualType type) const { return tables_.row_vector_types.match(type_name(type)); }
 
 std::string World::text(SourceRange range) const { return source_text(range, context_); }
@@ -341,6 +350,45 @@ bool World::changed_in_place(const MemberExpr* use) const {
   return changes(same, false, *function->getBody(), context_);
 }
 
+const Expr* World::assigned_before(const VarDecl* var, const Expr* use) const {
+  using namespace clang::ast_matchers;
+  auto ref = ignoringParenImpCasts(declRefExpr(to(varDecl(equalsNode(var)))));
+  auto may_change = [&](const Stmt* s) { return changes(ref, true, *s, context_); };
+  DynTypedNode child = DynTypedNode::create(*use);
+  for (;;) {
+    auto parents = context_.getParents(child);
+    if (parents.empty() || parents[0].get<Decl>()) return nullptr;  // the function (or a lambda) reached
+    DynTypedNode parent = parents[0];
+    if (auto* block = parent.get<CompoundStmt>()) {
+      const Stmt* at = child.get<Stmt>();
+      auto it = std::find(block->body_begin(), block->body_end(), at);
+      while (it != block->body_begin()) {
+        const Stmt* s = *--it;
+        if (auto* full = dyn_cast<ExprWithCleanups>(s)) s = full->getSubExpr();
+        const Expr *lhs = nullptr, *rhs = nullptr;
+        if (auto* bin = dyn_cast<BinaryOperator>(s); bin && bin->getOpcode() == BO_Assign) lhs = bin->getLHS(), rhs = bin->getRHS();
+        if (auto* op = dyn_cast<CXXOperatorCallExpr>(s); op && op->getOperator() == OO_Equal && op->getNumArgs() == 2)
+          lhs = op->getArg(0), rhs = op->getArg(1);
+        if (auto* target = lhs ? dyn_cast<DeclRefExpr>(lhs->IgnoreParenImpCasts()) : nullptr; target && target->getDecl() == var) return rhs;
+        if (may_change(s)) return nullptr;
+      }
+    }
+    // Out of a loop the assignment was not found in: a change later in its body reaches the use on the next round.
+    if (auto* loop = parent.get<Stmt>(); loop && isa<ForStmt, WhileStmt, DoStmt, CXXForRangeStmt>(loop) && may_change(loop)) return nullptr;
+    child = parent;
+  }
+}
+
+bool World::drops_translation(const Expr* e) const {
+  for (e = strip(e); e;) {
+    if (is_linear_only(e->getType())) return true;
+    if (auto* cast = dyn_cast<CXXFunctionalCastExpr>(e)) e = strip(cast->getSubExpr());
+    else if (auto* c = dyn_cast<CXXConstructExpr>(e); c && c->getNumArgs() == 1) e = strip(c->getArg(0));
+    else return false;
+  }
+  return false;
+}
+
 Value World::classify(const Expr* e, int depth) const {
   e = strip(e);
   if (!e) return {};
@@ -348,7 +396,9 @@ Value World::classify(const Expr* e, int depth) const {
   // ten or more; the products and sums on the way branch, so the limit also bounds the work.
   constexpr int max_steps = 12;
   if (depth > max_steps) return {Kind::none, nullptr, false, true};
-  // A conversion to another vector or matrix type keeps what the value is (FVector(FVector3f), glm::dvec3(v)).
+  // A conversion to another vector or matrix type keeps what the value is (FVector(FVector3f), glm::dvec3(v)),
+  // but one to a 3x3 matrix keeps no translation.
+  if (isa<CXXFunctionalCastExpr, CXXConstructExpr>(e) && is_linear_only(e->getType())) return {};
   if (auto* cast = dyn_cast<CXXFunctionalCastExpr>(e)) return classify(cast->getSubExpr(), depth + 1);
   if (auto* construct = dyn_cast<CXXConstructExpr>(e); construct && construct->getNumArgs() >= 1 && !isa<CXXTemporaryObjectExpr>(e))
     return construct->getNumArgs() == 1 ? classify(construct->getArg(0), depth + 1) : Value{};
@@ -469,6 +519,17 @@ Value World::classify(const Expr* e, int depth) const {
       return init;
     }
     Value named = by_name(decl, ref->getType(), e);
+    // A name says what a variable was made to hold; a plain `=` before the use may say otherwise
+    // (`view = glm::mat4(glm::mat3(view))` keeps the rotation only, `pos = pos - eye`).
+    if (named.kind != Kind::none && var && (var->isLocalVarDecl() || isa<ParmVarDecl>(var)) && changed(var))
+      if (const Expr* value = assigned_before(var, ref)) {
+        if (drops_translation(value)) return {};
+        Value given = classify(value, depth + 1);
+        if (given.kind != Kind::none) {
+          given.expr = e;
+          return given;
+        }
+      }
     if (named.kind != Kind::none) return named;
     // A name that says local, relative or translated is the author's word that it was made so
     // (perhaps after its initialiser): not followed.

@@ -85,6 +85,9 @@ class World {
   // Whether a value of this type can hold a position in a 3D world: a number, or a vector of 3
   // numbers, or 4 (homogeneous); not two numbers, a point on a screen or a canvas.
   static bool may_hold_position(clang::QualType type);
+  // A matrix of 3x3 numbers or fewer (glm's mat3, Eigen's Matrix3d, a `double m[9]` record): a
+  // rotation and scale, with no room for a translation.
+  bool is_linear_only(clang::QualType type) const;
   // Matrices of this type act on row vectors (`p * M`), so in `A * B` the left factor acts first.
   bool is_row_vector(clang::QualType type) const;
   // The type's name without qualifiers, namespace or template arguments (`FVector3f`, `vec`).
@@ -109,6 +112,12 @@ class World {
   // Whether a local is changed after its initialiser (assigned, a mutating method called for its
   // effect as `v.normalize();`, passed by reference or by address): then it no longer holds it.
   bool changed(const clang::VarDecl* var) const;
+  // The value last given to `var` by a plain `=` before `use`, where that assignment is a statement
+  // of a block around the use and nothing between them may change `var`; else null.
+  const clang::Expr* assigned_before(const clang::VarDecl* var, const clang::Expr* use) const;
+  // `e` passes through a 3x3 matrix (`glm::mat4(glm::mat3(view))`): whatever it came from, it has
+  // no translation left.
+  bool drops_translation(const clang::Expr* e) const;
   // Whether the function holding `member` (`data.eyePos`) changes that member of that object in
   // place: a mutating method called for its effect, a compound assignment, a pass by reference.
   // A direction made from a position that way keeps the position's name.

@@ -56,6 +56,17 @@ const Stmt* parent_of(ASTContext& context, const DynTypedNode& node, const Decl*
   return parents[0].get<Stmt>();
 }
 
+// The narrowed matrix is made into a 3x3 one on the spot (`glm::mat3(worldMatrix)` converts the
+// dmat4 to a mat4 first): its rotation goes on, its translation does not.
+bool made_linear(const Expr* narrowing, const World& world, ASTContext& context) {
+  for (const Stmt* s = parent_of(context, DynTypedNode::create(*narrowing)); s; s = parent_of(context, DynTypedNode::create(*s))) {
+    auto* e = dyn_cast<Expr>(s);
+    if (!e || !isa<ImplicitCastExpr, MaterializeTemporaryExpr, CXXBindTemporaryExpr, ParenExpr, CXXConstructExpr, CXXFunctionalCastExpr>(e)) return false;
+    if (world.is_linear_only(e->getType())) return true;
+  }
+  return false;
+}
+
 std::string where(const FieldDecl* field) {
   const RecordDecl* record = field->getParent();
   std::string of = record && record->getIdentifier() ? " of `" + record->getNameAsString() + "`" : "";
@@ -278,8 +289,11 @@ std::optional<Upload> find_upload(const MatchFinder::MatchResult& match, const G
   if (!value || world.scalar(value->IgnoreParenImpCasts()->getType()) != 'd') return std::nullopt;
   Value what = world.classify(value);
   if (what.kind != Kind::position && what.kind != Kind::matrix && what.kind != Kind::model_view) return std::nullopt;
-  // A vector built from a matrix, or the reverse, is no narrowing of either.
-  if ((what.kind != Kind::position) != world.is_matrix_type(narrowed)) return std::nullopt;
+  // A vector built from a matrix, or the reverse, is no narrowing of either; a 3x3 matrix made from
+  // a world matrix keeps its rotation, not its translation.
+  if ((what.kind != Kind::position) != world.is_matrix_type(narrowed) || world.is_linear_only(narrowed) ||
+      made_linear(narrowing, world, context))
+    return std::nullopt;
   std::optional<Sink> sink = sink_of(narrowing, context, sinks, 0);
   if (!sink) return std::nullopt;
   // The halves of a high/low split are narrowed on purpose (lwc-host-broken-split checks them).
