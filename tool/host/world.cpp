@@ -236,6 +236,38 @@ bool World::is_linear_only(QualType type) const {
   return n > 0 && n <= 9;
 }
 
+bool World::exact_in_float(const Expr* e) const {
+  e = strip(e);
+  // Through members (glm's `x` is a member of an anonymous union) to the object.
+  while (auto* member = dyn_cast<MemberExpr>(e)) {
+    if (isa<CXXMethodDecl>(member->getMemberDecl())) return false;
+    e = strip(member->getBase());
+  }
+  if (auto* ref = dyn_cast<DeclRefExpr>(e)) {
+    auto* var = dyn_cast<VarDecl>(ref->getDecl());
+    if (!var || !var->isLocalVarDecl() || !var->getInit() || changed(var)) return false;
+    e = strip(var->getInit());
+  }
+  if (auto* cast = dyn_cast<CXXFunctionalCastExpr>(e)) e = strip(cast->getSubExpr());
+  std::vector<const Expr*> parts;
+  if (auto* construct = dyn_cast<CXXConstructExpr>(e)) parts.assign(construct->arg_begin(), construct->arg_end());
+  else if (auto* list = dyn_cast<InitListExpr>(e)) parts.assign(list->inits().begin(), list->inits().end());
+  else parts.push_back(e);
+  if (parts.empty()) return false;
+  for (const Expr* part : parts) {
+    Expr::EvalResult result;
+    if (part->isValueDependent() || !part->EvaluateAsRValue(result, context_) || result.HasSideEffects) return false;
+    llvm::APFloat as_float(llvm::APFloat::IEEEsingle());
+    llvm::APFloat::opStatus status;
+    bool lost = false;
+    if (result.Val.isInt()) status = as_float.convertFromAPInt(result.Val.getInt(), result.Val.getInt().isSigned(), llvm::APFloat::rmNearestTiesToEven);
+    else if (result.Val.isFloat()) status = (as_float = result.Val.getFloat()).convert(llvm::APFloat::IEEEsingle(), llvm::APFloat::rmNearestTiesToEven, &lost);
+    else return false;
+    if (status != llvm::APFloat::opOK || lost) return false;
+  }
+  return true;
+}
+
 bool World::is_row_vector(QualType type) const { return tables_.row_vector_types.match(type_name(type)); }
 
 std::string World::text(SourceRange range) const { return source_text(range, context_); }

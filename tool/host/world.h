@@ -88,6 +88,10 @@ class World {
   // A matrix of 3x3 numbers or fewer (glm's mat3, Eigen's Matrix3d, a `double m[9]` record): a
   // rotation and scale, with no room for a translation.
   bool is_linear_only(clang::QualType type) const;
+  // `e` is made of constants that float holds exactly (`V3d(o + w / 2, o + w / 2, 0.0)` with `o`
+  // and `w` constant integers: an overlay's centre in pixels), read directly or through a local
+  // initialised with them: its narrowing rounds nothing.
+  bool exact_in_float(const clang::Expr* e) const;
   // Matrices of this type act on row vectors (`p * M`), so in `A * B` the left factor acts first.
   bool is_row_vector(clang::QualType type) const;
   // The type's name without qualifiers, namespace or template arguments (`FVector3f`, `vec`).

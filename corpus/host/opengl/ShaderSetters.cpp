@@ -27,7 +27,23 @@ void DrawBody(const Shader& shader, const glm::dvec3& position, double radius)
   shader.setVec3("bodyCenter", glm::vec3(position));
 }
 
-// Negatives. The sky box keeps the view's rotation only: the parameter named `view` is given a
+// A constant position is still rounded where float cannot hold it (149,597,870.7 km).
+void DrawSun(const Shader& shader)
+{
+  const glm::dvec3 position(0.0, -3185.5, 149597870.7);
+  shader.setVec3("sunPosition", glm::vec3(position));
+}
+
+// Negatives. An overlay's centre in pixels, made of constants float holds exactly: nothing rounds.
+void DrawAxesOverlay(int location)
+{
+  const int width = 64;
+  const int margin = 8;
+  const glm::dvec3 center(margin + width / 2, margin + width / 2, 0.0);
+  glUniform3f(location, center.x, center.y, center.z);
+}
+
+// The sky box keeps the view's rotation only: the parameter named `view` is given a
 // matrix without its translation before it goes up.
 void DrawSky(const Shader& shader, glm::dmat4& view)
 {

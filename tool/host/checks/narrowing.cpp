@@ -289,6 +289,7 @@ std::optional<Upload> find_upload(const MatchFinder::MatchResult& match, const G
   if (!value || world.scalar(value->IgnoreParenImpCasts()->getType()) != 'd') return std::nullopt;
   Value what = world.classify(value);
   if (what.kind != Kind::position && what.kind != Kind::matrix && what.kind != Kind::model_view) return std::nullopt;
+  if (world.exact_in_float(value)) return std::nullopt;
   // A vector built from a matrix, or the reverse, is no narrowing of either; a 3x3 matrix made from
   // a world matrix keeps its rotation, not its translation.
   if ((what.kind != Kind::position) != world.is_matrix_type(narrowed) || world.is_linear_only(narrowed) ||
