@@ -456,11 +456,15 @@ Value World::classify(const Expr* e, int depth) const {
         // A world-to-view matrix after a matrix the tables do not know (`view * M` for glm or Eigen,
         // `M * View` for UE): M hands it world positions, so M is a model matrix and the product is
         // camera-relative. Not known well enough to call it camera-dependent either.
+        // A matrix the tables do not know, acting after a world matrix, takes world positions in: it
+        // may be the camera's (`cameraTransform * model`, `c_model * model`), which cancels the
+        // translation, so nothing is known of the product.
         if (a_matrix && b_matrix) {
           bool row = is_row_vector(op->getArg(0)->getType());
           const Value& first = row ? a : b;
           const Value& then = row ? b : a;
           if (then.kind == Kind::matrix && then.from_world && first.kind == Kind::none) return {Kind::relative, e};
+          if (first.kind == Kind::matrix && !first.from_world && then.kind == Kind::none) return {};
         }
         Value product = a.kind == Kind::matrix ? a : b.kind == Kind::matrix ? b : Value{};
         if (product.kind != Kind::none) product.expr = e;

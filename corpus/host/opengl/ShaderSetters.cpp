@@ -34,6 +34,15 @@ void DrawSun(const Shader& shader)
   shader.setVec3("sunPosition", glm::vec3(position));
 }
 
+// A part scaled in its own frame, then placed in the world: the world translation goes up in float.
+// After the model matrix, a matrix the tables do not know may be the camera's (here it is), which
+// cancels the translation: that product is not reported.
+void DrawPart(const Shader& shader, const glm::dmat4& cameraTransform, const glm::dmat4& model)
+{
+  shader.setMat4("model", glm::mat4(model * glm::scale(glm::dmat4(1.0), glm::dvec3(2.0))));
+  shader.setMat4("partToCamera", glm::mat4(cameraTransform * model));
+}
+
 // Negatives. An overlay's centre in pixels, made of constants float holds exactly: nothing rounds.
 void DrawAxesOverlay(int location)
 {
