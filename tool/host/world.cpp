@@ -79,6 +79,7 @@ Tables Tables::load(const nlohmann::json& additions) {
   t.double_scalars = n("double-scalars");
   t.float_scalars = n("float-scalars");
   t.matrix_types = n("matrix-types");
+  t.linear_matrix_types = n("linear-matrix-types");
   t.row_vector_types = n("row-vector-matrix-types");
   t.gpu_macros = n("gpu-struct-macros");
   t.gpu_structs = n("gpu-struct-names");
@@ -228,6 +229,7 @@ bool World::may_hold_position(QualType type) {
 }
 
 bool World::is_linear_only(QualType type) const {
+  if (tables_.linear_matrix_types.match(type_name(type))) return true;  // glm 0.9.8's tmat3x3, OSG's Matrix3
   if (!is_matrix_type(type)) return false;
   std::vector<int64_t> extents = template_numbers(type);
   if (extents.size() >= 2) return extents[0] <= 3 && extents[1] <= 3;

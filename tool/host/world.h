@@ -24,6 +24,7 @@ struct Tables {
   Names transform_calls, inverse_transform_calls;  // `M.TransformPosition(p)`, `M.InverseTransformPosition(p)`
   Names offset_calls, offset_names;
   Names double_scalars, float_scalars, matrix_types;
+  Names linear_matrix_types;  // 3x3 matrices and smaller, by name, where no template argument says so
   Names row_vector_types;  // matrices applied as `p * M` (UE, OSG, DirectXMath): in a product the left factor acts first
   Names gpu_macros, gpu_structs, upload_calls, address_calls;
   Names copy_calls, mapped_pointers;  // `memcpy(mapped, &block, size)`: a copy into mapped GPU memory
