@@ -549,8 +549,9 @@ Value World::classify(const Expr* e, int depth) const {
     // A local initialised by a matrix applied to a point: the matrix says which frame it is in, not
     // its name (`cameraPosition = inverse(globeTransform) * eye` is the eye in the globe's frame).
     auto* var = dyn_cast<VarDecl>(decl);
-    std::optional<bool> kept;  // whether a local still holds its initialiser: a walk of its function, made once
-    auto holds_initialiser = [&] { return kept ? *kept : *(kept = var && var->isLocalVarDecl() && var->getInit() && !changed(var)); };
+    std::optional<bool> was_changed;  // whether the function changes the variable: a walk of its function, made once
+    auto is_changed = [&] { return was_changed ? *was_changed : *(was_changed = changed(var)); };
+    auto holds_initialiser = [&] { return var && var->isLocalVarDecl() && var->getInit() && !is_changed(); };
     if (var && var->getInit() && is_transform(var->getInit()) && holds_initialiser()) {
       Value init = classify(var->getInit(), depth + 1);
       if (init.kind != Kind::none) init.expr = e;
@@ -559,7 +560,7 @@ Value World::classify(const Expr* e, int depth) const {
     Value named = by_name(decl, ref->getType(), e);
     // A name says what a variable was made to hold; a plain `=` before the use may say otherwise
     // (`view = glm::mat4(glm::mat3(view))` keeps the rotation only, `pos = pos - eye`).
-    if (named.kind != Kind::none && var && (var->isLocalVarDecl() || isa<ParmVarDecl>(var)) && changed(var))
+    if (named.kind != Kind::none && var && (var->isLocalVarDecl() || isa<ParmVarDecl>(var)) && is_changed())
       if (const Expr* value = assigned_before(var, ref)) {
         if (drops_translation(value)) return {};
         Value given = classify(value, depth + 1);
