@@ -383,6 +383,38 @@ TEST(HostCli, UnitsInDifferentFoldersFindTheirOwnHeadersOnAnyNumberOfThreads) {
   EXPECT_EQ(nlohmann::json::parse(r.out).at("findings").size(), 0u) << r.out;
 }
 
+// A member judged by its name (`frame.view`) is overturned by what other units of the same run
+// give it (a view from the origin, in Camera.cpp): the unit alone cannot see that, and reports it.
+// On any number of threads the verdict waits for every unit.
+TEST(HostRuns, AMemberNameIsOverturnedByTheValuesOtherUnitsOfTheRunGiveIt) {
+  std::string folder = test::source_dir() + "/corpus/host/camera-relative";
+  auto lines_of_view = [](const HostResult& r, const std::string& path) {
+    std::vector<int> lines;
+    const HostFile* file = file_named(r, path);
+    if (!file) return lines;
+    Source source(file->path, file->text);
+    for (const Finding& f : file->findings)
+      if (f.message.find("frame.view") != std::string::npos) lines.push_back(source.position(f.span.begin).line);
+    return lines;
+  };
+  std::vector<int> alone = lines_of_view(analyze_file(folder + "/Draw.cpp"), folder + "/Draw.cpp");
+  EXPECT_EQ(alone, (std::vector<int>{9, 10}));
+  for (unsigned jobs : {1u, 2u}) {
+    HostOptions options;
+    options.paths = {folder};
+    options.clang_args = include_flags();
+    options.clang_args.insert(options.clang_args.begin(), "-std=c++20");
+    options.jobs = jobs;
+    HostResult together = analyze_host(options);
+    EXPECT_EQ(together.units, 2u);
+    EXPECT_TRUE(lines_of_view(together, folder + "/Draw.cpp").empty()) << jobs;
+    // The star map's `view` is given only a matrix the tables do not know: its name still stands.
+    const HostFile* draw = file_named(together, folder + "/Draw.cpp");
+    ASSERT_NE(draw, nullptr);
+    EXPECT_TRUE(std::any_of(draw->findings.begin(), draw->findings.end(), [](const Finding& f) { return f.message.find("stars.view") != std::string::npos; }));
+  }
+}
+
 // --fix writes what --diff shows: the safe fixes, and with --unsafe-fixes the others; then reports
 // what remains in the fixed files.
 TEST(HostCli, FixWritesTheFixedFileAndReportsWhatRemains) {

@@ -22,15 +22,17 @@ class Reporter {
   struct File {
     std::string text;
     std::vector<Finding> findings;
+    std::vector<std::string> rests_on;  // per finding: the member whose name alone it rests on (member_key), or ""
     std::vector<Span> comments;
   };
   // `reported(path)`: whether findings in that file (absolute) are wanted.
   explicit Reporter(std::function<bool(const std::string&)> reported) : reported_(std::move(reported)) {}
 
   // The finding of `rule` at `range`, its message and hint filled from vars; null when the range
-  // is not in a reported file.
+  // is not in a reported file. `rests_on`: the member whose name alone the finding rests on, which
+  // the whole run's values for that member may overturn (member_values.h).
   Finding* report(const RuleInfo& rule, const clang::SourceManager& sm, const clang::LangOptions& lang, clang::SourceRange range,
-                  const Vars& vars);
+                  const Vars& vars, const std::string& rests_on = "");
   // Adds a rewrite to a finding: each edit replaces a range (an empty range inserts) in the finding's file.
   struct Change {
     clang::CharSourceRange range;

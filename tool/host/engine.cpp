@@ -19,6 +19,7 @@
 #include "host/check.h"
 #include "host/checks/narrowing.h"
 #include "host/host.h"
+#include "host/member_values.h"
 #include "project/files.h"
 #include "rules/analyze.h"
 
@@ -33,10 +34,12 @@ bool HostOptions::enabled(const std::string& rule) const {
 
 namespace host {
 
-Finding* Reporter::report(const RuleInfo& rule, const SourceManager& sm, const LangOptions& lang, SourceRange range, const Vars& vars) {
+Finding* Reporter::report(const RuleInfo& rule, const SourceManager& sm, const LangOptions& lang, SourceRange range, const Vars& vars,
+                          const std::string& rests_on) {
   auto at = place(sm, lang, CharSourceRange::getTokenRange(range));
   if (!at) return nullptr;
   File& file = files_[at->first];
+  file.rests_on.push_back(rests_on);
   file.findings.push_back(make_finding(rule, at->second, vars));
   return &file.findings.back();
 }
@@ -287,6 +290,16 @@ HostResult analyze_host(const HostOptions& options) {
   host::Tables tables = host::Tables::load(options.tables);
   std::mutex merge;
   std::map<std::string, HostFile> files;
+  // Findings that rest on a member's name alone wait for every unit's values for that member.
+  host::MemberValues member_values;
+  std::map<std::string, std::vector<std::pair<Finding, std::string>>> resting;  // by file: the finding, its member
+  auto add_finding = [](HostFile& into, Finding&& finding) {
+    // A header included by several units: each finding once.
+    bool known = std::any_of(into.findings.begin(), into.findings.end(), [&](const Finding& g) {
+      return g.rule == finding.rule && g.span == finding.span && g.message == finding.message;
+    });
+    if (!known) into.findings.push_back(std::move(finding));
+  };
   std::atomic<size_t> next = 0;
   auto work = [&] {
     for (size_t i; (i = next++) < sources.size();) {
@@ -302,7 +315,11 @@ HostResult analyze_host(const HostOptions& options) {
         checks.back()->register_matchers(finder);
         if (auto* reads_uploads = dynamic_cast<host::UploadCheck*>(checks.back().get())) narrowings.checks.push_back(reads_uploads);
       }
-      if (!narrowings.checks.empty()) host::register_narrowings(finder, &narrowings, tables);
+      host::MemberValueCollector given(tables);
+      if (!narrowings.checks.empty()) {
+        host::register_narrowings(finder, &narrowings, tables);
+        given.register_matchers(finder);
+      }
       // A file system of its own, with its own working directory: Clang works in each command's
       // folder, and threads must not move one process-wide working directory under each other.
       tooling::ClangTool tool(*databases[i], {sources[i]}, std::make_shared<PCHContainerOperations>(), llvm::vfs::createPhysicalFileSystem());
@@ -335,15 +352,16 @@ HostResult analyze_host(const HostOptions& options) {
       }
       // Every unit's own file is reported on (and counted), findings or not.
       if (!out.files().count(sources[i]) && !files.count(sources[i])) files[sources[i]].text = read_file(sources[i], SIZE_MAX).text;
+      for (auto& [key, counts] : given.values) {
+        host::GivenValues& all = member_values[key];
+        all.world += counts.world, all.not_world += counts.not_world, all.unknown += counts.unknown;
+      }
       for (auto& [path, f] : out.files()) {
         HostFile& into = files[path];
         if (into.text.empty()) into.text = f.text;
-        // A header included by several units: each finding once.
-        for (Finding& finding : f.findings) {
-          bool known = std::any_of(into.findings.begin(), into.findings.end(), [&](const Finding& g) {
-            return g.rule == finding.rule && g.span == finding.span && g.message == finding.message;
-          });
-          if (!known) into.findings.push_back(std::move(finding));
+        for (size_t k = 0; k < f.findings.size(); ++k) {
+          if (!f.rests_on[k].empty()) resting[path].emplace_back(std::move(f.findings[k]), f.rests_on[k]);
+          else add_finding(into, std::move(f.findings[k]));
         }
         if (into.comments.empty()) into.comments = std::move(f.comments);
       }
@@ -353,6 +371,9 @@ HostResult analyze_host(const HostOptions& options) {
   for (unsigned t = 1; t < std::max(1u, options.jobs); ++t) pool.emplace_back(work);
   work();
   for (std::thread& t : pool) t.join();
+  for (auto& [path, waiting] : resting)
+    for (auto& [finding, member] : waiting)
+      if (!member_values[member].overturn_name()) add_finding(files[path], std::move(finding));
   if (sources.empty() && result.errors.empty()) result.errors.push_back("no C++ sources to analyse");
   for (auto& [path, f] : files) {
     f.path = host::shown(path, cwd);

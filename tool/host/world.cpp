@@ -74,6 +74,7 @@ Tables Tables::load(const nlohmann::json& additions) {
   t.from_world_names = n("world-matrices/from-world-names");
   t.transform_calls = n("world-matrices/transform-position-calls");
   t.inverse_transform_calls = n("world-matrices/inverse-transform-position-calls");
+  t.look_at_calls = n("world-matrices/look-at-calls");
   t.offset_calls = n("camera-offsets/calls");
   t.offset_names = n("camera-offsets/names");
   t.double_scalars = n("double-scalars");
@@ -150,8 +151,8 @@ char World::scalar(QualType type) const {
         return 'f';
       return 0;
     }
-    const CXXRecordDecl* record = type->getAsCXXRecordDecl();
-    if (!record || !record->hasDefinition()) {
+    const RecordDecl* record = type->getAsRecordDecl();  // a C struct too
+    if (!record || !record->getDefinition()) {
       std::string name = type_name(type);
       return tables_.double_scalars.match(name) ? 'd' : tables_.float_scalars.match(name) ? 'f' : 0;
     }
@@ -193,9 +194,12 @@ bool World::is_matrix_type(QualType type) const {
 }
 
 int World::components(QualType type) {
-  if (auto* vector = type.getNonReferenceType()->getAs<VectorType>()) return int(vector->getNumElements());
-  const CXXRecordDecl* record = type.getNonReferenceType()->getAsCXXRecordDecl();
-  if (!record || !record->hasDefinition()) return -1;
+  // What a pointer points to (`origin->x` of a game object reached by pointer); a C struct is a record too.
+  type = type.getNonReferenceType();
+  if (type->isPointerType()) type = type->getPointeeType();
+  if (auto* vector = type->getAs<VectorType>()) return int(vector->getNumElements());
+  const RecordDecl* record = type->getAsRecordDecl();
+  if (!record || !record->getDefinition()) return -1;
   std::vector<int64_t> extents = template_numbers(type);
   if (extents.size() >= 2 && (extents[0] == 1 || extents[1] == 1)) return int(extents[0] * extents[1]);
   if (!extents.empty()) return int(extents[0]);
@@ -238,16 +242,16 @@ bool World::is_linear_only(QualType type) const {
   return n > 0 && n <= 9;
 }
 
-bool World::exact_in_float(const Expr* e) const {
+std::vector<APValue> World::constant_parts(const Expr* e) const {
   e = strip(e);
   // Through members (glm's `x` is a member of an anonymous union) to the object.
   while (auto* member = dyn_cast<MemberExpr>(e)) {
-    if (isa<CXXMethodDecl>(member->getMemberDecl())) return false;
+    if (isa<CXXMethodDecl>(member->getMemberDecl())) return {};
     e = strip(member->getBase());
   }
   if (auto* ref = dyn_cast<DeclRefExpr>(e)) {
     auto* var = dyn_cast<VarDecl>(ref->getDecl());
-    if (!var || !var->isLocalVarDecl() || !var->getInit() || changed(var)) return false;
+    if (!var || !var->isLocalVarDecl() || !var->getInit() || changed(var)) return {};
     e = strip(var->getInit());
   }
   if (auto* cast = dyn_cast<CXXFunctionalCastExpr>(e)) e = strip(cast->getSubExpr());
@@ -255,19 +259,33 @@ bool World::exact_in_float(const Expr* e) const {
   if (auto* construct = dyn_cast<CXXConstructExpr>(e)) parts.assign(construct->arg_begin(), construct->arg_end());
   else if (auto* list = dyn_cast<InitListExpr>(e)) parts.assign(list->inits().begin(), list->inits().end());
   else parts.push_back(e);
-  if (parts.empty()) return false;
+  std::vector<APValue> values;
   for (const Expr* part : parts) {
     Expr::EvalResult result;
-    if (part->isValueDependent() || !part->EvaluateAsRValue(result, context_) || result.HasSideEffects) return false;
+    if (part->isValueDependent() || !part->EvaluateAsRValue(result, context_) || result.HasSideEffects ||
+        !(result.Val.isInt() || result.Val.isFloat()))
+      return {};
+    values.push_back(result.Val);
+  }
+  return values;
+}
+
+bool World::exact_in_float(const Expr* e) const {
+  std::vector<APValue> parts = constant_parts(e);
+  for (const APValue& part : parts) {
     llvm::APFloat as_float(llvm::APFloat::IEEEsingle());
     llvm::APFloat::opStatus status;
     bool lost = false;
-    if (result.Val.isInt()) status = as_float.convertFromAPInt(result.Val.getInt(), result.Val.getInt().isSigned(), llvm::APFloat::rmNearestTiesToEven);
-    else if (result.Val.isFloat()) status = (as_float = result.Val.getFloat()).convert(llvm::APFloat::IEEEsingle(), llvm::APFloat::rmNearestTiesToEven, &lost);
-    else return false;
+    if (part.isInt()) status = as_float.convertFromAPInt(part.getInt(), part.getInt().isSigned(), llvm::APFloat::rmNearestTiesToEven);
+    else status = (as_float = part.getFloat()).convert(llvm::APFloat::IEEEsingle(), llvm::APFloat::rmNearestTiesToEven, &lost);
     if (status != llvm::APFloat::opOK || lost) return false;
   }
-  return true;
+  return !parts.empty();
+}
+
+bool World::is_origin(const Expr* e) const {
+  std::vector<APValue> parts = constant_parts(e);
+  return !parts.empty() && std::all_of(parts.begin(), parts.end(), [](const APValue& v) { return v.isInt() ? v.getInt().isZero() : v.getFloat().isZero(); });
 }
 
 bool World::is_row_vector(QualType type) const { return tables_.row_vector_types.match(type_name(type)); }
@@ -293,11 +311,11 @@ const FunctionDecl* enclosing_function(const Stmt* s, ASTContext& context) {
 Value World::by_name(const NamedDecl* decl, QualType type, const Expr* e) const {
   if (!decl || !decl->getIdentifier()) return {};
   std::string name = decl->getName().str();
-  if (tables_.offset_names.match(name)) return {Kind::camera_offset, e};
+  if (tables_.offset_names.match(name)) return {Kind::camera_offset, e, false, false, decl};
   if (is_matrix_type(type)) {
     if (tables_.matrix_not.match(name)) return {};
-    if (tables_.matrix_names.match(name)) return {Kind::matrix, e};
-    if (tables_.from_world_names.match(name)) return {Kind::matrix, e, true};
+    if (tables_.matrix_names.match(name)) return {Kind::matrix, e, false, false, decl};
+    if (tables_.from_world_names.match(name)) return {Kind::matrix, e, true, false, decl};
     return {};
   }
   // A lone number named as a position is a position on some axis (a scroll wheel's, a slider's, a
@@ -305,15 +323,15 @@ Value World::by_name(const NamedDecl* decl, QualType type, const Expr* e) const 
   // numbers named as a position are a point on a screen or a canvas (a pointer's `pos`), and a
   // record that is no vector is a record (a GPS fix with its speed and satellite count).
   if (type.getNonReferenceType()->isArithmeticType() || !may_hold_position(type)) return {};
-  if (tables_.position_names.match(name) && !tables_.position_not.match(name)) return {Kind::position, e};
+  if (tables_.position_names.match(name) && !tables_.position_not.match(name)) return {Kind::position, e, false, false, decl};
   return {};
 }
 
 Value World::transformed(Value matrix, const Expr* point, bool inverse, const Expr* e) const {
   if (matrix.kind != Kind::matrix || !point->getType()->isRecordType()) return {};
   // Into the world from another frame: a world position, unless the point is a direction (w = 0).
-  if (matrix.from_world == inverse) return is_direction(point) ? Value{} : Value{Kind::position, e};
-  return {Kind::relative, e};  // out of the world: view space, or an object's own frame
+  if (matrix.from_world == inverse) return is_direction(point) ? Value{} : derived(Kind::position, e, matrix);
+  return derived(Kind::relative, e, matrix);  // out of the world: view space, or an object's own frame
 }
 
 bool World::names_a_value(const Expr* e) {
@@ -423,6 +441,18 @@ bool World::drops_translation(const Expr* e) const {
   return false;
 }
 
+bool World::named_in_float(const Value& v) const {
+  QualType type;
+  if (auto* decl = dyn_cast_or_null<ValueDecl>(v.named)) type = decl->getType();
+  else if (auto* property = dyn_cast_or_null<ObjCPropertyDecl>(v.named)) type = property->getType();
+  else return false;
+  type = type.getNonReferenceType();
+  if (type->isPointerType()) type = type->getPointeeType();
+  return scalar(type) == 'f';
+}
+
+Value World::given(const Expr* value) const { return drops_translation(value) ? Value{Kind::relative, value} : classify(value); }
+
 Value World::classify(const Expr* e, int depth) const {
   e = strip(e);
   if (!e) return {};
@@ -453,8 +483,8 @@ Value World::classify(const Expr* e, int depth) const {
         // FTranslationMatrix(-PreViewTranslation) * WorldToClip: translated already.
         if ((a.kind == Kind::camera_offset && b.kind == Kind::matrix) || (a.kind == Kind::matrix && b.kind == Kind::camera_offset))
           return {Kind::relative, e};
-        if (a.kind == Kind::matrix && b.kind == Kind::matrix && a.from_world != b.from_world) return {Kind::model_view, e};
-        if (a.kind == Kind::model_view || b.kind == Kind::model_view) return {Kind::model_view, e};
+        if (a.kind == Kind::matrix && b.kind == Kind::matrix && a.from_world != b.from_world) return derived(Kind::model_view, e, a.named ? a : b);
+        if (a.kind == Kind::model_view || b.kind == Kind::model_view) return derived(Kind::model_view, e, a.kind == Kind::model_view ? a : b);
         // A world-to-view matrix after a matrix the tables do not know (`view * M` for glm or Eigen,
         // `M * View` for UE): M hands it world positions, so M is a model matrix and the product is
         // camera-relative. Not known well enough to call it camera-dependent either.
@@ -476,14 +506,14 @@ Value World::classify(const Expr* e, int depth) const {
       if ((a.kind == Kind::position && b.kind == Kind::camera_offset) || (a.kind == Kind::camera_offset && b.kind == Kind::position))
         return {Kind::relative, e};
       if (a.kind == Kind::position && o == OO_Minus && b.kind == Kind::none && names_a_value(op->getArg(1))) return {};
-      if (a.kind == Kind::position) return {Kind::position, e};
-      if (b.kind == Kind::position && o == OO_Plus) return {Kind::position, e};
+      if (a.kind == Kind::position) return derived(Kind::position, e, a);
+      if (b.kind == Kind::position && o == OO_Plus) return derived(Kind::position, e, b);
       return {};
     }
     if (o == OO_Minus && op->getNumArgs() == 1) return classify(op->getArg(0), depth + 1);  // -PreViewTranslation
     if (o == OO_Subscript && op->getNumArgs() == 2) {
       Value base = classify(op->getArg(0), depth + 1);
-      return base.kind == Kind::position ? Value{Kind::position, e} : Value{};
+      return base.kind == Kind::position ? derived(Kind::position, e, base) : Value{};
     }
     return {};
   }
@@ -499,7 +529,8 @@ Value World::classify(const Expr* e, int depth) const {
     if ((a.kind == Kind::position && b.kind == Kind::camera_offset) || (a.kind == Kind::camera_offset && b.kind == Kind::position))
       return {Kind::relative, e};
     if (a.kind == Kind::position && bin->getOpcode() == BO_Sub && b.kind == Kind::none && names_a_value(bin->getRHS())) return {};
-    if (a.kind == Kind::position || (b.kind == Kind::position && bin->getOpcode() == BO_Add)) return {Kind::position, e};
+    if (a.kind == Kind::position) return derived(Kind::position, e, a);
+    if (b.kind == Kind::position && bin->getOpcode() == BO_Add) return derived(Kind::position, e, b);
     return {};
   }
   if (auto* unary = dyn_cast<UnaryOperator>(e); unary && unary->getOpcode() == UO_Minus) return classify(unary->getSubExpr(), depth + 1);
@@ -519,16 +550,23 @@ Value World::classify(const Expr* e, int depth) const {
     if (tables_.position_calls.match(name) && !is_matrix_type(call->getType()) && may_hold_position(call->getType())) return {Kind::position, e};
     if (tables_.matrix_calls.match(name) && is_matrix_type(call->getType())) return {Kind::matrix, e};
     if (tables_.from_world_calls.match(name) && is_matrix_type(call->getType())) return {Kind::matrix, e, true};
+    // A view from the eye: at the origin it holds a rotation only (a camera-relative renderer's view);
+    // from a world position, the world translation.
+    if (tables_.look_at_calls.match(name) && is_matrix_type(call->getType()) && call->getNumArgs() >= 2 && !isa<CXXMemberCallExpr>(call)) {
+      if (is_origin(call->getArg(0))) return {Kind::relative, e};
+      Value eye = classify(call->getArg(0), depth + 1);
+      return eye.kind == Kind::position ? derived(Kind::matrix, e, eye, true) : Value{};
+    }
     if (auto* member = dyn_cast<CXXMemberCallExpr>(call)) {
       Value object = classify(member->getImplicitObjectArgument(), depth + 1);
-      if (object.kind == Kind::matrix && tables_.position_from_matrix.match(name)) return {Kind::position, e};
-      if (object.kind == Kind::matrix && tables_.matrix_keep.match(name)) return {Kind::matrix, e, object.from_world};
-      if (object.kind == Kind::matrix && tables_.matrix_inverse.match(name)) return {Kind::matrix, e, !object.from_world};
+      if (object.kind == Kind::matrix && tables_.position_from_matrix.match(name)) return derived(Kind::position, e, object);
+      if (object.kind == Kind::matrix && tables_.matrix_keep.match(name)) return derived(Kind::matrix, e, object, object.from_world);
+      if (object.kind == Kind::matrix && tables_.matrix_inverse.match(name)) return derived(Kind::matrix, e, object, !object.from_world);
       if (tables_.transform_calls.match(name) || tables_.inverse_transform_calls.match(name))  // M.TransformPosition(p)
         return call->getNumArgs() == 1 ? transformed(object, call->getArg(0), tables_.inverse_transform_calls.match(name), e) : Value{};
     } else if (call->getNumArgs() == 1 && (tables_.matrix_keep.match(name) || tables_.matrix_inverse.match(name))) {  // glm::inverse(M)
       Value arg = classify(call->getArg(0), depth + 1);
-      if (arg.kind == Kind::matrix) return {Kind::matrix, e, arg.from_world != tables_.matrix_inverse.match(name)};
+      if (arg.kind == Kind::matrix) return derived(Kind::matrix, e, arg, arg.from_world != tables_.matrix_inverse.match(name));
     }
     return {};
   }
@@ -537,7 +575,7 @@ Value World::classify(const Expr* e, int depth) const {
     std::string name = decl->getIdentifier() ? decl->getName().str() : "";
     Value base = classify(member->getBase(), depth + 1);
     // A component of a position is a position (its X is as large as it is); of the offset, the offset.
-    if ((base.kind == Kind::position || base.kind == Kind::camera_offset) && !isa<CXXMethodDecl>(decl)) return {base.kind, e};
+    if ((base.kind == Kind::position || base.kind == Kind::camera_offset) && !isa<CXXMethodDecl>(decl)) return derived(base.kind, e, base);
     std::string base_type = type_name(member->getBase()->getType());
     for (const auto& [m, types] : tables_.position_members)
       if (m == name && types.match(base_type)) return {Kind::position, e};
@@ -557,6 +595,20 @@ Value World::classify(const Expr* e, int depth) const {
       if (init.kind != Kind::none) init.expr = e;
       return init;
     }
+    // A name that says local, relative or translated is the author's word that it was made so
+    // (perhaps after its initialiser): not followed.
+    std::string name = decl->getIdentifier() ? decl->getName().str() : "";
+    if ((is_matrix_type(ref->getType()) ? tables_.matrix_not : tables_.position_not).match(name)) return {};
+    // What a local was initialised with, where it says something, says more than its name (`view =
+    // glm::lookAt(origin, ...)` holds a rotation only, `pos = body - eye` a difference).
+    if (holds_initialiser()) {
+      if (drops_translation(var->getInit())) return {};
+      Value init = classify(var->getInit(), depth + 1);
+      if (init.kind != Kind::none) {
+        init.expr = e;
+        return init;
+      }
+    }
     Value named = by_name(decl, ref->getType(), e);
     // A name says what a variable was made to hold; a plain `=` before the use may say otherwise
     // (`view = glm::mat4(glm::mat3(view))` keeps the rotation only, `pos = pos - eye`).
@@ -569,22 +621,11 @@ Value World::classify(const Expr* e, int depth) const {
           return given;
         }
       }
-    if (named.kind != Kind::none) return named;
-    // A name that says local, relative or translated is the author's word that it was made so
-    // (perhaps after its initialiser): not followed.
-    std::string name = decl->getIdentifier() ? decl->getName().str() : "";
-    if ((is_matrix_type(ref->getType()) ? tables_.matrix_not : tables_.position_not).match(name)) return {};
-    // A local initialised once, and left so: what it was initialised with.
-    if (holds_initialiser()) {
-      Value init = classify(var->getInit(), depth + 1);
-      if (init.kind != Kind::none) init.expr = e;
-      return init;
-    }
-    return {};
+    return named;
   }
   if (auto* sub = dyn_cast<ArraySubscriptExpr>(e)) {
     Value base = classify(sub->getBase(), depth + 1);
-    return base.kind == Kind::position ? Value{Kind::position, e} : Value{};
+    return base.kind == Kind::position ? derived(Kind::position, e, base) : Value{};
   }
   return {};
 }

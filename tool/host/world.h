@@ -22,6 +22,7 @@ struct Tables {
   Names matrix_calls, matrix_names, matrix_not, matrix_keep, matrix_inverse;
   Names from_world_calls, from_world_names;  // matrices that take world positions in (view, view-projection)
   Names transform_calls, inverse_transform_calls;  // `M.TransformPosition(p)`, `M.InverseTransformPosition(p)`
+  Names look_at_calls;  // `glm::lookAt(eye, center, up)`: a world-to-view matrix with the eye's translation
   Names offset_calls, offset_names;
   Names double_scalars, float_scalars, matrix_types;
   Names linear_matrix_types;  // 3x3 matrices and smaller, by name, where no template argument says so
@@ -63,7 +64,17 @@ struct Value {
   const clang::Expr* expr = nullptr;  // the code it comes from, e.g. `Actor->GetActorLocation()` (its text is read only when reported)
   bool from_world = false;  // a matrix that takes world positions in (world to view or clip), not one that gives them
   bool cut = false;  // followed no further (the depth limit): a product with it is not known either
+  // The variable or member whose name alone says what it holds (`cu.view`, a `position`
+  // parameter), when nothing in the unit shows where its value came from. Other units may show it
+  // (engine.cpp weighs the values the whole project gives a member).
+  const clang::NamedDecl* named = nullptr;
 };
+
+// A value that `e` makes of `from` (a component, a product, a sum): of kind `kind`, resting on the
+// same name as `from`.
+inline Value derived(Kind kind, const clang::Expr* e, const Value& from, bool from_world = false) {
+  return {kind, e, from_world, false, from.named};
+}
 
 class World {
  public:
@@ -71,6 +82,14 @@ class World {
 
   // What `e` holds: followed through locals' initialisers, member access and + and -.
   Value classify(const clang::Expr* e, int depth = 0) const;
+  // What a declaration holds by its name alone (`position`, `view`), as a value of `type` read by `e`.
+  Value by_name(const clang::NamedDecl* decl, clang::QualType type, const clang::Expr* e) const;
+  // The declaration `v` rests on by name holds float numbers (`center->v.x + r * cos(a)` in C, made
+  // double by `cos` alone): narrowing the sum rounds no position that was not in float already.
+  bool named_in_float(const Value& v) const;
+  // What a value given to a variable or member says it holds: as `classify`, but a matrix made 3x3
+  // on the way (`glm::mat4(glm::mat3(view))`) is relative, with no translation left.
+  Value given(const clang::Expr* value) const;
   // 'd' when the type's scalars are double (double, FVector, glm::dvec3, Eigen::Vector3d, a
   // struct of doubles), 'f' for float, 0 for anything else.
   char scalar(clang::QualType type) const;
@@ -79,7 +98,8 @@ class World {
   // plainly a vector, its size as a template argument
   // (glm's vec<3, T, Q>, Eigen's Matrix<T, 3, 1>) or its floating-point members (`double x, y, z;`,
   // OSG's `_v[3]`). 0 for a record that is no vector (a member of another kind: `int satellites;`),
-  // -1 where it cannot tell (not a record, or its numbers kept in a member of record type).
+  // -1 where it cannot tell (not a record, or its numbers kept in a member of record type). A
+  // pointer counts as what it points to.
   static int components(clang::QualType type);
   // The numbers a record's members hold, as `components` counts them.
   static int numbers_in(const clang::RecordDecl* record);
@@ -93,6 +113,8 @@ class World {
   // and `w` constant integers: an overlay's centre in pixels), read directly or through a local
   // initialised with them: its narrowing rounds nothing.
   bool exact_in_float(const clang::Expr* e) const;
+  // `e` is the point (0, 0, 0), written as constants as exact_in_float reads them.
+  bool is_origin(const clang::Expr* e) const;
   // Matrices of this type act on row vectors (`p * M`), so in `A * B` the left factor acts first.
   bool is_row_vector(clang::QualType type) const;
   // The type's name without qualifiers, namespace or template arguments (`FVector3f`, `vec`).
@@ -103,7 +125,9 @@ class World {
   clang::ASTContext& context() const { return context_; }
 
  private:
-  Value by_name(const clang::NamedDecl* decl, clang::QualType type, const clang::Expr* e) const;
+  // The numbers `e` is made of, where each is a constant (`V3d(o + w / 2, 0, 0)` with constant `o`
+  // and `w`, directly or through a local initialised with them); none otherwise.
+  std::vector<clang::APValue> constant_parts(const clang::Expr* e) const;
   // `matrix` applied to `point` (or its inverse applied): into the world, or out of it.
   Value transformed(Value matrix, const clang::Expr* point, bool inverse, const clang::Expr* e) const;
   // A value taken from somewhere (a variable, a member, an element, a call), not made on the spot

@@ -1,5 +1,7 @@
 // Host code lwcport must leave alone: float math that never held a world position, directions,
 // local-space data, templates, lambdas, and uploads that are already camera-relative or split.
+#include <cmath>
+
 #include <glm/glm.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -95,4 +97,35 @@ void Relay(TelemetryPacket& packet, const GpsFix& pos)
 void DrawFromAnchor(const glm::dvec3& worldPosition, const glm::dvec3& anchor, GLint at)
 {
   glUniform3fv(at, 1, glm::value_ptr(glm::vec3(worldPosition - anchor)));
+}
+
+// A game object reached by a pointer named as a position: a record of many kinds of member, not a
+// vector, so its coordinates are not judged by that name.
+struct GameObject {
+  unsigned id;
+  int type;
+  double x, y, z;
+};
+struct Beam {
+  float fromX, fromY, fromZ;
+};
+
+void AimBeam(Beam& beam, const GameObject* origin)
+{
+  beam.fromX = origin->x;
+  beam.fromY = origin->y;
+  beam.fromZ = origin->z;
+}
+
+// A point held in float from the start, made double only by `cos` and `sin` on the way: its
+// narrowing back rounds nothing that was not in float already.
+struct Vec3f {
+  float x, y, z;
+};
+
+void PointOnRing(const Vec3f* center, float radius, double angle, Vec3f* point)
+{
+  point->x = center->x + radius * std::cos(angle);
+  point->y = center->y + radius * std::sin(angle);
+  point->z = center->z;
 }

@@ -3,6 +3,7 @@
 // camera, which GPU-resident scene data cannot keep.
 #include "host/check.h"
 #include "host/checks/narrowing.h"
+#include "host/member_values.h"
 
 namespace lwc::host {
 
@@ -19,7 +20,8 @@ class CameraDependentSceneData : public UploadCheck {
     const Upload* up = &found;
     World world(tables_, *match.Context);
     out_.report(rule_, *match.SourceManager, match.Context->getLangOpts(), up->narrowing->getSourceRange(),
-                {{"narrowing", world.text(up->narrowing->getSourceRange())}, {"value", world.text(up->value.expr->getSourceRange())}, {"sink", up->sink}});
+                {{"narrowing", world.text(up->narrowing->getSourceRange())}, {"value", world.text(up->value.expr->getSourceRange())}, {"sink", up->sink}},
+                name_rested_on(up->value));
   }
 };
 

@@ -2,6 +2,7 @@
 // scene data, rounded there before any upload can do better.
 #include "host/check.h"
 #include "host/checks/narrowing.h"
+#include "host/member_values.h"
 
 namespace lwc::host {
 
@@ -20,7 +21,8 @@ class FloatWorldStorage : public UploadCheck {
                 {{"narrowing", world.text(found.narrowing->getSourceRange())},
                  {"what", found.value.kind == Kind::position ? "world position" : "world matrix"},
                  {"value", world.text(found.value.expr->getSourceRange())},
-                 {"sink", found.sink}});
+                 {"sink", found.sink}},
+                name_rested_on(found.value));
   }
 };
 

@@ -1,5 +1,6 @@
 #include "host/checks/narrowing.h"
 #include "host/checks/high_low.h"
+#include "host/member_values.h"
 
 #include <clang/AST/ExprCXX.h>
 #include <clang/AST/ExprObjC.h>
@@ -289,7 +290,7 @@ std::optional<Upload> find_upload(const MatchFinder::MatchResult& match, const G
   if (!value || world.scalar(value->IgnoreParenImpCasts()->getType()) != 'd') return std::nullopt;
   Value what = world.classify(value);
   if (what.kind != Kind::position && what.kind != Kind::matrix && what.kind != Kind::model_view) return std::nullopt;
-  if (world.exact_in_float(value)) return std::nullopt;
+  if (world.exact_in_float(value) || world.named_in_float(what)) return std::nullopt;
   // A vector built from a matrix, or the reverse, is no narrowing of either; a 3x3 matrix made from
   // a world matrix keeps its rotation, not its translation.
   if ((what.kind != Kind::position) != world.is_matrix_type(narrowed) || world.is_linear_only(narrowed) ||
@@ -370,7 +371,7 @@ Finding* report_upload(const Upload& up, const MatchFinder::MatchResult& match, 
   World world(tables, *match.Context);
   vars = {{"narrowing", world.text(up.narrowing->getSourceRange())}, {"type", up.narrowing_type}, {"value", world.text(up.value.expr->getSourceRange())},
           {"sink", up.sink}, {"field", up.field.empty() ? "the uploaded value" : "`" + up.field + "`"}};
-  Finding* finding = out.report(rule, *match.SourceManager, match.Context->getLangOpts(), up.narrowing->getSourceRange(), vars);
+  Finding* finding = out.report(rule, *match.SourceManager, match.Context->getLangOpts(), up.narrowing->getSourceRange(), vars, name_rested_on(up.value));
   if (finding && !up.field.empty()) finding->facts = {{"shader-parameter", up.field}, {"port", port}};
   return finding;
 }
