@@ -354,7 +354,7 @@ HostResult analyze_host(const HostOptions& options) {
       if (!out.files().count(sources[i]) && !files.count(sources[i])) files[sources[i]].text = read_file(sources[i], SIZE_MAX).text;
       for (auto& [key, counts] : given.values) {
         host::GivenValues& all = member_values[key];
-        all.world += counts.world, all.not_world += counts.not_world, all.unknown += counts.unknown;
+        all.world += counts.world, all.not_world += counts.not_world;
       }
       for (auto& [path, f] : out.files()) {
         HostFile& into = files[path];

@@ -43,7 +43,6 @@ void MemberValueCollector::run(const MatchFinder::MatchResult& match) {
   // A model-view product is camera-relative too: the translations cancelled in double.
   if (given.kind == Kind::relative || given.kind == Kind::model_view) ++counts.not_world;
   else if (given.kind == named.kind && !given.named) ++counts.world;
-  else ++counts.unknown;
 }
 
 }  // namespace lwc::host

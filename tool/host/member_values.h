@@ -14,8 +14,7 @@ namespace lwc::host {
 // unit) is not what its name says, whatever the unit that uploads it can see.
 struct GivenValues {
   unsigned world = 0;      // a world position or world matrix, known without trusting a name
-  unsigned not_world = 0;  // camera-relative, or a matrix with no translation
-  unsigned unknown = 0;
+  unsigned not_world = 0;  // camera-relative, or a matrix with no translation (anything else says nothing)
   // The project shows the member holding values with no world translation, and never one with it.
   bool overturn_name() const { return not_world > 0 && world == 0; }
 };
