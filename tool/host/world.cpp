@@ -590,35 +590,30 @@ Value World::classify(const Expr* e, int depth) const {
     std::optional<bool> was_changed;  // whether the function changes the variable: a walk of its function, made once
     auto is_changed = [&] { return was_changed ? *was_changed : *(was_changed = changed(var)); };
     auto holds_initialiser = [&] { return var && var->isLocalVarDecl() && var->getInit() && !is_changed(); };
-    if (var && var->getInit() && is_transform(var->getInit()) && holds_initialiser()) {
-      Value init = classify(var->getInit(), depth + 1);
-      if (init.kind != Kind::none) init.expr = e;
-      return init;
-    }
     // A name that says local, relative or translated is the author's word that it was made so
-    // (perhaps after its initialiser): not followed.
+    // (perhaps after its initialiser): not followed, unless a matrix applied to a point says the frame.
     std::string name = decl->getIdentifier() ? decl->getName().str() : "";
-    if ((is_matrix_type(ref->getType()) ? tables_.matrix_not : tables_.position_not).match(name)) return {};
+    bool said_not = (is_matrix_type(ref->getType()) ? tables_.matrix_not : tables_.position_not).match(name);
     // What a local was initialised with, where it says something, says more than its name (`view =
     // glm::lookAt(origin, ...)` holds a rotation only, `pos = body - eye` a difference).
-    if (holds_initialiser()) {
+    bool transform = var && var->getInit() && is_transform(var->getInit());
+    if ((!said_not || transform) && holds_initialiser()) {
       if (drops_translation(var->getInit())) return {};
       Value init = classify(var->getInit(), depth + 1);
-      if (init.kind != Kind::none) {
-        init.expr = e;
-        return init;
-      }
+      if (init.kind != Kind::none) init.expr = e;
+      if (init.kind != Kind::none || transform) return init;
     }
+    if (said_not) return {};
     Value named = by_name(decl, ref->getType(), e);
     // A name says what a variable was made to hold; a plain `=` before the use may say otherwise
     // (`view = glm::mat4(glm::mat3(view))` keeps the rotation only, `pos = pos - eye`).
     if (named.kind != Kind::none && var && (var->isLocalVarDecl() || isa<ParmVarDecl>(var)) && is_changed())
       if (const Expr* value = assigned_before(var, ref)) {
         if (drops_translation(value)) return {};
-        Value given = classify(value, depth + 1);
-        if (given.kind != Kind::none) {
-          given.expr = e;
-          return given;
+        Value assigned = classify(value, depth + 1);
+        if (assigned.kind != Kind::none) {
+          assigned.expr = e;
+          return assigned;
         }
       }
     return named;
