@@ -75,6 +75,8 @@ Tables Tables::load(const nlohmann::json& additions) {
   t.transform_calls = n("world-matrices/transform-position-calls");
   t.inverse_transform_calls = n("world-matrices/inverse-transform-position-calls");
   t.look_at_calls = n("world-matrices/look-at-calls");
+  t.translate_calls = n("world-matrices/translate-calls");
+  t.compose_calls = n("world-matrices/compose-calls");
   t.offset_calls = n("camera-offsets/calls");
   t.offset_names = n("camera-offsets/names");
   t.double_scalars = n("double-scalars");
@@ -366,6 +368,15 @@ bool World::is_transform(const Expr* e) const {
   return false;
 }
 
+bool World::builds_matrix(const Expr* e) const {
+  auto* call = dyn_cast_or_null<CallExpr>(strip(e));
+  const FunctionDecl* callee = call && !isa<CXXMemberCallExpr, CXXOperatorCallExpr>(call) ? call->getDirectCallee() : nullptr;
+  if (!callee || !callee->getIdentifier() || !is_matrix_type(call->getType())) return false;
+  std::string name = callee->getName().str();
+  if (tables_.translate_calls.match(name) || tables_.look_at_calls.match(name)) return true;
+  return tables_.compose_calls.match(name) && call->getNumArgs() >= 2 && (is_identity(call->getArg(0)) || builds_matrix(call->getArg(0)));
+}
+
 namespace {
 
 // A change to what `target` matches, in `body`: an assignment (a plain `=` only with `plain`), a
@@ -451,6 +462,45 @@ bool World::named_in_float(const Value& v) const {
   return scalar(type) == 'f';
 }
 
+Value World::product(const Value& a, const Value& b, bool both_matrices, bool row, const Expr* e) const {
+  // FTranslationMatrix(-PreViewTranslation) * WorldToClip: translated already.
+  if ((a.kind == Kind::camera_offset && b.kind == Kind::matrix) || (a.kind == Kind::matrix && b.kind == Kind::camera_offset))
+    return {Kind::relative, e};
+  if (a.kind == Kind::matrix && b.kind == Kind::matrix && a.from_world != b.from_world) return derived(Kind::model_view, e, a.named ? a : b);
+  if (a.kind == Kind::model_view || b.kind == Kind::model_view) return derived(Kind::model_view, e, a.kind == Kind::model_view ? a : b);
+  // A world-to-view matrix after a matrix the tables do not know (`view * M` for glm or Eigen,
+  // `M * View` for UE): M hands it world positions, so M is a model matrix and the product is
+  // camera-relative. Not known well enough to call it camera-dependent either.
+  // A matrix the tables do not know, acting after a world matrix, takes world positions in: it
+  // may be the camera's (`cameraTransform * model`, `c_model * model`), which cancels the
+  // translation, so nothing is known of the product.
+  if (both_matrices) {
+    const Value& first = row ? a : b;
+    const Value& then = row ? b : a;
+    if (then.kind == Kind::matrix && then.from_world && first.kind == Kind::none) return {Kind::relative, e};
+    if (first.kind == Kind::matrix && !first.from_world && then.kind == Kind::none) return {};
+  }
+  Value kept = a.kind == Kind::matrix ? a : b.kind == Kind::matrix ? b : Value{};
+  if (kept.kind != Kind::none) kept.expr = e;
+  return kept;
+}
+
+bool World::negated(const Expr* e) {
+  e = strip(e);
+  if (auto* unary = dyn_cast<UnaryOperator>(e)) return unary->getOpcode() == UO_Minus;
+  auto* op = dyn_cast<CXXOperatorCallExpr>(e);
+  return op && op->getOperator() == OO_Minus && op->getNumArgs() == 1;
+}
+
+bool World::is_identity(const Expr* e) const {
+  e = strip(e);
+  if (auto* cast = dyn_cast<CXXFunctionalCastExpr>(e)) e = strip(cast->getSubExpr());
+  if (!is_matrix_type(e->getType())) return false;
+  if (auto* construct = dyn_cast<CXXConstructExpr>(e); construct && construct->getNumArgs() == 0) return true;
+  std::vector<APValue> parts = constant_parts(e);
+  return parts.size() == 1 && (parts[0].isInt() ? parts[0].getInt() == 1 : parts[0].getFloat().isExactlyValue(1.0));
+}
+
 Value World::given(const Expr* value) const { return drops_translation(value) ? Value{Kind::relative, value} : classify(value); }
 
 Value World::classify(const Expr* e, int depth) const {
@@ -480,29 +530,10 @@ Value World::classify(const Expr* e, int depth) const {
         bool a_matrix = is_matrix_type(op->getArg(0)->getType()), b_matrix = is_matrix_type(op->getArg(1)->getType());
         const Expr* point = a_matrix ? op->getArg(1) : op->getArg(0);
         if (a_matrix != b_matrix && point->getType()->isRecordType()) return transformed(a_matrix ? a : b, point, false, e);
-        // FTranslationMatrix(-PreViewTranslation) * WorldToClip: translated already.
-        if ((a.kind == Kind::camera_offset && b.kind == Kind::matrix) || (a.kind == Kind::matrix && b.kind == Kind::camera_offset))
-          return {Kind::relative, e};
-        if (a.kind == Kind::matrix && b.kind == Kind::matrix && a.from_world != b.from_world) return derived(Kind::model_view, e, a.named ? a : b);
-        if (a.kind == Kind::model_view || b.kind == Kind::model_view) return derived(Kind::model_view, e, a.kind == Kind::model_view ? a : b);
-        // A world-to-view matrix after a matrix the tables do not know (`view * M` for glm or Eigen,
-        // `M * View` for UE): M hands it world positions, so M is a model matrix and the product is
-        // camera-relative. Not known well enough to call it camera-dependent either.
-        // A matrix the tables do not know, acting after a world matrix, takes world positions in: it
-        // may be the camera's (`cameraTransform * model`, `c_model * model`), which cancels the
-        // translation, so nothing is known of the product.
-        if (a_matrix && b_matrix) {
-          bool row = is_row_vector(op->getArg(0)->getType());
-          const Value& first = row ? a : b;
-          const Value& then = row ? b : a;
-          if (then.kind == Kind::matrix && then.from_world && first.kind == Kind::none) return {Kind::relative, e};
-          if (first.kind == Kind::matrix && !first.from_world && then.kind == Kind::none) return {};
-        }
-        Value product = a.kind == Kind::matrix ? a : b.kind == Kind::matrix ? b : Value{};
-        if (product.kind != Kind::none) product.expr = e;
-        return product;
+        return product(a, b, a_matrix && b_matrix, is_row_vector(op->getArg(0)->getType()), e);
       }
       if (a.kind == Kind::position && b.kind == Kind::position && o == OO_Minus) return {Kind::relative, e};
+      if (a.kind == Kind::position && b.kind == Kind::position && negated(op->getArg(0)) != negated(op->getArg(1))) return {Kind::relative, e};  // -eye + p
       if ((a.kind == Kind::position && b.kind == Kind::camera_offset) || (a.kind == Kind::camera_offset && b.kind == Kind::position))
         return {Kind::relative, e};
       if (a.kind == Kind::position && o == OO_Minus && b.kind == Kind::none && names_a_value(op->getArg(1))) return {};
@@ -526,6 +557,7 @@ Value World::classify(const Expr* e, int depth) const {
         return {Kind::relative, e};
     Value a = classify(bin->getLHS(), depth + 1), b = classify(bin->getRHS(), depth + 1);
     if (a.kind == Kind::position && b.kind == Kind::position && bin->getOpcode() == BO_Sub) return {Kind::relative, e};
+    if (a.kind == Kind::position && b.kind == Kind::position && negated(bin->getLHS()) != negated(bin->getRHS())) return {Kind::relative, e};
     if ((a.kind == Kind::position && b.kind == Kind::camera_offset) || (a.kind == Kind::camera_offset && b.kind == Kind::position))
       return {Kind::relative, e};
     if (a.kind == Kind::position && bin->getOpcode() == BO_Sub && b.kind == Kind::none && names_a_value(bin->getRHS())) return {};
@@ -556,6 +588,28 @@ Value World::classify(const Expr* e, int depth) const {
       if (is_origin(call->getArg(0))) return {Kind::relative, e};
       Value eye = classify(call->getArg(0), depth + 1);
       return eye.kind == Kind::position ? derived(Kind::matrix, e, eye, true) : Value{};
+    }
+    // glm::translate(M, v): a move by v, then M. By a world position it places something in the
+    // world; by a negated one (`-cameraPosition`) it moves the world into the camera's frame, a
+    // world-to-view matrix. rotate(M, ...) and scale(M, ...) keep M's translation.
+    if (!isa<CXXMemberCallExpr>(call) && is_matrix_type(call->getType())) {
+      unsigned n = call->getNumArgs();
+      if (tables_.translate_calls.match(name) && (n == 1 || n == 2)) {
+        const Expr* by = call->getArg(n - 1);
+        Value v = classify(by, depth + 1);
+        Value move = v.kind == Kind::position   ? derived(Kind::matrix, e, v, negated(by))
+                     : v.kind == Kind::relative ? Value{Kind::relative, e}
+                                                : Value{Kind::none, nullptr, false, v.cut};
+        if (n == 1 || is_identity(call->getArg(0))) return move;
+        Value before = classify(call->getArg(0), depth + 1);
+        if (before.cut || move.cut) return {Kind::none, nullptr, false, true};
+        return product(before, move, true, is_row_vector(call->getType()), e);
+      }
+      if (tables_.compose_calls.match(name) && n >= 2 && is_matrix_type(call->getArg(0)->getType())) {
+        Value m = classify(call->getArg(0), depth + 1);
+        if (m.kind != Kind::none) m.expr = e;
+        return m;
+      }
     }
     if (auto* member = dyn_cast<CXXMemberCallExpr>(call)) {
       Value object = classify(member->getImplicitObjectArgument(), depth + 1);
@@ -601,7 +655,9 @@ Value World::classify(const Expr* e, int depth) const {
       if (drops_translation(var->getInit())) return {};
       Value init = classify(var->getInit(), depth + 1);
       if (init.kind != Kind::none) init.expr = e;
-      if (init.kind != Kind::none || transform) return init;
+      // A matrix built on the spot (`glm::translate(glm::dmat4(1.0), v)`) is what it was built
+      // from, whatever the local's name says.
+      if (init.kind != Kind::none || transform || builds_matrix(var->getInit())) return init;
     }
     if (said_not) return {};
     Value named = by_name(decl, ref->getType(), e);

@@ -23,6 +23,8 @@ struct Tables {
   Names from_world_calls, from_world_names;  // matrices that take world positions in (view, view-projection)
   Names transform_calls, inverse_transform_calls;  // `M.TransformPosition(p)`, `M.InverseTransformPosition(p)`
   Names look_at_calls;  // `glm::lookAt(eye, center, up)`: a world-to-view matrix with the eye's translation
+  Names translate_calls;  // `glm::translate(M, v)`: a move by v, then M
+  Names compose_calls;  // `glm::rotate(M, angle, axis)`, `glm::scale(M, s)`: M's translation kept
   Names offset_calls, offset_names;
   Names double_scalars, float_scalars, matrix_types;
   Names linear_matrix_types;  // 3x3 matrices and smaller, by name, where no template argument says so
@@ -128,6 +130,13 @@ class World {
   // The numbers `e` is made of, where each is a constant (`V3d(o + w / 2, 0, 0)` with constant `o`
   // and `w`, directly or through a local initialised with them); none otherwise.
   std::vector<clang::APValue> constant_parts(const clang::Expr* e) const;
+  // The product `a * b` of values that are matrices where `both_matrices` (else one of them may be a
+  // scalar); `row`: they act on row vectors, so `a` acts first.
+  Value product(const Value& a, const Value& b, bool both_matrices, bool row, const clang::Expr* e) const;
+  // `-p`, written so.
+  static bool negated(const clang::Expr* e);
+  // A matrix written as the identity: `glm::dmat4(1.0)`, `glm::dmat4()`.
+  bool is_identity(const clang::Expr* e) const;
   // `matrix` applied to `point` (or its inverse applied): into the world, or out of it.
   Value transformed(Value matrix, const clang::Expr* point, bool inverse, const clang::Expr* e) const;
   // A value taken from somewhere (a variable, a member, an element, a call), not made on the spot
@@ -138,6 +147,9 @@ class World {
   static bool is_direction(const clang::Expr* point);
   // `e` is a matrix applied to a point (through conversions), whatever the matrix.
   bool is_transform(const clang::Expr* e) const;
+  // `e` builds a matrix from its parts on the spot: a translate or look-at call, or a rotate or
+  // scale of one (or of the identity).
+  bool builds_matrix(const clang::Expr* e) const;
   // Whether a local is changed after its initialiser (assigned, a mutating method called for its
   // effect as `v.normalize();`, passed by reference or by address): then it no longer holds it.
   bool changed(const clang::VarDecl* var) const;
