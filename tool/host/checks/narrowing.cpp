@@ -7,6 +7,8 @@
 #include <clang/ASTMatchers/ASTMatchers.h>
 #include <clang/Lex/Lexer.h>
 
+#include <algorithm>
+
 namespace lwc::host {
 
 using namespace clang;
@@ -93,6 +95,7 @@ std::string pointer_name(const Expr* e) {
     e = e->IgnoreParenImpCasts();
     if (auto* c = dyn_cast<ExplicitCastExpr>(e)) e = c->getSubExpr();
     else if (auto* b = dyn_cast<BinaryOperator>(e); b && b->isAdditiveOp()) e = b->getLHS();
+    else if (auto* smart = dyn_cast<CXXOperatorCallExpr>(e); smart && smart->getOperator() == OO_Arrow) e = smart->getArg(0);  // ptr<T>
     else break;
   }
   const NamedDecl* named = nullptr;
@@ -123,7 +126,18 @@ struct Sink {
   bool gpu = true;  // false: a member of a struct the GPU does not read (scene data on the CPU)
   std::string through = "";  // the local it went through, if any
   const FieldDecl* decl = nullptr;  // the member, when stored in one
+  std::vector<std::string> names = {};  // what an upload call calls the value: its uniform object, a string naming it
 };
+
+// What an upload call names the value it sends: the uniform object it is a method of
+// (`worldDir->set(v)`) and the strings among its arguments (`setMat4("modelView", m)`).
+std::vector<std::string> upload_names(const CallExpr* call) {
+  std::vector<std::string> names;
+  if (auto* member = dyn_cast<CXXMemberCallExpr>(call)) names.push_back(pointer_name(member->getImplicitObjectArgument()));
+  for (const Expr* arg : call->arguments())
+    if (auto* text = dyn_cast<StringLiteral>(arg->IgnoreParenImpCasts()); text && text->isOrdinary()) names.push_back(text->getString().str());
+  return names;
+}
 
 // The GPU member an assignment's left side names.
 std::optional<Sink> assigned_to(const Expr* lhs, ASTContext& context, const GpuSinks& sinks) {
@@ -220,8 +234,8 @@ std::optional<Sink> sink_of(const Expr* e, ASTContext& context, const GpuSinks& 
       if (auto* method = dyn_cast<CXXMethodDecl>(callee); method && method->getParent()->getIdentifier())
         for (const auto& [methods, classes] : tables.upload_methods)
           if (methods.match(name) && classes.match(method->getParent()->getName().str()))
-            return Sink{"the upload `" + method->getParent()->getNameAsString() + "::" + name + "`", ""};
-      if (tables.upload_calls.match(name)) return Sink{"the upload call `" + name + "`", ""};
+            return Sink{"the upload `" + method->getParent()->getNameAsString() + "::" + name + "`", "", true, "", nullptr, upload_names(call)};
+      if (tables.upload_calls.match(name)) return Sink{"the upload call `" + name + "`", "", true, "", nullptr, upload_names(call)};
       if (tables.address_calls.match(name)) {
         current = parent;
         continue;
@@ -301,6 +315,14 @@ std::optional<Upload> find_upload(const MatchFinder::MatchResult& match, const G
   // The halves of a high/low split are narrowed on purpose (lwc-host-broken-split checks them).
   auto half = [&](const std::string& name) { return tables.high_names.match(name) || tables.low_names.match(name); };
   if (half(sink->field) || half(sink->through) || (sink->decl && writes_low_half(sink->decl, narrowing, context, tables))) return std::nullopt;
+  // Where the value goes says it is no world value (`worldDir->set(...)`, a member `LightDirection`,
+  // `setMat4("modelView", ...)`): the value's own name was trusted too far on the way.
+  // A model-view product is camera-relative and goes by such names.
+  sink->names.push_back(sink->field);
+  const Names& said_not = what.kind == Kind::position ? tables.position_not : tables.matrix_not;
+  if (what.kind != Kind::model_view &&
+      std::any_of(sink->names.begin(), sink->names.end(), [&](const std::string& n) { return !n.empty() && said_not.match(n); }))
+    return std::nullopt;
   bool vertex = sink->gpu && sink->decl && sinks.vertex_layout(sink->decl->getParent(), context);
   return Upload{narrowing, value, what, World::type_name(narrowed), sink->what, sink->field, sink->gpu, vertex};
 }
