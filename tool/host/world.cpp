@@ -647,7 +647,7 @@ Value World::classify(const Expr* e, int depth) const {
     // A name that says local, relative or translated is the author's word that it was made so
     // (perhaps after its initialiser): not followed, unless a matrix applied to a point says the frame.
     std::string name = decl->getIdentifier() ? decl->getName().str() : "";
-    bool said_not = (is_matrix_type(ref->getType()) ? tables_.matrix_not : tables_.position_not).match(name);
+    bool said_not = tables_.not_world(is_matrix_type(ref->getType())).match(name);
     // What a local was initialised with, where it says something, says more than its name (`view =
     // glm::lookAt(origin, ...)` holds a rotation only, `pos = body - eye` a difference).
     bool transform = var && var->getInit() && is_transform(var->getInit());

@@ -47,6 +47,9 @@ struct Tables {
   };
   std::vector<View> views;
 
+  // The names that say a matrix, or a position, is not a world one (`*Relative*`, `*Dir*`).
+  const Names& not_world(bool matrix) const { return matrix ? matrix_not : position_not; }
+
   // The built-in tables with a project's additions (each list under the same key extends the built-in one).
   static Tables load(const nlohmann::json& additions);
 };

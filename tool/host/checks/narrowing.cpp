@@ -319,7 +319,7 @@ std::optional<Upload> find_upload(const MatchFinder::MatchResult& match, const G
   // `setMat4("modelView", ...)`): the value's own name was trusted too far on the way.
   // A model-view product is camera-relative and goes by such names.
   sink->names.push_back(sink->field);
-  const Names& said_not = what.kind == Kind::position ? tables.position_not : tables.matrix_not;
+  const Names& said_not = tables.not_world(what.kind != Kind::position);
   if (what.kind != Kind::model_view &&
       std::any_of(sink->names.begin(), sink->names.end(), [&](const std::string& n) { return !n.empty() && said_not.match(n); }))
     return std::nullopt;
