@@ -35,6 +35,7 @@ void MemberValueCollector::register_matchers(MatchFinder& finder) {
 void MemberValueCollector::run(const MatchFinder::MatchResult& match) {
   const auto* field = match.Nodes.getNodeAs<FieldDecl>("field");
   const auto* value = match.Nodes.getNodeAs<Expr>("value");
+  if (in_template_pattern(match.Nodes)) return;
   World world(tables_, *match.Context);
   Value named = world.by_name(field, field->getType(), value);
   if (named.kind == Kind::none) return;

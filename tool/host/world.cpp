@@ -127,6 +127,7 @@ const Expr* strip(const Expr* e) {
 }
 
 std::string World::type_name(QualType type) {
+  if (type.isNull()) return "";  // a parenthesised initialiser in a template's pattern has no type
   type = type.getNonReferenceType();
   if (type->isPointerType()) type = type->getPointeeType();
   type = type.getCanonicalType().getUnqualifiedType();
@@ -136,7 +137,7 @@ std::string World::type_name(QualType type) {
 }
 
 char World::scalar(QualType type) const {
-  for (int depth = 0; depth < 6; ++depth) {
+  for (int depth = 0; depth < 6 && !type.isNull(); ++depth) {
     type = type.getNonReferenceType().getCanonicalType();
     if (auto* array = dyn_cast<ConstantArrayType>(type.getTypePtr())) {
       type = array->getElementType();
@@ -182,6 +183,7 @@ char World::scalar(QualType type) const {
 
 std::vector<int64_t> template_numbers(QualType type) {
   std::vector<int64_t> numbers;
+  if (type.isNull()) return numbers;
   if (auto* spec = dyn_cast_or_null<ClassTemplateSpecializationDecl>(type.getNonReferenceType()->getAsCXXRecordDecl()))
     for (const TemplateArgument& a : spec->getTemplateArgs().asArray())
       if (a.getKind() == TemplateArgument::Integral) numbers.push_back(a.getAsIntegral().getExtValue());
@@ -197,6 +199,7 @@ bool World::is_matrix_type(QualType type) const {
 
 int World::components(QualType type) {
   // What a pointer points to (`origin->x` of a game object reached by pointer); a C struct is a record too.
+  if (type.isNull()) return -1;
   type = type.getNonReferenceType();
   if (type->isPointerType()) type = type->getPointeeType();
   if (auto* vector = type->getAs<VectorType>()) return int(vector->getNumElements());
@@ -235,6 +238,7 @@ bool World::may_hold_position(QualType type) {
 }
 
 bool World::is_linear_only(QualType type) const {
+  if (type.isNull()) return false;
   if (tables_.linear_matrix_types.match(type_name(type))) return true;  // glm 0.9.8's tmat3x3, OSG's Matrix3
   if (!is_matrix_type(type)) return false;
   std::vector<int64_t> extents = template_numbers(type);
@@ -501,11 +505,24 @@ bool World::is_identity(const Expr* e) const {
   return parts.size() == 1 && (parts[0].isInt() ? parts[0].getInt() == 1 : parts[0].getFloat().isExactlyValue(1.0));
 }
 
-Value World::given(const Expr* value) const { return drops_translation(value) ? Value{Kind::relative, value} : classify(value); }
+Value World::given(const Expr* value) const {
+  if (!typed(value)) return {};
+  return drops_translation(value) ? Value{Kind::relative, value} : classify(value);
+}
+
+bool World::typed(const Expr* e) { return e && !e->getType().isNull() && !e->isTypeDependent(); }
+
+bool in_template_pattern(const ast_matchers::BoundNodes& nodes) {
+  for (const auto& [id, node] : nodes.getMap()) {
+    if (auto* e = node.get<Expr>(); e && (e->isInstantiationDependent() || e->getType().isNull())) return true;
+    if (auto* v = node.get<ValueDecl>(); v && (v->getType().isNull() || v->getType()->isDependentType())) return true;
+  }
+  return false;
+}
 
 Value World::classify(const Expr* e, int depth) const {
   e = strip(e);
-  if (!e) return {};
+  if (!typed(e)) return {};  // a template's pattern: its instantiations are classified
   // Every step counts (a cast, a member, a local's initialiser), so real chains of locals take
   // ten or more; the products and sums on the way branch, so the limit also bounds the work.
   constexpr int max_steps = 12;

@@ -5,6 +5,7 @@
 
 #include <clang/AST/ASTContext.h>
 #include <clang/AST/Expr.h>
+#include <clang/ASTMatchers/ASTMatchers.h>
 #include <nlohmann/json.hpp>
 
 namespace lwc::host {
@@ -124,6 +125,9 @@ class World {
   bool is_row_vector(clang::QualType type) const;
   // The type's name without qualifiers, namespace or template arguments (`FVector3f`, `vec`).
   static std::string type_name(clang::QualType type);
+  // `e` has a known type: in a template's pattern an expression's type may depend on the
+  // template's arguments or be missing (a parenthesised initialiser); the instantiations are read.
+  static bool typed(const clang::Expr* e);
   // The source text of a range, as written.
   std::string text(clang::SourceRange range) const;
   const Tables& tables() const { return tables_; }
@@ -183,5 +187,9 @@ std::vector<int64_t> template_numbers(clang::QualType type);
 
 // Skips what does not change a value: parentheses, implicit casts, temporaries, copies.
 const clang::Expr* strip(const clang::Expr* e);
+
+// A match in a template's pattern that involves a dependent expression or declaration: left to
+// the instantiations, where every type is known (each check's callback starts with it).
+bool in_template_pattern(const clang::ast_matchers::BoundNodes& nodes);
 
 }  // namespace lwc::host

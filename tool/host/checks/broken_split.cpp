@@ -109,6 +109,7 @@ class BrokenSplit : public Check {
   }
 
   void run(const MatchFinder::MatchResult& match) override {
+    if (in_template_pattern(match.Nodes)) return;
     World world(tables_, *match.Context);
     std::string target;
     const Expr* value = nullptr;

@@ -59,6 +59,7 @@ class FastMath : public Check {
   }
 
   void run(const MatchFinder::MatchResult& match) override {
+    if (in_template_pattern(match.Nodes)) return;
     const SourceManager& sm = *match.SourceManager;
     const LangOptions& lang = match.Context->getLangOpts();
     if (auto* compile = match.Nodes.getNodeAs<CXXMemberCallExpr>("compile")) {

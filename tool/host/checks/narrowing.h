@@ -69,6 +69,7 @@ struct NarrowingFan : clang::ast_matchers::MatchFinder::MatchCallback {
   GpuSinks sinks;
   std::vector<UploadCheck*> checks;
   void run(const clang::ast_matchers::MatchFinder::MatchResult& match) override {
+    if (in_template_pattern(match.Nodes)) return;
     if (std::optional<Upload> up = find_upload(match, sinks))
       for (UploadCheck* check : checks) check->upload(*up, match);
   }
