@@ -374,15 +374,30 @@ void ReportWriter::finish() {
       else
         out_ << fmt::format("Found {} finding(s) in {} file(s): {} error(s), {} warning(s), {} note(s).\n", total, files_,
                             errors_, warnings_, notes_);
+      out_ << units_line();
       break;
     case Format::json:
-      out_ << (first_ ? "]" : "\n ]") << ",\n \"files\": " << files_ << ",\n \"summary\": "
-           << nlohmann::json({{"error", errors_}, {"warning", warnings_}, {"note", notes_}}).dump() << "\n}\n";
+      out_ << (first_ ? "]" : "\n ]") << ",\n \"files\": " << files_;
+      if (options_.units) out_ << ",\n \"units\": " << units_json().dump();
+      out_ << ",\n \"summary\": " << nlohmann::json({{"error", errors_}, {"warning", warnings_}, {"note", notes_}}).dump() << "\n}\n";
       break;
     case Format::sarif: out_ << (first_ ? "" : "\n") << sarif_frame(options_).second << '\n'; break;
     case Format::github: break;
   }
   out_.flush();
+}
+
+// `lwcport host`: the translation units, which the files (units and the headers with findings) do not count.
+nlohmann::json ReportWriter::units_json() const {
+  const UnitCounts& u = *options_.units;
+  return {{"analysed", u.analysed}, {"failed", u.failed}, {"crashed", u.crashed}, {"skipped", u.skipped}};
+}
+
+std::string ReportWriter::units_line() const {
+  if (!options_.units) return "";
+  const UnitCounts& u = *options_.units;
+  return fmt::format("Translation units: {} analysed, {} Clang could not compile, {} where the analysis crashed, {} skipped (not on disk).\n",
+                     u.analysed, u.failed, u.crashed, u.skipped);
 }
 
 // --statistics: per rule, most findings first, how many and how many a fix covers (safe / unsafe).
@@ -392,13 +407,15 @@ void ReportWriter::write_statistics() {
   if (options_.format == Format::json) {
     nlohmann::json list = nlohmann::json::array();
     for (const auto& [rule, c] : rows) list.push_back({{"rule", rule}, {"findings", c.findings}, {"safe_fixes", c.safe}, {"unsafe_fixes", c.unsafe}});
-    out_ << json_text({{"version", 1}, {"statistics", list}, {"files", files_},
-                       {"summary", {{"error", errors_}, {"warning", warnings_}, {"note", notes_}}}}, 1) << '\n';
+    nlohmann::json all = {{"version", 1}, {"statistics", list}, {"files", files_}, {"summary", {{"error", errors_}, {"warning", warnings_}, {"note", notes_}}}};
+    if (options_.units) all["units"] = units_json();
+    out_ << json_text(all, 1) << '\n';
   } else {
     out_ << fmt::format("{:>8}  {:<26} {:>9} {:>9}\n", "FINDINGS", "RULE", "SAFE FIX", "UNSAFE");
     for (const auto& [rule, c] : rows) out_ << fmt::format("{:>8}  {:<26} {:>9} {:>9}\n", c.findings, rule, c.safe, c.unsafe);
     out_ << fmt::format("{} finding(s) in {} file(s): {} error(s), {} warning(s), {} note(s).\n", errors_ + warnings_ + notes_,
                         files_, errors_, warnings_, notes_);
+    out_ << units_line();
   }
   out_.flush();
 }

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/finding.h"
+#include "core/unit_counts.h"
 #include "core/source.h"
 
 namespace lwc {
@@ -83,6 +84,7 @@ struct ReportOptions {
   bool statistics = false;  // text or json: per-rule counts instead of each finding
   std::string working_dir;  // absolute, for SARIF's base URI
   std::string help_uri_base;  // where the rule pages are ("" for the installed pages): SARIF's helpUri
+  std::optional<UnitCounts> units;  // `lwcport host`: its translation units, counted in the summary
 };
 
 // Writes a report file by file, in the order given, so no run holds every finding at once.
@@ -96,6 +98,8 @@ class ReportWriter {
  private:
   void begin();
   void write_statistics();
+  nlohmann::json units_json() const;
+  std::string units_line() const;
   struct RuleCount {
     size_t findings = 0, safe = 0, unsafe = 0;
   };

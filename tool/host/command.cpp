@@ -117,7 +117,13 @@ int run_host(const Options& o, std::ostream& out, std::ostream& err) {
     }
     err << fmt::format("Fixed {} finding(s) in {} file(s).\n", fixed, files.size());
   }
-  LintOutput output(o, out, err);
+  for (const std::string& note : result.notes) err << "lwcport: note: " << note << '\n';
+  if (!result.skipped.empty())
+    err << fmt::format("lwcport: note: {} unit(s) of the compilation database are not on disk (sources the build generates?) and were "
+                       "skipped, first {}\n", result.skipped.size(), result.skipped.front());
+  Options with_units = o;
+  with_units.report.units = result.counts;
+  LintOutput output(with_units, out, err);
   if (!output.open(*configs)) return 2;
   std::map<std::string, Source> sources;  // every file, for the edits a fix makes in another one
   for (const HostFile& file : result.files) sources.emplace(file.path, Source(file.path, file.text));

@@ -10,16 +10,16 @@
 #include <clang/Tooling/Tooling.h>
 #include <fmt/format.h>
 
-#include <atomic>
 #include <filesystem>
-#include <mutex>
-#include <thread>
+#include <set>
 #include <tuple>
 
 #include "host/check.h"
 #include "host/checks/narrowing.h"
+#include "host/isolate.h"
 #include "host/host.h"
 #include "host/member_values.h"
+#include "host/unit_result.h"
 #include "project/files.h"
 #include "rules/analyze.h"
 
@@ -27,6 +27,7 @@ namespace lwc {
 
 namespace fs = std::filesystem;
 using namespace clang;
+
 
 bool HostOptions::enabled(const std::string& rule) const {
   return (select.empty() || select.count(rule)) && !ignore.count(rule);
@@ -154,6 +155,55 @@ class Diagnostics : public DiagnosticConsumer {
  private:
   fs::path cwd_;
 };
+
+// The arguments every unit is compiled with, on top of its own command.
+void adjust_arguments(tooling::ClangTool& tool, std::vector<std::string>& notes) {
+  using tooling::ArgumentInsertPosition;
+  // CMake's precompiled header (`-Xclang -include-pch -Xclang X.pch`) is a file the build makes, in
+  // the format of the compiler that made it: the header it was made from is read instead.
+  tool.appendArgumentsAdjuster([&notes](const tooling::CommandLineArguments& args, StringRef) {
+    tooling::CommandLineArguments kept;
+    std::string pch;
+    std::set<std::string> included;
+    for (size_t k = 0; k < args.size(); ++k) {
+      bool wrapped = args[k] == "-Xclang" && k + 3 < args.size() && args[k + 1] == "-include-pch" && args[k + 2] == "-Xclang";
+      if (wrapped || (args[k] == "-include-pch" && k + 1 < args.size())) {
+        pch = args[wrapped ? k + 3 : k + 1];
+        k += wrapped ? 3 : 1;
+        continue;
+      }
+      if (args[k] == "-include" && k + 1 < args.size()) included.insert(args[k + 1] == "-Xclang" && k + 2 < args.size() ? args[k + 2] : args[k + 1]);
+      kept.push_back(args[k]);
+    }
+    if (pch.empty()) return kept;
+    std::string header = pch;
+    for (const char* ext : {".pch", ".gch"})
+      if (StringRef(header).ends_with(ext)) header.resize(header.size() - 4);
+    if (included.count(header)) {
+      notes.push_back(fmt::format("the precompiled header {} is not read: the header it was made from is, as the unit's command includes it", pch));
+    } else if (header != pch && llvm::sys::fs::exists(header)) {
+      kept.insert(kept.begin() + 1, {"-include", header});  // after the compiler's name
+      notes.push_back(fmt::format("the precompiled header {} is not read: {}, which it was made from, is included in its place", pch, header));
+    } else {
+      notes.push_back(fmt::format("the precompiled header {} is not read, and no header it was made from was found: units that rely on it may not compile", pch));
+    }
+    return kept;
+  });
+  tool.appendArgumentsAdjuster(tooling::getInsertArgumentAdjuster("-resource-dir=" LWCPORT_CLANG_RESOURCE_DIR, ArgumentInsertPosition::END));
+  // Our finding reports a unit's first error: no caret diagnostics, no "N errors generated", no
+  // "Error while processing".
+  tool.appendArgumentsAdjuster(tooling::getInsertArgumentAdjuster("-fno-caret-diagnostics", ArgumentInsertPosition::END));
+  // Compiler warnings are not our findings, and a project's -Werror must not turn one that this
+  // Clang gives (and the project's own compiler may not) into a unit we cannot read.
+  tool.appendArgumentsAdjuster(tooling::getInsertArgumentAdjuster("-w", ArgumentInsertPosition::END));
+  // Nor may what Clang 19 makes an error by default where GCC, and the Clang a project was written
+  // for, only warn (docs/host.md lists them): `register` in C++17 (osgEarth's bundled libraries),
+  // an enumeration given a value outside its range in a constant (Boost 1.74's MPL), and C's
+  // implicit declarations, implicit int and pointer conversions.
+  for (const char* flag : {"-Wno-register", "-Wno-enum-constexpr-conversion", "-Wno-error=implicit-function-declaration", "-Wno-error=implicit-int",
+                           "-Wno-error=int-conversion", "-Wno-error=incompatible-function-pointer-types"})
+    tool.appendArgumentsAdjuster(tooling::getInsertArgumentAdjuster(flag, ArgumentInsertPosition::END));
+}
 
 class CommentCollector : public CommentHandler {
  public:
@@ -288,11 +338,52 @@ HostResult analyze_host(const HostOptions& options) {
   };
 
   host::Tables tables = host::Tables::load(options.tables);
-  std::mutex merge;
+  // One unit, in a process of its own (isolate.h): what it gives the run, as bytes.
+  auto analyze_unit = [&](size_t i) {
+    host::Reporter out(reported);
+    for (const tooling::CompileCommand& c : databases[i]->getCompileCommands(sources[i])) out.command = c.CommandLine;
+    std::vector<std::unique_ptr<host::Check>> checks;
+    ast_matchers::MatchFinder finder;
+    host::NarrowingFan narrowings(tables);  // the checks that read uploads share one set of matchers
+    for (const RuleInfo& rule : all_rules()) {
+      auto factory = host::check_factories().find(rule.id);
+      if (!rule.host || !options.enabled(rule.id) || factory == host::check_factories().end()) continue;
+      checks.push_back(factory->second(rule, tables, out));
+      checks.back()->register_matchers(finder);
+      if (auto* reads_uploads = dynamic_cast<host::UploadCheck*>(checks.back().get())) narrowings.checks.push_back(reads_uploads);
+    }
+    host::MemberValueCollector given(tables);
+    if (!narrowings.checks.empty()) {
+      host::register_narrowings(finder, &narrowings, tables);
+      given.register_matchers(finder);
+    }
+    // A file system of its own, with its own working directory: Clang works in each command's folder.
+    tooling::ClangTool tool(*databases[i], {sources[i]}, std::make_shared<PCHContainerOperations>(), llvm::vfs::createPhysicalFileSystem());
+    host::UnitResult unit;
+    host::adjust_arguments(tool, unit.notes);
+    tool.setPrintErrorMessage(false);
+    host::Diagnostics diagnostics(cwd);
+    tool.setDiagnosticConsumer(&diagnostics);
+    host::ActionFactory factory(finder, out);
+    int status = tool.run(&factory);
+    if (status != 0 || !diagnostics.first.empty()) unit.error = diagnostics.first.empty() ? "no compile command" : diagnostics.first;
+    unit.given = std::move(given.values);
+    for (auto& [path, f] : out.files()) {
+      HostFile& into = unit.files[path];
+      into.text = std::move(f.text);
+      into.comments = std::move(f.comments);
+      for (size_t k = 0; k < f.findings.size(); ++k) {
+        if (f.rests_on[k].empty()) into.findings.push_back(std::move(f.findings[k]));
+        else unit.resting.push_back({path, std::move(f.findings[k]), f.rests_on[k]});
+      }
+    }
+    return host::to_bytes(unit);
+  };
+
   std::map<std::string, HostFile> files;
   // Findings that rest on a member's name alone wait for every unit's values for that member.
   host::MemberValues member_values;
-  std::map<std::string, std::vector<std::pair<Finding, std::string>>> resting;  // by file: the finding, its member
+  std::vector<host::RestingFinding> resting;
   auto add_finding = [](HostFile& into, Finding&& finding) {
     // A header included by several units: each finding once.
     bool known = std::any_of(into.findings.begin(), into.findings.end(), [&](const Finding& g) {
@@ -300,80 +391,67 @@ HostResult analyze_host(const HostOptions& options) {
     });
     if (!known) into.findings.push_back(std::move(finding));
   };
-  std::atomic<size_t> next = 0;
-  auto work = [&] {
-    for (size_t i; (i = next++) < sources.size();) {
-      host::Reporter out(reported);
-      for (const tooling::CompileCommand& c : databases[i]->getCompileCommands(sources[i])) out.command = c.CommandLine;
-      std::vector<std::unique_ptr<host::Check>> checks;
-      ast_matchers::MatchFinder finder;
-      host::NarrowingFan narrowings(tables);  // the checks that read uploads share one set of matchers
-      for (const RuleInfo& rule : all_rules()) {
-        auto factory = host::check_factories().find(rule.id);
-        if (!rule.host || !options.enabled(rule.id) || factory == host::check_factories().end()) continue;
-        checks.push_back(factory->second(rule, tables, out));
-        checks.back()->register_matchers(finder);
-        if (auto* reads_uploads = dynamic_cast<host::UploadCheck*>(checks.back().get())) narrowings.checks.push_back(reads_uploads);
-      }
-      host::MemberValueCollector given(tables);
-      if (!narrowings.checks.empty()) {
-        host::register_narrowings(finder, &narrowings, tables);
-        given.register_matchers(finder);
-      }
-      // A file system of its own, with its own working directory: Clang works in each command's
-      // folder, and threads must not move one process-wide working directory under each other.
-      tooling::ClangTool tool(*databases[i], {sources[i]}, std::make_shared<PCHContainerOperations>(), llvm::vfs::createPhysicalFileSystem());
-      tool.appendArgumentsAdjuster(tooling::getInsertArgumentAdjuster("-resource-dir=" LWCPORT_CLANG_RESOURCE_DIR,
-                                                                      tooling::ArgumentInsertPosition::END));
-      // Our finding reports a unit's first error: no caret diagnostics, no "N errors generated", no
-      // "Error while processing".
-      tool.appendArgumentsAdjuster(tooling::getInsertArgumentAdjuster("-fno-caret-diagnostics", tooling::ArgumentInsertPosition::END));
-      // Compiler warnings are not our findings, and a project's -Werror must not turn one that this
-      // Clang gives (and the project's own compiler may not) into a unit we cannot read.
-      tool.appendArgumentsAdjuster(tooling::getInsertArgumentAdjuster("-w", tooling::ArgumentInsertPosition::END));
-      // Nor may the one warning Clang makes an error by default where GCC only warns: `register` in
-      // C++17, which older code keeps (osgEarth's bundled libraries).
-      tool.appendArgumentsAdjuster(tooling::getInsertArgumentAdjuster("-Wno-register", tooling::ArgumentInsertPosition::END));
-      tool.setPrintErrorMessage(false);
-      host::Diagnostics diagnostics(cwd);
-      tool.setDiagnosticConsumer(&diagnostics);
-      host::ActionFactory factory(finder, out);
-      int status = tool.run(&factory);
-      std::lock_guard lock(merge);
-      ++result.units;
-      if (status != 0 || !diagnostics.first.empty()) {
-        HostFile& main = files[sources[i]];
-        if (main.text.empty()) main.text = read_file(sources[i], SIZE_MAX).text;
-        main.findings.push_back(input_finding(Severity::error, 0,
-                                              "Clang could not compile this translation unit: " +
-                                                  (diagnostics.first.empty() ? std::string("no compile command") : diagnostics.first),
-                                              "give its compile flags: -p BUILD_DIR (compile_commands.json) or after `--`; "
-                                              "findings in the code Clang could read are still reported"));
-      }
-      // Every unit's own file is reported on (and counted), findings or not.
-      if (!out.files().count(sources[i]) && !files.count(sources[i])) files[sources[i]].text = read_file(sources[i], SIZE_MAX).text;
-      for (auto& [key, counts] : given.values) {
-        host::GivenValues& all = member_values[key];
-        all.world += counts.world, all.not_world += counts.not_world;
-      }
-      for (auto& [path, f] : out.files()) {
-        HostFile& into = files[path];
-        if (into.text.empty()) into.text = f.text;
-        for (size_t k = 0; k < f.findings.size(); ++k) {
-          if (!f.rests_on[k].empty()) resting[path].emplace_back(std::move(f.findings[k]), f.rests_on[k]);
-          else add_finding(into, std::move(f.findings[k]));
-        }
-        if (into.comments.empty()) into.comments = std::move(f.comments);
-      }
-    }
+  // Every unit's own file is reported on (and counted), findings or not.
+  auto unit_file = [&](size_t i) -> HostFile& {
+    HostFile& main = files[sources[i]];
+    if (main.text.empty()) main.text = read_file(sources[i], SIZE_MAX).text;
+    return main;
   };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < std::max(1u, options.jobs); ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
-  for (auto& [path, waiting] : resting)
-    for (auto& [finding, member] : waiting)
-      if (!member_values[member].overturn_name()) add_finding(files[path], std::move(finding));
+  auto merge = [&](size_t i, host::UnitResult&& unit) {
+    if (!unit.error.empty()) {
+      ++result.counts.failed;
+      unit_file(i).findings.push_back(input_finding(Severity::error, 0, "Clang could not compile this translation unit: " + unit.error,
+                                                    "give its compile flags: -p BUILD_DIR (compile_commands.json) or after `--`; "
+                                                    "findings in the code Clang could read are still reported"));
+    } else {
+      ++result.counts.analysed;
+    }
+    for (std::string& note : unit.notes) result.notes.insert(std::move(note));
+    for (auto& [key, counts] : unit.given) {
+      host::GivenValues& all = member_values[key];
+      all.world += counts.world, all.not_world += counts.not_world;
+    }
+    for (auto& [path, f] : unit.files) {
+      HostFile& into = files[path];
+      if (into.text.empty()) into.text = std::move(f.text);
+      for (Finding& finding : f.findings) add_finding(into, std::move(finding));
+      if (into.comments.empty()) into.comments = std::move(f.comments);
+    }
+    unit_file(i);
+    std::move(unit.resting.begin(), unit.resting.end(), std::back_inserter(resting));
+  };
+  auto stopped = [&](size_t i, const std::string& why) {
+    ++result.counts.crashed;
+    unit_file(i).findings.push_back(input_finding(Severity::error, 0, "lwcport could not analyse this translation unit: " + why +
+                                                      "; nothing from it is reported, the run's other units are",
+                                                  "a bug in lwcport: please report it with this unit's compile command "
+                                                  "(`lwcport host` on this file alone shows it again)"));
+  };
+  // A unit the database lists but the disk does not hold yet (a source the build generates).
+  std::vector<size_t> to_run;
+  for (size_t i = 0; i < sources.size(); ++i) {
+    if (fs::is_regular_file(sources[i], ec)) to_run.push_back(i);
+    else result.skipped.push_back(host::shown(sources[i], cwd));
+  }
+  result.counts.skipped = result.skipped.size();
+  auto done = [&](size_t k, std::string&& bytes) {
+    host::UnitResult unit;
+    try {
+      unit = host::from_bytes(bytes);
+    } catch (const std::exception&) {
+      return stopped(to_run[k], "its results could not be read back");
+    }
+    merge(to_run[k], std::move(unit));
+  };
+  if (options.isolate) {
+    host::run_isolated(to_run.size(), options.jobs, options.unit_cpu_seconds, [&](size_t k) { return analyze_unit(to_run[k]); }, done,
+                       [&](size_t k, const std::string& why) { stopped(to_run[k], why); });
+  } else {
+    for (size_t k = 0; k < to_run.size(); ++k) done(k, analyze_unit(to_run[k]));
+  }
+  result.units = to_run.size();
+  for (host::RestingFinding& r : resting)
+    if (!member_values[r.member].overturn_name()) add_finding(files[r.path], std::move(r.finding));
   if (sources.empty() && result.errors.empty()) result.errors.push_back("no C++ sources to analyse");
   for (auto& [path, f] : files) {
     f.path = host::shown(path, cwd);

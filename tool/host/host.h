@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/finding.h"
+#include "core/unit_counts.h"
 
 namespace lwc {
 
@@ -18,6 +19,11 @@ struct HostOptions {
   std::set<std::string> select, ignore;  // as lint's
   nlohmann::json tables = nlohmann::json::object();  // .lwcport.json "host": additions to rules/host-world.json
   unsigned jobs = 1;
+  // Each unit in a process of its own, so that a crash costs that unit only; off, every unit runs
+  // in this process (the fuzz target, where a crash must stop it for the sanitizers to see).
+  bool isolate = true;
+  // An isolated unit that runs longer is stopped and reported (a unit parses in seconds; only a bug loops).
+  unsigned unit_cpu_seconds = 600;
   bool enabled(const std::string& rule) const;
 };
 
@@ -31,7 +37,10 @@ struct HostFile {
 
 struct HostResult {
   std::vector<HostFile> files;  // sorted by path
-  size_t units = 0;             // translation units parsed
+  size_t units = 0;             // translation units run
+  UnitCounts counts;
+  std::vector<std::string> skipped;  // the skipped units, as the user would name them
+  std::set<std::string> notes;  // what the run changed in units' commands, and why
   std::vector<std::string> errors;  // what stopped the run from starting (no database, no sources)
 };
 
