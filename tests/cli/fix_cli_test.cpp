@@ -75,16 +75,28 @@ TEST(FixCli, ReplaceFileRefusesAFileThatChangedSinceItWasRead) {
 TEST(FixCli, AnEditSavedWhileFixWritesIsNeverLost) {
   std::string dir = test::scratch("fix-race");
   std::string path = dir + "/a.usf";
-  auto save_in_place = [](const std::string& p, const std::string& text) {
+  auto write_through = [](int fd, const std::string& text) {
+    ASSERT_EQ(::ftruncate(fd, 0), 0);
+    EXPECT_EQ(::pwrite(fd, text.data(), text.size(), 0), static_cast<ssize_t>(text.size()));
+  };
+  auto save_in_place = [&](const std::string& p, const std::string& text) {
     int fd = ::open(p.c_str(), O_WRONLY | O_TRUNC);
     if (fd >= 0) {
-      EXPECT_EQ(::write(fd, text.data(), text.size()), static_cast<ssize_t>(text.size()));
+      write_through(fd, text);
       ::close(fd);
     }
   };
   auto save_by_rename = [](const std::string& p, const std::string& text) {
     test::write(p + ".save", text);
     ::rename((p + ".save").c_str(), p.c_str());
+  };
+  // An editor that opens the file, keeps it open across the fix, then saves through that descriptor.
+  auto save_through_open_descriptor = [&](const std::string& p, const std::string& text, long hold) {
+    int fd = ::open(p.c_str(), O_RDWR);
+    if (fd < 0) return;
+    std::this_thread::sleep_for(std::chrono::microseconds(hold));
+    write_through(fd, text);
+    ::close(fd);
   };
   // How long one replacement takes here (the fastest of 5): saves are spread over twice that.
   long fastest = 1L << 40;
@@ -101,10 +113,12 @@ TEST(FixCli, AnEditSavedWhileFixWritesIsNeverLost) {
     test::write(path, "original\n");
     std::string edit = "edit " + std::to_string(trial) + "\n";
     long delay = std::uniform_int_distribution<long>(0, span)(random);
+    long hold = std::uniform_int_distribution<long>(0, 2 * span)(random);
     std::thread editor([&] {
       std::this_thread::sleep_for(std::chrono::microseconds(delay));
-      if (trial % 2) save_in_place(path, edit);
-      else save_by_rename(path, edit);
+      if (trial % 3 == 0) save_in_place(path, edit);
+      else if (trial % 3 == 1) save_by_rename(path, edit);
+      else save_through_open_descriptor(path, edit, hold);
     });
     std::string why = replace_file(path, "original\n", "fixed\n");
     editor.join();
@@ -115,23 +129,50 @@ TEST(FixCli, AnEditSavedWhileFixWritesIsNeverLost) {
   for (const auto& e : fs::directory_iterator(dir)) EXPECT_EQ(e.path().filename().string().find(".lwcport-"), std::string::npos) << e.path();
 }
 
-// A program holding the file open for writing could write into the old file after the swap: such
-// a file is left alone, and one only open for reading is not.
-TEST(FixCli, AFileOpenForWritingElsewhereIsNotReplaced) {
+// The race a swap leaves open, made to happen every time: an editor finds the file by name before
+// the fix (here an O_PATH descriptor: the lookup, without opening) and opens it for writing only
+// after the fix is done. Written in place, there is one file, and the save lands in it; a new file
+// swapped in would leave the save in the old one, which no one reads.
+TEST(FixCli, AnEditorThatFoundTheFileBeforeTheFixSavesIntoIt) {
+  std::string path = test::scratch("fix-found-before") + "/a.usf";
+  test::write(path, "original\n");
+  int found = ::open(path.c_str(), O_PATH);
+  ASSERT_GE(found, 0);
+  EXPECT_EQ(replace_file(path, "original\n", "fixed\n"), "");
+  EXPECT_EQ(test::read(path), "fixed\n");
+  int fd = ::open(("/proc/self/fd/" + std::to_string(found)).c_str(), O_WRONLY | O_TRUNC);
+  ASSERT_GE(fd, 0);
+  EXPECT_EQ(::write(fd, "edit\n", 5), 5);
+  ::close(fd);
+  ::close(found);
+  EXPECT_EQ(test::read(path), "edit\n");
+}
+
+// A program holding the file open could write to it after the fix: such a file is left alone,
+// whether it is open for writing or only for reading, and written once it is closed.
+TEST(FixCli, AFileOpenInAnotherProgramIsNotChanged) {
   std::string path = test::scratch("fix-open") + "/a.usf";
   test::write(path, "original\n");
+  const std::string refused = "open in another program; not changed (close it and run lwcport fix again)";
   int writer = ::open(path.c_str(), O_WRONLY);
   ASSERT_GE(writer, 0);
-  EXPECT_EQ(replace_file(path, "original\n", "fixed\n"), "open for writing in another program; not changed (close it and run lwcport fix again)");
+  EXPECT_EQ(replace_file(path, "original\n", "fixed\n"), refused);
   ASSERT_EQ(::ftruncate(writer, 0), 0);
   EXPECT_EQ(::write(writer, "edited\n", 7), 7);
   ::close(writer);
   EXPECT_EQ(test::read(path), "edited\n");
   int reader = ::open(path.c_str(), O_RDONLY);
   ASSERT_GE(reader, 0);
-  EXPECT_EQ(replace_file(path, "edited\n", "fixed\n"), "");
+  EXPECT_EQ(replace_file(path, "edited\n", "fixed\n"), refused);
   ::close(reader);
+  struct stat before, after;
+  ASSERT_EQ(::stat(path.c_str(), &before), 0);
+  EXPECT_EQ(replace_file(path, "edited\n", "fixed\n"), "");
   EXPECT_EQ(test::read(path), "fixed\n");
+  // Written in place, under the lease: the same file, nothing left beside it.
+  ASSERT_EQ(::stat(path.c_str(), &after), 0);
+  EXPECT_EQ(after.st_ino, before.st_ino);
+  for (const auto& e : fs::directory_iterator(fs::path(path).parent_path())) EXPECT_EQ(e.path().filename().string(), "a.usf");
 }
 
 // Interrupted at any moment, fix leaves no temporary file behind: each file is either the old or

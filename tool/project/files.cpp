@@ -159,7 +159,7 @@ constexpr int kTempSlots = 64;
 char temp_paths[kTempSlots][4096];
 std::atomic<bool> temp_used[kTempSlots];
 std::atomic<bool> dying{false};   // a signal came: create no more
-std::atomic<int> creating{0};     // temporary files being created and not yet in a slot
+std::atomic<int> uninterrupted{0};     // temporary files being created and not yet in a slot, or files being written in place
 
 // Blocks the interrupting signals in the calling thread; returns the mask to restore.
 sigset_t block_interrupts() {
@@ -170,20 +170,21 @@ sigset_t block_interrupts() {
   return old;
 }
 
+// A stretch of work no interrupt may cut in two: no signal in this thread meanwhile, and the
+// handler (on another thread) waits for it to end before it removes the temporary files and dies.
+struct Uninterrupted {
+  sigset_t old = block_interrupts();
+  Uninterrupted() { ++uninterrupted; }
+  ~Uninterrupted() {
+    --uninterrupted;
+    ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
+  }
+};
+
 // Creates a temporary file from `name` (a mkstemp template, given back with the file's name).
 // mkstemp fills in the name inside its slot, so a signal at any moment finds it there.
 int make_temp(std::string& name, int& slot) {
-  // No signal in this thread while the file is made and recorded; the handler (on another
-  // thread) waits for `creating` to drop before it removes what is recorded.
-  sigset_t old = block_interrupts();
-  ++creating;
-  struct Done {
-    sigset_t old;
-    ~Done() {
-      --creating;
-      ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
-    }
-  } done{old};
+  Uninterrupted while_recorded;
   if (dying) {
     errno = EINTR;
     return -1;
@@ -207,7 +208,7 @@ void release_temp(int slot) {
 
 extern "C" void remove_temps_and_die(int sig) {
   dying = true;
-  while (creating.load() > 0) {
+  while (uninterrupted.load() > 0) {
   }
   for (int i = 0; i < kTempSlots; ++i)
     if (temp_used[i].load()) ::unlink(temp_paths[i]);
@@ -287,12 +288,15 @@ void remove_temporary_files_on_signals() {
   }
 }
 
-// A read lease on `fd` (open read-only): the kernel refuses it while the file is open for writing
-// anywhere, and breaks it when anyone opens the file for writing or truncates it, holding that
-// opener back until the lease is released. So while it is held, an edit cannot start unseen.
-enum class Lease { held, open_for_writing, unavailable };
+namespace {
 
-Lease take_read_lease(int fd) {
+// A lease: the kernel tells (and holds back) whoever opens the file while it is held. A write
+// lease is refused while anyone else has the file open at all, and holds back every later opener
+// until it is released; a read lease is refused while it is open for writing, and holds back
+// openers for writing.
+enum class Lease { held, open_elsewhere, unavailable };
+
+Lease take_lease(int fd, int type) {
   // A broken lease is announced with SIGIO, whose default action ends the process; we poll instead.
   static const bool ignored = [] {
     struct sigaction action {};
@@ -300,66 +304,134 @@ Lease take_read_lease(int fd) {
     return ::sigaction(SIGIO, &action, nullptr) == 0;
   }();
   if (!ignored) return Lease::unavailable;
-  if (::fcntl(fd, F_SETLEASE, F_RDLCK) == 0) return Lease::held;
-  // EAGAIN: open for writing elsewhere. EACCES (not the owner), EINVAL (file system, or leases
-  // off): no lease, and the swap below still checks the content.
-  return errno == EAGAIN ? Lease::open_for_writing : Lease::unavailable;
+  if (::fcntl(fd, F_SETLEASE, type) == 0) return Lease::held;
+  // EAGAIN: open elsewhere. EACCES (not the owner), EINVAL (file system, or leases off): no lease.
+  return errno == EAGAIN ? Lease::open_elsewhere : Lease::unavailable;
 }
 
-std::string replace_file(const fs::path& path, std::string_view expected, std::string_view text, bool split_links) {
-  const std::string changed = "changed since it was read; not written (run lwcport fix again)";
-  std::error_code ec;
-  fs::path target = fs::canonical(path, ec);
-  if (ec) return ec.message();
-  int original = ::open(target.c_str(), O_RDONLY | O_CLOEXEC);
-  if (original < 0) return std::strerror(errno);
-  struct stat st;
-  bool stat_ok = ::fstat(original, &st) == 0;
-  auto done = [&](std::string why) {
-    ::close(original);  // releases the lease, and lets a held-back opener go on
-    return why;
-  };
-  if (!stat_ok) return done(std::strerror(errno));
-  // Read-only is the user's (or the version control's: Perforce) word that the file must not change.
-  if (!(st.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) || ::access(target.c_str(), W_OK) != 0)
-    return done(fmt::format("read-only file (mode {:04o}); not changed", st.st_mode & 07777));
-  // A new file renamed over one name would leave the other names with the old content.
-  if (st.st_nlink > 1 && !split_links)
-    return done(fmt::format("it has {} hard links and replacing it would split them; not changed (fix a copy, break the links, "
-                            "or run with --force to replace this name only)", st.st_nlink));
-  // A program holding the file open for writing could write to it after the swap, into the old file.
-  Lease lease = take_read_lease(original);
-  if (lease == Lease::open_for_writing) return done("open for writing in another program; not changed (close it and run lwcport fix again)");
+const std::string kChanged = "changed since it was read; not written (run lwcport fix again)";
+const std::string kOpenElsewhere = "open in another program; not changed (close it and run lwcport fix again)";
+
+// The file's bytes, read through `fd` from its start ("" and false on an error).
+bool read_whole(int fd, std::string& out) {
+  out.clear();
+  char buffer[1 << 16];
+  for (off_t at = 0;;) {
+    ssize_t n = ::pread(fd, buffer, sizeof buffer, at);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return false;
+    if (n == 0) return true;
+    out.append(buffer, static_cast<size_t>(n));
+    at += n;
+  }
+}
+
+// The file rewritten in place through `fd` (open for reading and writing, a write lease held):
+// no one else has it open, and whoever opens it now waits until the lease goes with `fd`, then
+// finds the new text whole. Nothing can write into it unseen, and no save is lost: a program that
+// found it by name just before opens this same file (there is no other) after us.
+std::string write_in_place(const fs::path& target, int fd, const struct stat& st, std::string_view expected, std::string_view text) {
+  // Read through our own descriptor: opening it again would wait on our own lease.
+  std::string now;
+  if (!read_whole(fd, now)) return std::strerror(errno);
+  if (now != expected) return kChanged;
+  // The old text beside it until the new one is on disk: a crash or power cut mid-write leaves it there.
+  TempFile journal;
+  if (std::string why = write_temp_beside(target, expected, 0600, -1, journal); !why.empty()) return why;
+  std::string failed;
+  {
+    Uninterrupted whole;  // an interrupt waits for the write, so the file is never left half written
+    if (::pwrite(fd, text.data(), text.size(), 0) != static_cast<ssize_t>(text.size()) || ::ftruncate(fd, static_cast<off_t>(text.size())) != 0 ||
+        ::fsync(fd) != 0)
+      failed = std::strerror(errno);
+    // The kernel clears the setuid and setgid bits on a write by anyone but root: given back.
+    struct stat after;
+    if (failed.empty() && ::fstat(fd, &after) == 0 && (after.st_mode & 07777) != (st.st_mode & 07777) && ::fchmod(fd, st.st_mode & 07777) != 0)
+      failed = fmt::format("cannot keep the file mode: {}", std::strerror(errno));
+  }
+  if (!failed.empty()) {
+    journal.keep = true;
+    return fmt::format("cannot write: {}; its content before is kept in {}", failed, journal.path);
+  }
+  // A save that renamed a new file over this name meanwhile (renames open nothing) stands: ours
+  // went to the file it replaced.
+  struct stat named;
+  if (::stat(target.c_str(), &named) != 0 || named.st_ino != st.st_ino || named.st_dev != st.st_dev) return kChanged;
+  return "";
+}
+
+// A new file swapped in for the old, where no write lease can be had (not the file's owner, a
+// network file system, leases off) or one name of a hard-linked file is to change alone. `original`
+// is open read-only; a read lease on it, where the kernel allows one, catches an editor that opened
+// the file for writing and has not written yet.
+std::string replace_by_swap(const fs::path& target, int original, std::string_view expected, std::string_view text) {
+  Lease lease = take_lease(original, F_RDLCK);
+  if (lease == Lease::open_elsewhere) return kOpenElsewhere;
   // Opening it to read does not break a read lease; an opener for writing does.
   auto unchanged = [&](const fs::path& at) {
     return read_file(at, SIZE_MAX).text == expected && (lease != Lease::held || ::fcntl(original, F_GETLEASE) == F_RDLCK);
   };
-  if (!unchanged(target)) return done(changed);
+  if (!unchanged(target)) return kChanged;
   TempFile temp;
-  if (std::string why = write_temp_beside(target, text, 0, original, temp); !why.empty()) return done(why);
+  if (std::string why = write_temp_beside(target, text, 0, original, temp); !why.empty()) return why;
   // The swap: the file as it is at this instant comes out at the temporary path and is checked
   // there (content, and the lease not broken by an opener for writing), so an edit saved at any
   // moment before is caught and put back, never overwritten.
   if (::renameat2(AT_FDCWD, temp.path.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) == 0) {
     // Left open: an opener that found the old file by name before the swap and reaches the
     // lease only after this check (a few microseconds inside the kernel) writes to the old file.
-    if (unchanged(temp.path)) return done("");
+    // The write lease above closes it wherever the kernel gives one.
+    if (unchanged(temp.path)) return "";
     ::renameat2(AT_FDCWD, temp.path.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE);
-    ::close(original);  // a held-back editor now writes to the file at its own name
     // What is now at the temporary path should be our text; anything else is an edit made in
     // the moment between the two swaps: kept, and said where.
     if (read_file(temp.path, SIZE_MAX).text != text) {
       temp.keep = true;
-      return changed + "; an edit made while writing is kept in " + temp.path;
+      return kChanged + "; an edit made while writing is kept in " + temp.path;
     }
-    return changed;
+    return kChanged;
   }
-  if (errno != EINVAL && errno != ENOSYS && errno != ENOTSUP) return done("cannot replace the file: " + std::string(std::strerror(errno)));
+  if (errno != EINVAL && errno != ENOSYS && errno != ENOTSUP) return "cannot replace the file: " + std::string(std::strerror(errno));
   // A file system without the swap: check once more right before the rename.
-  if (!unchanged(target)) return done(changed);
-  if (::rename(temp.path.c_str(), target.c_str()) != 0) return done("cannot replace the file: " + std::string(std::strerror(errno)));
+  if (!unchanged(target)) return kChanged;
+  if (::rename(temp.path.c_str(), target.c_str()) != 0) return "cannot replace the file: " + std::string(std::strerror(errno));
   temp.path.clear();
-  return done("");
+  return "";
+}
+
+}  // namespace
+
+std::string replace_file(const fs::path& path, std::string_view expected, std::string_view text, bool split_links) {
+  std::error_code ec;
+  fs::path target = fs::canonical(path, ec);
+  if (ec) return ec.message();
+  int fd = ::open(target.c_str(), O_RDWR | O_CLOEXEC);
+  bool writable = fd >= 0;
+  if (!writable) fd = ::open(target.c_str(), O_RDONLY | O_CLOEXEC);  // for the reason it cannot be written
+  if (fd < 0) return std::strerror(errno);
+  struct Closer {
+    int& fd;
+    ~Closer() { ::close(fd); }  // releases a lease, and lets a held-back opener go on
+  } closer{fd};
+  struct stat st;
+  if (::fstat(fd, &st) != 0) return std::strerror(errno);
+  // Read-only is the user's (or the version control's: Perforce) word that the file must not change.
+  if (!(st.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) || ::access(target.c_str(), W_OK) != 0 || !writable)
+    return fmt::format("read-only file (mode {:04o}); not changed", st.st_mode & 07777);
+  // A new file renamed over one name would leave the other names with the old content.
+  if (st.st_nlink > 1 && !split_links)
+    return fmt::format("it has {} hard links and replacing it would split them; not changed (fix a copy, break the links, "
+                       "or run with --force to replace this name only)", st.st_nlink);
+  if (st.st_nlink == 1) {
+    Lease lease = take_lease(fd, F_WRLCK);
+    if (lease == Lease::held) return write_in_place(target, fd, st, expected, text);
+    if (lease == Lease::open_elsewhere) return kOpenElsewhere;
+  }
+  // The read lease needs a descriptor that does not write.
+  ::close(fd);
+  fd = ::open(target.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return std::strerror(errno);
+  return replace_by_swap(target, fd, expected, text);
 }
 
 std::string create_file(const fs::path& path, std::string_view text) {

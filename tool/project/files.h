@@ -46,14 +46,16 @@ ReadResult read_file(const std::filesystem::path& path, size_t max_bytes);
 
 namespace lwc {
 
-// Replaces a file's content atomically: a temporary file beside it, given the file's mode (setuid
-// and setgid bits included), owner (where permitted) and extended attributes, synced, then
-// swapped with it and the old content checked once more at that instant; a symlink is followed
-// and the target replaced. Refuses, with a reason and nothing written, a file marked read-only,
-// one with other hard links unless `split_links` (the rename gives this name the new content and
-// leaves the others the old), one open for writing elsewhere (where a lease can tell), or one whose
-// content is no longer `expected` (changed since it was read, up to the swap). Returns "" on
-// success, else the reason.
+// Replaces a file's content, refusing (with a reason, nothing written) a file marked read-only,
+// one with other hard links unless `split_links`, one open in another program, or one whose
+// content is no longer `expected`. Where the kernel gives this process a write lease (the file's
+// owner, a local file system) the file is rewritten in place under it: no other program has it
+// open, whoever opens it meanwhile waits and then finds the new text whole, and the old text waits
+// beside it until the new one is on disk. Elsewhere (and for `split_links`: the rename gives this
+// name the new content and leaves the others the old) a temporary file beside it, given the file's
+// mode, owner (where permitted) and extended attributes, is synced and swapped with it, and the
+// old content checked once more at that instant. A symlink is followed and its target changed.
+// Returns "" on success, else the reason.
 std::string replace_file(const std::filesystem::path& path, std::string_view expected, std::string_view text, bool split_links = false);
 // Creates a file that does not exist yet, atomically (temporary file, then link), with the
 // umask's mode. Refuses, with a reason, if it exists. Returns "" on success, else the reason.
