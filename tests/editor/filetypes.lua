@@ -1,0 +1,15 @@
+-- Opens each file of $LWCPORT_FILES and waits for lwcport's diagnostics on it; one line a file
+-- to $LWCPORT_OUT: its name, its file type, the name of the server that serves it and how many
+-- diagnostics it has.
+package.path = vim.fn.fnamemodify(os.getenv('LWCPORT_SCRIPTS'), ':p') .. '?.lua;' .. package.path
+local session = require('lsp_session')
+local buffers = {}
+for _, file in ipairs(session.files()) do table.insert(buffers, session.open(file)) end
+local lines = {}
+for _, buf in ipairs(buffers) do
+  session.wait_for_diagnostics(buf)
+  table.insert(lines, table.concat({ vim.fn.fnamemodify(vim.api.nvim_buf_get_name(buf), ':t'), vim.bo[buf].filetype,
+                                     session.client(buf).name, #vim.diagnostic.get(buf) }, ' '))
+end
+session.report(table.concat(lines, '\n') .. '\n')
+vim.cmd('qall!')
