@@ -2,5 +2,5 @@
 # Builds the fuzz target (clang, ASan + UBSan, libFuzzer) in build-fuzz/. .ci/setup runs it.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLWCPORT_FUZZ=ON > /dev/null
-cmake --build build-fuzz -j"$(nproc)" --target lwcport_fuzz
+CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLWCPORT_FUZZ=ON -DLWCPORT_HOST=ON > /dev/null
+cmake --build build-fuzz -j"$(nproc)" --target lwcport_fuzz lwcport_host_fuzz

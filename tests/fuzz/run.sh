@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Replays every input in tests/fuzz/regressions (each a crash or hang once found, minimised),
-# then fuzzes for SECONDS (default 120) from the corpus with the shader dictionary. A crash, an
-# ASan/UBSan report, an uncaught exception or an input slower than 10 s fails the run; the input
-# is kept in build-fuzz/artifacts/.
+# then fuzzes for SECONDS (default 120) from the corpus with the shader dictionary; then the same
+# for `lwcport host` (tests/fuzz/host-regressions, C++ text from corpus/host, SECONDS / 2). A
+# crash, an ASan/UBSan report, an uncaught exception or an input slower than 10 s (30 s for C++)
+# fails the run; the input is kept in build-fuzz/artifacts/.
 #   usage: tests/fuzz/run.sh [SECONDS] [extra libFuzzer flags...]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -40,3 +41,17 @@ for f in corpus/glsl/forward.vert corpus/ue4/HeightFogCommon.ush corpus/ue5.4/Do
 done
 "$fuzz" "$work" "$seeds" -dict=tests/fuzz/shader.dict -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
   -max_len=16384 -print_final_stats=1 -artifact_prefix=build-fuzz/artifacts/ "$@" 2>&1 | tail -25
+
+# lwcport host: C++ text through Clang and the host checks, seeded with the host corpus's units.
+host_fuzz=build-fuzz/lwcport_host_fuzz
+[ -x "$host_fuzz" ] || { echo "$host_fuzz is missing: run tests/fuzz/build.sh (.ci/setup does)" >&2; exit 2; }
+host_regressions=(tests/fuzz/host-regressions/*)
+"$host_fuzz" -timeout=30 -rss_limit_mb=4096 "${host_regressions[@]}" > build-fuzz/host-replay.log 2>&1 || { cat build-fuzz/host-replay.log; exit 1; }
+echo "replayed ${#host_regressions[@]} host regression input(s)"
+# Seeds: the regressions, and the host corpus's units that include only its stand-in headers (a
+# unit that includes glm or the standard library parses ten times slower, and so is fuzzed less).
+mkdir -p build-fuzz/host-seeds build-fuzz/host-work
+cp tests/fuzz/host-regressions/* build-fuzz/host-seeds/
+grep -L -E '#include <' $(find corpus/host -name '*.cpp') | xargs -I{} cp {} build-fuzz/host-seeds/
+"$host_fuzz" build-fuzz/host-work build-fuzz/host-seeds -dict=tests/fuzz/cpp.dict -max_total_time="$((seconds / 2))" -timeout=30 \
+  -rss_limit_mb=4096 -max_len=8192 -print_final_stats=1 -artifact_prefix=build-fuzz/artifacts/host- "$@" 2>&1 | tail -25
