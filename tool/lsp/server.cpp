@@ -1,20 +1,16 @@
 #include "lsp/server.h"
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <ctime>
-#include <condition_variable>
 #include <deque>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <set>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <fmt/format.h>
@@ -24,6 +20,8 @@
 #include "core/uri.h"
 #include "fix/apply.h"
 #include "lang/formats.h"
+#include "lsp/positions.h"
+#include "lsp/transport.h"
 #include "project/config.h"
 #include "project/files.h"
 #include "project/includes.h"
@@ -34,169 +32,11 @@
 namespace lwc {
 namespace {
 
-using nlohmann::json;
+using namespace lsp;
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-// JSON-RPC and LSP error codes.
-constexpr int kParseError = -32700, kInvalidRequest = -32600, kMethodNotFound = -32601, kInvalidParams = -32602,
-              kInternalError = -32603, kServerNotInitialized = -32002, kRequestCancelled = -32800, kContentModified = -32801;
-constexpr size_t kMaxMessageBytes = 256u << 20;  // a bound on one message, so no client exhausts memory
 constexpr const char* kFixAllCommand = "lwcport.fixAll";
-
-// One framed message from the client. `end`: the input is over.
-struct Frame {
-  bool end = false;
-  std::string body;
-  std::string error;  // a header block the message cannot be read from
-};
-
-Frame read_frame(std::istream& in) {
-  Frame f;
-  std::optional<size_t> length;
-  bool any = false;
-  for (std::string line; std::getline(in, line);) {
-    any = true;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty()) break;
-    size_t colon = line.find(':');
-    if (colon == std::string::npos) continue;  // not a header: the block's length decides
-    std::string name = line.substr(0, colon);
-    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (name != "content-length") continue;
-    std::string value = line.substr(colon + 1);
-    char* end = nullptr;
-    unsigned long long n = std::strtoull(value.c_str(), &end, 10);
-    if (end != value.c_str() && n <= kMaxMessageBytes) length = static_cast<size_t>(n);
-  }
-  if (!any) {
-    f.end = true;
-    return f;
-  }
-  if (!length) {
-    f.error = "a message without a valid Content-Length header (at most 256 MB)";
-    return f;
-  }
-  f.body.resize(*length);
-  in.read(f.body.data(), static_cast<std::streamsize>(*length));
-  if (static_cast<size_t>(in.gcount()) != *length) f.end = true;
-  return f;
-}
-
-// A member deep in `object`, or null where the path is missing (any message may be malformed).
-json value_at(const json& object, std::initializer_list<const char*> path) {
-  const json* at = &object;
-  for (const char* key : path) {
-    if (!at->is_object() || !at->contains(key)) return json();
-    at = &(*at)[key];
-  }
-  return *at;
-}
-
-// `array` is a JSON array holding `value`.
-bool holds(const json& array, const char* value) { return array.is_array() && std::find(array.begin(), array.end(), value) != array.end(); }
-
-// A message from the client, or why it could not be read.
-struct Incoming {
-  json message;
-  std::string error;
-};
-
-// The client's messages, read on a thread of their own as they arrive: a request still waiting
-// can then be cancelled, and a burst of typing analysed once.
-class Inbox {
- public:
-  // std::cin is tied to std::cout (reading flushes it): untied here, or the reading thread would
-  // flush the output while the server writes it.
-  explicit Inbox(std::istream& in) : untied_(in.tie(nullptr)), reader_([this, &in] { read(in); }) {}
-  ~Inbox() { reader_.join(); }
-
-  // The next message; none once the input is over.
-  std::optional<Incoming> next() {
-    std::unique_lock lock(mutex_);
-    arrived_.wait(lock, [&] { return !queue_.empty() || done_; });
-    if (queue_.empty()) return std::nullopt;
-    Incoming in = std::move(queue_.front());
-    queue_.pop_front();
-    return in;
-  }
-
-  // Takes a waiting `$/cancelRequest` for this id, if there is one.
-  bool take_cancel(const json& id) {
-    std::lock_guard lock(mutex_);
-    auto it = std::find_if(queue_.begin(), queue_.end(), [&](const Incoming& in) {
-      return value_at(in.message, {"method"}) == "$/cancelRequest" && value_at(in.message, {"params", "id"}) == id;
-    });
-    if (it == queue_.end()) return false;
-    queue_.erase(it);
-    return true;
-  }
-
-  // A later change of this document already waits.
-  bool change_waits(const std::string& uri) {
-    std::lock_guard lock(mutex_);
-    return std::any_of(queue_.begin(), queue_.end(), [&](const Incoming& in) {
-      return value_at(in.message, {"method"}) == "textDocument/didChange" && value_at(in.message, {"params", "textDocument", "uri"}) == uri;
-    });
-  }
-
- private:
-  void read(std::istream& in) {
-    for (;;) {
-      Frame frame = read_frame(in);
-      if (frame.end) break;
-      Incoming incoming;
-      if (!frame.error.empty()) {
-        incoming.error = frame.error;
-      } else {
-        incoming.message = json::parse(frame.body, nullptr, false);
-        if (incoming.message.is_discarded() || !incoming.message.is_object()) {
-          incoming.message = json();
-          incoming.error = "the message is not a JSON object";
-        } else if (incoming.message.contains("params") && !incoming.message["params"].is_object() && !incoming.message["params"].is_array()) {
-          incoming.message.erase("params");  // invalid; the handler reports what is missing
-        }
-      }
-      bool exit = value_at(incoming.message, {"method"}) == "exit";
-      {
-        std::lock_guard lock(mutex_);
-        queue_.push_back(std::move(incoming));
-      }
-      arrived_.notify_one();
-      if (exit) break;  // nothing after `exit` is read: the server is gone
-    }
-    std::lock_guard lock(mutex_);
-    done_ = true;
-    arrived_.notify_one();
-  }
-
-  std::mutex mutex_;
-  std::condition_variable arrived_;
-  std::deque<Incoming> queue_;
-  bool done_ = false;
-  std::ostream* untied_;
-  std::thread reader_;  // last: starts once the rest is built
-};
-
-// Where each line starts: LSP lines end at "\n", "\r\n" or a lone "\r", and a line's end
-// belongs to no column.
-std::vector<size_t> line_starts(const std::string& text) {
-  std::vector<size_t> starts = {0};
-  if (text.find('\r') == std::string::npos) {  // the usual file: memchr finds its lines far faster than a byte loop
-    for (size_t at = text.find('\n'); at != std::string::npos; at = text.find('\n', at + 1)) starts.push_back(at + 1);
-    return starts;
-  }
-  for (size_t i = 0; i < text.size(); ++i)
-    if (text[i] == '\n' || (text[i] == '\r' && (i + 1 == text.size() || text[i + 1] != '\n'))) starts.push_back(i + 1);
-  return starts;
-}
-
-// JSON text of a value. Text from the user's files may not be UTF-8: replaced, never a thrown dump.
-std::string json_text(const json& value) { return value.dump(-1, ' ', false, json::error_handler_t::replace); }
-
-// Bytes of the UTF-8 sequence that starts with `lead` (1 for a byte that starts none).
-size_t sequence_length(unsigned char lead) { return lead >= 0xF0 ? 4 : lead >= 0xE0 ? 3 : lead >= 0xC0 ? 2 : 1; }
-
 
 class Server {
  public:
@@ -446,39 +286,12 @@ class Server {
     }
   }
 
-  // The byte offset of an LSP position, clamped to the document (a line past the end is its end,
-  // a character past a line's end is that end).
+  // The byte offset of an LSP position in the document (clamped to it).
   size_t offset(const Document& d, const json& position) const {
-    const std::string& text = d.text;
-    long line = position.at("line").get<long>(), character = position.at("character").get<long>();
-    if (line < 0) return 0;
-    if (static_cast<size_t>(line) >= d.lines.size()) return text.size();
-    size_t at = d.lines[line], end = static_cast<size_t>(line) + 1 < d.lines.size() ? d.lines[line + 1] : text.size();
-    if (end > at && text[end - 1] == '\n') --end;
-    if (end > at && text[end - 1] == '\r') --end;
-    for (long units = 0; at < end && units < character;) {
-      size_t n = std::min(sequence_length(static_cast<unsigned char>(text[at])), end - at);
-      units += units_of(n);
-      at += n;
-    }
-    return at;
+    return offset_at(d.text, d.lines, position.at("line").get<long>(), position.at("character").get<long>(), utf8_);
   }
 
-  // A character of `bytes` UTF-8 bytes in the negotiated units (UTF-16: two beyond the BMP).
-  long units_of(size_t bytes) const { return utf8_ ? static_cast<long>(bytes) : bytes == 4 ? 2 : 1; }
-
-  // The line of a byte offset and its column in the negotiated units.
-  std::pair<size_t, long> line_and_column(const Document& d, size_t at) const {
-    at = std::min(at, d.text.size());
-    size_t line = static_cast<size_t>(std::upper_bound(d.lines.begin(), d.lines.end(), at) - d.lines.begin()) - 1;
-    long units = 0;
-    for (size_t i = d.lines[line]; i < at;) {
-      size_t n = std::min(sequence_length(static_cast<unsigned char>(d.text[i])), at - i);
-      units += units_of(n);
-      i += n;
-    }
-    return {line, units};
-  }
+  std::pair<size_t, long> line_and_column(const Document& d, size_t at) const { return lsp::line_and_column(d.text, d.lines, at, utf8_); }
 
   json position(const Document& d, size_t at) const {
     auto [line, column] = line_and_column(d, at);
@@ -918,10 +731,7 @@ class Server {
 
   void send(const json& message) { send_text(json_text(message)); }
 
-  void send_text(const std::string& body) {
-    out_ << "Content-Length: " << body.size() << "\r\n\r\n" << body;
-    out_.flush();
-  }
+  void send_text(const std::string& body) { write_frame(out_, body); }
 
   std::ostream& out_;
   Inbox& inbox_;
