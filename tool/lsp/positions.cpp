@@ -2,11 +2,21 @@
 
 #include <algorithm>
 
+#include "core/source.h"
+
 namespace lwc::lsp {
 namespace {
 
-// Bytes of the UTF-8 sequence that starts with `lead` (1 for a byte that starts none).
-size_t sequence_length(unsigned char lead) { return lead >= 0xF0 ? 4 : lead >= 0xE0 ? 3 : lead >= 0xC0 ? 2 : 1; }
+// The bytes of the character at `i`: a UTF-8 sequence; a lone surrogate in generalised UTF-8 (ED
+// A0..BF 80..BF: lsp/json_reader.h writes an escaped one so), one character as the client holds
+// it; or a byte that is neither, one character as `lint` and editors count it.
+size_t character_bytes(std::string_view text, size_t i) {
+  if (static_cast<unsigned char>(text[i]) < 0x80) return 1;
+  if (size_t n = utf8_sequence(text, i)) return n;
+  auto byte = [&](size_t k) { return i + k < text.size() ? static_cast<unsigned char>(text[i + k]) : 0; };
+  if (byte(0) == 0xED && byte(1) >= 0xA0 && byte(1) <= 0xBF && byte(2) >= 0x80 && byte(2) <= 0xBF) return 3;
+  return 1;
+}
 
 // A character of `bytes` UTF-8 bytes in the negotiated units (UTF-16: two beyond the BMP).
 long units_of(size_t bytes, bool utf8) { return utf8 ? static_cast<long>(bytes) : bytes == 4 ? 2 : 1; }
@@ -31,7 +41,7 @@ size_t offset_at(const std::string& text, const std::vector<size_t>& lines, long
   if (end > at && text[end - 1] == '\n') --end;
   if (end > at && text[end - 1] == '\r') --end;
   for (long units = 0; at < end && units < character;) {
-    size_t n = std::min(sequence_length(static_cast<unsigned char>(text[at])), end - at);
+    size_t n = std::min(character_bytes(text, at), end - at);
     units += units_of(n, utf8);
     at += n;
   }
@@ -43,7 +53,7 @@ std::pair<size_t, long> line_and_column(const std::string& text, const std::vect
   size_t line = static_cast<size_t>(std::upper_bound(lines.begin(), lines.end(), at) - lines.begin()) - 1;
   long units = 0;
   for (size_t i = lines[line]; i < at;) {
-    size_t n = std::min(sequence_length(static_cast<unsigned char>(text[i])), at - i);
+    size_t n = std::min(character_bytes(text, i), at - i);
     units += units_of(n, utf8);
     i += n;
   }

@@ -57,7 +57,7 @@ class Server {
     const json params = message.value("params", json::object());
     auto started = Clock::now();
     replied_ = false;
-    log(fmt::format("<- {}{}", method, request ? " (" + id.dump() + ")" : ""));
+    log(fmt::format("<- {}{}", method, request ? " (" + json_text(id) + ")" : ""));
     if (method == "exit") return shut_down_ ? 0 : 1;
     if (!initialized_ && method != "initialize") {
       if (request) reply_error(id, kServerNotInitialized, "the server is not initialized yet");
@@ -68,7 +68,7 @@ class Server {
       return std::nullopt;
     }
     if (request && inbox_.take_cancel(id)) {
-      log(fmt::format("   cancelled ({})", id.dump()));
+      log(fmt::format("   cancelled ({})", json_text(id)));
       reply_error(id, kRequestCancelled, "cancelled by the client");
       return std::nullopt;
     }
@@ -203,7 +203,7 @@ class Server {
 
   // A reply to one of our requests: a failed edit is worth a line in the log.
   void response_received(const json& message) {
-    if (message.contains("error")) log("the client refused a request: " + message["error"].dump());
+    if (message.contains("error")) log("the client refused a request: " + json_text(message["error"]));
     if (value_at(message, {"result", "applied"}) == false) log_message(2, "the editor did not apply lwcport's fixes: " + message["result"].value("failureReason", std::string("no reason given")));
   }
 
@@ -490,10 +490,12 @@ class Server {
   // The edits as a workspace edit; `written`: their text is in the document's line endings already.
   // With `library` (the DoubleFloat functions the new code calls), lwcport's library file beside
   // the document gets them too (created when missing); none when the client cannot create files or
-  // a file of that name exists that lwcport did not write.
+  // a file of that name exists that lwcport did not write, or when a new text holds bytes that are
+  // not UTF-8 (JSON would carry them as U+FFFD: the edit would lose them).
   std::optional<json> workspace_edit(const std::string& uri, const Document& d, const std::vector<Edit>& edits, const Source& source,
                                      bool written = false, const std::set<std::string>& library = {}) const {
     json list = json::array();
+    if (std::any_of(edits.begin(), edits.end(), [](const Edit& e) { return find_invalid_utf8(e.text).has_value(); })) return std::nullopt;
     for (const Edit& e : edits) list.push_back({{"range", range(d, e.span)}, {"newText", written ? e.text : in_line_endings(source, e.text)}});
     if (library.empty()) return json{{"changes", {{uri, list}}}};
     std::optional<json> changes = library_changes(d, library);
@@ -598,7 +600,7 @@ class Server {
     bool any_fix = std::any_of(d.findings.begin(), d.findings.end(), [&](const Finding& f) {
       return std::any_of(f.fixes.begin(), f.fixes.end(), [&](const Fix& x) { return unsafe_fixes_ || x.applicability == Applicability::safe; });
     });
-    if (any_fix && wanted("source.fixAll.lwcport"))
+    if (any_fix && !find_invalid_utf8(d.text) && wanted("source.fixAll.lwcport"))
       add(unsafe_fixes_ ? "lwcport: apply every fix (unsafe ones too)" : "lwcport: apply every safe fix", "source.fixAll.lwcport", std::nullopt,
           {{"action", "fixAll"}, {"unsafe", unsafe_fixes_}});
     return actions;
@@ -630,6 +632,8 @@ class Server {
     ensure_analysed(uri, d);
     std::optional<json> edit = fix_all_edit(uri, d, unsafe);
     reply(id, nullptr);
+    if (!edit && find_invalid_utf8(d.text))
+      return log_message(2, "lwcport: " + d.path.filename().string() + " is not UTF-8, and an edit of it would lose those bytes; save it as UTF-8, or run `lwcport fix` on it");
     if (!edit) return log_message(3, "lwcport: nothing to fix in " + d.path.filename().string());
     send({{"jsonrpc", "2.0"}, {"id", fmt::format("lwcport/{}", ++requests_)}, {"method", "workspace/applyEdit"},
           {"params", {{"label", "lwcport: fix all"}, {"edit", *edit}}}});

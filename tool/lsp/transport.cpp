@@ -4,6 +4,8 @@
 #include <cctype>
 #include <cstdlib>
 
+#include "lsp/json_reader.h"
+
 namespace lwc::lsp {
 namespace {
 
@@ -97,11 +99,13 @@ void Inbox::read(std::istream& in) {
     if (!frame.error.empty()) {
       incoming.error = frame.error;
     } else {
-      incoming.message = json::parse(frame.body, nullptr, false);
-      if (incoming.message.is_discarded() || !incoming.message.is_object()) {
-        incoming.message = json();
-        incoming.error = "the message is not a JSON object";
-      } else if (incoming.message.contains("params") && !incoming.message["params"].is_object() && !incoming.message["params"].is_array()) {
+      JsonRead read = read_json(frame.body);
+      if (!read.error.empty() || !read.value.is_object()) {
+        incoming.error = read.error.empty() ? "the message is not a JSON object" : "the message is not valid JSON: " + read.error;
+      } else {
+        incoming.message = std::move(read.value);
+      }
+      if (incoming.message.contains("params") && !incoming.message["params"].is_object() && !incoming.message["params"].is_array()) {
         incoming.message.erase("params");  // invalid; the handler reports what is missing
       }
     }

@@ -1,0 +1,140 @@
+// `lwcport lsp` on messages a client got wrong or that carry what JSON carries badly: documents
+// that are not UTF-8 (raw bytes, lone surrogates) are analysed as `lint` reads the same bytes.
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "cli/lsp_client.h"
+#include "support.h"
+
+namespace lwc {
+namespace {
+
+using nlohmann::json;
+using namespace lsp_client;
+
+// The inside of a JSON string holding `bytes` as a client may write it: quotes, backslashes and
+// control characters escaped, every other byte (UTF-8 or not) as it is.
+std::string raw_inside(const std::string& bytes) {
+  std::string out;
+  for (char c : bytes) {
+    if (c == '"' || c == '\\') out += std::string("\\") + c;
+    else if (static_cast<unsigned char>(c) < 0x20) out += fmt::format("\\u{:04x}", c);
+    else out += c;
+  }
+  return out;
+}
+
+// A framed message whose string "@TEXT@" is replaced by `inside` (a JSON string's inside, as
+// written).
+std::string frame_with(const json& message, const std::string& inside) {
+  std::string body = message.dump();
+  body.replace(body.find("@TEXT@"), 6, inside);
+  return "Content-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body;
+}
+
+std::string open_with(const std::string& uri, const std::string& inside) {
+  return frame_with(notification("textDocument/didOpen", {{"textDocument", {{"uri", uri}, {"languageId", "glsl"}, {"version", 1}, {"text", "@TEXT@"}}}}),
+                    inside);
+}
+
+// An edit inserting `inside` (as written in JSON) at a line and character.
+std::string insert_with(const std::string& uri, int version, int line, int character, const std::string& inside) {
+  json at = {{"line", line}, {"character", character}};
+  return frame_with(notification("textDocument/didChange", {{"textDocument", {{"uri", uri}, {"version", version}}},
+                                                            {"contentChanges", {{{"range", {{"start", at}, {"end", at}}}, {"text", "@TEXT@"}}}}}),
+                    inside);
+}
+
+// `lint --format json`'s findings for a file holding `bytes`.
+json lint_findings(const std::string& dir, const std::string& bytes) {
+  test::write(dir + "/lint.vert", bytes);
+  json out = json::parse(test::run(test::binary() + " lint " + dir + "/lint.vert --format json --fail-on none").out);
+  return out["findings"];
+}
+
+// The last diagnostics published are `lint`'s findings for `bytes`: the same rules, messages and
+// places (where every character before a finding on its line is one UTF-16 unit and one column).
+void expect_lints_findings(const Session& s, const std::string& dir, const std::string& bytes) {
+  json lint = lint_findings(dir, bytes);
+  std::vector<json> published = diagnostics(s);
+  ASSERT_FALSE(published.empty());
+  const json& got = published.back()["diagnostics"];
+  ASSERT_EQ(got.size(), lint.size()) << got.dump() << "\n" << lint.dump();
+  bool input_warning = false;
+  for (size_t i = 0; i < lint.size(); ++i) {
+    const json &d = got[i], &f = lint[i];
+    std::string hint = f.value("hint", "");
+    EXPECT_EQ(d["code"], f["rule"]);
+    EXPECT_EQ(d["message"], f["message"].get<std::string>() + (hint.empty() ? "" : "\n" + hint));
+    EXPECT_EQ(d["range"]["start"]["line"], f["start"]["line"].get<int>() - 1) << d.dump();
+    EXPECT_EQ(d["range"]["start"]["character"], f["start"]["column"].get<int>() - 1) << d.dump();
+    input_warning |= f["rule"] == "lwc-input" && f["message"].get<std::string>().find("invalid UTF-8") != std::string::npos;
+  }
+  EXPECT_TRUE(input_warning) << lint.dump();
+}
+
+const std::string kHead = "#version 300 es\n";
+const std::string kTail = "uniform mat4 modelMatrix;\nin vec3 position;\nvoid main() { gl_Position = modelMatrix * vec4(position, 1.0); }\n";
+
+// Bytes that are not UTF-8, raw in the JSON of didOpen (as a client that reads files as bytes
+// sends them): the document is analysed, with lint's `lwc-input` warning, and the finding after
+// them on their line is where the client counts it (each such byte one character).
+TEST(LanguageServerInput, RawBytesThatAreNotUtf8InDidOpen) {
+  std::string dir = test::scratch("lsp-raw-open");
+  std::string bytes = kHead + "/* caf\xE9 \xFF\xFE\xC3 */ " + kTail;
+  Session s = serve(frame(initialize()) + open_with("file://" + dir + "/a.vert", raw_inside(bytes)) + end_session());
+  expect_lints_findings(s, dir, bytes);
+}
+
+// Lone surrogates, escaped (valid JSON): U+DC80..U+DCFF are the bytes 0x80..0xFF they escape, so
+// the document is the file's bytes; another lone surrogate is three bytes that are not UTF-8 and
+// one UTF-16 unit.
+TEST(LanguageServerInput, LoneSurrogatesInDidOpen) {
+  std::string dir = test::scratch("lsp-surrogate-open");
+  std::string uri = "file://" + dir + "/a.vert";
+  Session escaped = serve(frame(initialize()) + open_with(uri, raw_inside(kHead) + "/* caf\\udce9 \\udcff\\udcfe\\udcc3 */ " + raw_inside(kTail)) + end_session());
+  expect_lints_findings(escaped, dir, kHead + "/* caf\xE9 \xFF\xFE\xC3 */ " + kTail);
+
+  Session other = serve(frame(initialize()) + open_with(uri, raw_inside(kHead) + "/* \\ud800 */ " + raw_inside(kTail)) + end_session());
+  json lint = lint_findings(dir, kHead + "/* \xED\xA0\x80 */ " + kTail);
+  std::vector<json> published = diagnostics(other);
+  ASSERT_EQ(published.size(), 1u);
+  const json& got = published[0]["diagnostics"];
+  ASSERT_EQ(got.size(), lint.size());
+  ASSERT_EQ(got[0]["code"], "lwc-input");
+  EXPECT_EQ(got[0]["message"], lint[0]["message"].get<std::string>() + "\n" + lint[0]["hint"].get<std::string>());
+  EXPECT_EQ(got[0]["range"]["start"], json({{"line", 1}, {"character", 3}}));
+  bool found = false;
+  for (const json& d : got)
+    if (d["code"] == "lwc-uniform-world-float") {
+      found = true;
+      EXPECT_EQ(d["range"]["start"], json({{"line", 1}, {"character", 3 + 1 + 4 + 13}}));  // "/* ", the surrogate, " */ ", "uniform mat4 "
+    }
+  EXPECT_TRUE(found);
+}
+
+// Incremental changes that insert such bytes, raw or as lone surrogates, then an edit placed after
+// them on their line (by the client's count): the document is the bytes the client has, and is
+// analysed as lint reads them.
+TEST(LanguageServerInput, NonUtf8BytesInIncrementalChanges) {
+  for (std::string inserted : {std::string("/* \xE9\xFF */ "), std::string("/* \\udce9\\udcff */ ")}) {
+    std::string dir = test::scratch("lsp-raw-change");
+    std::string uri = "file://" + dir + "/a.vert";
+    bool raw = inserted[3] != '\\';
+    // Then "uniform " (characters 9 to 17 as the client counts, the two bytes one character each) is
+    // replaced by "uniform highp ".
+    json range = {{"start", {{"line", 1}, {"character", 9 + 8}}}, {"end", {{"line", 1}, {"character", 9 + 8}}}};
+    Session s = serve(frame(initialize()) + frame(notification("textDocument/didOpen", {{"textDocument", {{"uri", uri}, {"languageId", "glsl"}, {"version", 1}, {"text", kHead + kTail}}}})) +
+                      insert_with(uri, 2, 1, 0, raw ? raw_inside(inserted) : inserted) +
+                      frame(notification("textDocument/didChange", {{"textDocument", {{"uri", uri}, {"version", 3}}}, {"contentChanges", {{{"range", range}, {"text", "highp "}}}}})) +
+                      end_session());
+    ASSERT_FALSE(diagnostics(s).empty());
+    EXPECT_EQ(diagnostics(s).back()["version"], 3);
+    expect_lints_findings(s, dir, kHead + "/* \xE9\xFF */ uniform highp " + kTail.substr(8));
+  }
+}
+
+}  // namespace
+}  // namespace lwc
