@@ -110,6 +110,16 @@ class Server {
     if (log_.is_open()) log_ << fmt::format("[{:10.1f} ms] ", ms_since(started_)) << line << std::endl;
   }
 
+  // A framing error or a message that could not be read: the log gets what was dropped, the client
+  // a warning (once initialized: before, the protocol lets a server send it nothing) and, when no
+  // message could be read, the error JSON-RPC answers it with.
+  void unsound(const Incoming& in) {
+    std::string what = in.error.empty() ? "a message was read despite its framing: " + in.framing : in.error;
+    log(what + (in.dropped.empty() ? "" : "; dropped: " + in.dropped));
+    if (initialized_) send({{"jsonrpc", "2.0"}, {"method", "window/logMessage"}, {"params", {{"type", 2}, {"message", "lwcport: " + what}}}});
+    if (!in.error.empty()) reply_error(nullptr, in.code, in.error);
+  }
+
  private:
   // A diagnostic as JSON text, in two parts: before its document version and after it.
   struct DiagnosticText {
@@ -759,11 +769,8 @@ int run_language_server(std::istream& in, std::ostream& out, const ServerOptions
   Inbox inbox(in);
   Server server(out, inbox, options);
   while (std::optional<Incoming> incoming = inbox.next()) {
-    if (!incoming->error.empty()) {
-      server.log("unreadable message: " + incoming->error);
-      server.reply_error(nullptr, kParseError, incoming->error);
-      continue;
-    }
+    if (!incoming->error.empty() || !incoming->framing.empty()) server.unsound(*incoming);
+    if (!incoming->error.empty()) continue;
     if (std::optional<int> code = server.handle(incoming->message)) return *code;
   }
   server.log("the input ended without `exit`");

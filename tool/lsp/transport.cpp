@@ -1,8 +1,10 @@
 #include "lsp/transport.h"
 
 #include <algorithm>
-#include <cctype>
-#include <cstdlib>
+#include <charconv>
+#include <cstring>
+
+#include <fmt/format.h>
 
 #include "lsp/json_reader.h"
 
@@ -10,45 +12,300 @@ namespace lwc::lsp {
 namespace {
 
 constexpr size_t kMaxMessageBytes = 256u << 20;  // a bound on one message, so no client exhausts memory
+// A "header" with a longer line, or more lines, is not one.
+constexpr size_t kMaxHeaderLine = 4096, kMaxHeaderLines = 32;
+constexpr std::string_view kLengthName = "content-length";
+constexpr size_t npos = std::string_view::npos;
 
-// One framed message from the client. `end`: the input is over.
-struct Frame {
-  bool end = false;
-  std::string body;
-  std::string error;  // a header block the message cannot be read from
+char lower(char c) { return c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c; }
+
+// `text` holds "Content-Length" (in any case) at `at`.
+bool length_name_at(std::string_view text, size_t at) {
+  if (at > text.size() || text.size() - at < kLengthName.size()) return false;
+  for (size_t i = 0; i < kLengthName.size(); ++i)
+    if (lower(text[at + i]) != kLengthName[i]) return false;
+  return true;
+}
+
+// Where in `text` a header that may start a message begins: "Content-Length", spaces, ':'.
+size_t find_length_header(std::string_view text) {
+  for (size_t at = 0; at + kLengthName.size() <= text.size(); ++at) {
+    if (!length_name_at(text, at)) continue;
+    size_t colon = text.find_first_not_of(" \t", at + kLengthName.size());
+    if (colon != npos && text[colon] == ':') return at;
+  }
+  return npos;
+}
+
+// A byte of a header's name (an HTTP token).
+bool is_token_byte(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || (c != '\0' && std::strchr("!#$%&'*+-.^_`|~", c));
+}
+
+std::string_view trimmed(std::string_view s) {
+  size_t begin = s.find_first_not_of(" \t");
+  if (begin == npos) return {};
+  return s.substr(begin, s.find_last_not_of(" \t") - begin + 1);
+}
+
+// The first bytes of `bytes` as printable text (any other byte as \xNN), for the log.
+std::string excerpt(std::string_view bytes, size_t most = 60) {
+  std::string out;
+  for (size_t i = 0; i < bytes.size() && i < most; ++i) {
+    unsigned char c = static_cast<unsigned char>(bytes[i]);
+    if (c >= 0x20 && c < 0x7F) out += static_cast<char>(c);
+    else out += fmt::format("\\x{:02X}", c);
+  }
+  return bytes.size() > most ? out + "..." : out;
+}
+
+// Where a JSON object at the start of some bytes ends, found as the bytes come (strings and their
+// escapes followed): a message whose framing was wrong is read as soon as its last byte is here.
+class ObjectEnd {
+ public:
+  enum State { before, inside, closed, none };  // none: the bytes are not one object
+
+  void feed(char c) {
+    bool space = c == ' ' || c == '\t' || c == '\r' || c == '\n';
+    if (state_ == before && !space) state_ = c == '{' ? inside : none;
+    else if (state_ == closed && !space) state_ = none;
+    if (state_ != inside) return;
+    if (in_string_) {
+      if (escaped_) escaped_ = false;
+      else if (c == '\\') escaped_ = true;
+      else if (c == '"') in_string_ = false;
+    } else if (c == '"') {
+      in_string_ = true;
+    } else if (c == '{' || c == '[') {
+      ++depth_;
+    } else if ((c == '}' || c == ']') && --depth_ == 0) {
+      state_ = closed;
+    }
+  }
+  State state() const { return state_; }
+  void give_up() { state_ = none; }
+
+  // The bytes past the end of the object at the start of `bytes`; npos when it does not end there.
+  static size_t after(std::string_view bytes) {
+    ObjectEnd end;
+    for (size_t i = 0; i < bytes.size(); ++i) {
+      end.feed(bytes[i]);
+      if (end.state() == closed) return i + 1;
+      if (end.state() == none) break;
+    }
+    return npos;
+  }
+
+ private:
+  State state_ = before;
+  long depth_ = 0;
+  bool in_string_ = false, escaped_ = false;
 };
 
-Frame read_frame(std::istream& in) {
-  Frame f;
-  std::optional<size_t> length;
-  bool any = false;
-  for (std::string line; std::getline(in, line);) {
-    any = true;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty()) break;
-    size_t colon = line.find(':');
-    if (colon == std::string::npos) continue;  // not a header: the block's length decides
-    std::string name = line.substr(0, colon);
-    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (name != "content-length") continue;
-    std::string value = line.substr(colon + 1);
-    char* end = nullptr;
-    unsigned long long n = std::strtoull(value.c_str(), &end, 10);
-    if (end != value.c_str() && n <= kMaxMessageBytes) length = static_cast<size_t>(n);
-  }
-  if (!any) {
-    f.end = true;
-    return f;
-  }
-  if (!length) {
-    f.error = "a message without a valid Content-Length header (at most 256 MB)";
-    return f;
-  }
-  f.body.resize(*length);
-  in.read(f.body.data(), static_cast<std::streamsize>(*length));
-  if (static_cast<size_t>(in.gcount()) != *length) f.end = true;
-  return f;
+Incoming read_as(json message, std::string framing = "") {
+  Incoming in;
+  in.message = std::move(message);
+  in.framing = std::move(framing);
+  return in;
 }
+
+// A block of "Name: value" lines up to an empty line, as it starts a message.
+struct Header {
+  enum Kind { message, broken, junk, end } kind = junk;
+  size_t length = 0;    // of the message's body
+  std::string problem;  // why it gives no length (broken)
+  size_t size = 0;      // its bytes
+};
+
+// Bytes no message was read from, gathered up to the next header: one message whose framing was
+// wrong (then it is read from them) or junk (dropped).
+struct Dropped {
+  std::string bytes;               // the first kMaxMessageBytes of them
+  size_t count = 0;                // all of them
+  std::string problem;             // what was found wrong first
+  std::optional<size_t> declared;  // the Content-Length their first part was read with
+  ObjectEnd object;                // where the object they start ends
+
+  bool empty() const { return count == 0 && problem.empty() && !declared; }
+
+  void add(std::string_view more) {
+    count += more.size();
+    bytes.append(more.substr(0, kMaxMessageBytes - std::min(bytes.size(), kMaxMessageBytes)));
+    for (char c : more) object.feed(c);
+  }
+
+  // A message read from them, with what was wrong with its framing; or why none could be.
+  Incoming finish() const {
+    Incoming in;
+    if (count == bytes.size()) {
+      JsonRead r = read_json(bytes);
+      if (r.error.empty() && r.value.is_object())
+        return read_as(std::move(r.value), declared && count > *declared   ? fmt::format("its Content-Length ({}) was less than its {} bytes", *declared, count)
+                                           : declared && count < *declared ? fmt::format("its Content-Length ({}) was more than its {} bytes", *declared, count)
+                                           : !problem.empty()              ? problem
+                                                                           : "it came without a Content-Length header");
+    }
+    if (declared && count == *declared) {
+      in.error = "the message is not valid JSON: " + problem;
+    } else {
+      std::string why = !problem.empty() ? problem : "no Content-Length header came before them";
+      if (declared) why = fmt::format("read with a Content-Length of {}: {}", *declared, why);
+      in.error = fmt::format("{} bytes that are not a message were dropped ({})", count, why);
+    }
+    in.dropped = excerpt(bytes);
+    return in;
+  }
+};
+
+// The client's stream cut into messages. After a framing error (a Content-Length that is not a
+// number, too large, less or more than the body, or bytes that are no message at all) it
+// resynchronises: what follows is read as the message it turns out to be, or dropped up to the
+// next "Content-Length" header.
+class MessageReader {
+ public:
+  explicit MessageReader(std::istream& in) : in_(in) {}
+
+  // The next message, or what was dropped and why; none at the end of the input.
+  std::optional<Incoming> next() {
+    Dropped dropped;
+    for (;;) {
+      buffer_.erase(0, pos_);
+      pos_ = 0;
+      if (dropped.empty())  // line ends between messages are no error
+        while (have(1) && (buffer_[pos_] == '\r' || buffer_[pos_] == '\n')) ++pos_;
+      Header h = header();
+      if (h.kind == Header::end) return dropped.empty() ? std::nullopt : std::optional(dropped.finish());
+      if (h.kind == Header::junk) {
+        dropped.add(std::string_view(buffer_).substr(pos_++, 1));
+        if (!skip_to_length_header(dropped)) continue;
+        Incoming in = dropped.finish();  // an object ended: the message whose framing was wrong, if it is one
+        if (in.message.is_object()) return in;
+        dropped.object.give_up();
+        continue;
+      }
+      if (!dropped.empty()) return dropped.finish();  // the header after them is read again next time
+      pos_ += h.size;
+      if (h.kind == Header::broken) {
+        dropped.problem = h.problem;
+        continue;
+      }
+      bool whole = have(h.length);
+      std::string_view body = std::string_view(buffer_).substr(pos_, h.length);
+      dropped.declared = h.length;
+      if (whole) {
+        JsonRead r = read_json(body);
+        if (r.error.empty()) {
+          pos_ += body.size();
+          if (r.value.is_object()) return read_as(std::move(r.value));
+          Incoming batch;
+          batch.error = "the message is JSON but not an object (LSP sends no batches)";
+          batch.code = kInvalidRequest;
+          return batch;
+        }
+        dropped.problem = r.error;
+      }
+      // Not a message as framed. An object at its start, or a header inside it, says where the
+      // message ends.
+      if (size_t end = ObjectEnd::after(body); whole && end < body.size()) {
+        JsonRead r = read_json(body.substr(0, end));
+        if (r.error.empty() && r.value.is_object()) {
+          pos_ += end;
+          return read_as(std::move(r.value), fmt::format("its Content-Length ({}) was more than its {} bytes", h.length, end));
+        }
+      }
+      if (size_t next = find_length_header(body); next != npos) {
+        dropped.add(body.substr(0, next));
+        pos_ += next;
+        return dropped.finish();
+      }
+      dropped.add(body);
+      pos_ += body.size();
+      // One whole object that is no message, or no object at all: no byte after it can mend it.
+      if (whole && dropped.object.state() != ObjectEnd::inside) return dropped.finish();
+    }
+  }
+
+ private:
+  // `n` bytes from `pos_` are buffered; false when the input ends first. Read only as needed (the
+  // client waits for answers before it sends more), a megabyte at a time (a Content-Length no body
+  // follows costs no memory).
+  bool have(size_t n) {
+    while (buffer_.size() - pos_ < n) {
+      if (ended_) return false;
+      size_t want = std::min<size_t>(n - (buffer_.size() - pos_), 1u << 20), old = buffer_.size();
+      buffer_.resize(old + want);
+      in_.read(buffer_.data() + old, static_cast<std::streamsize>(want));
+      buffer_.resize(old + static_cast<size_t>(in_.gcount()));
+      if (buffer_.size() < old + want) ended_ = true;
+    }
+    return true;
+  }
+
+  // A byte at `at` (an index into buffer_), read if need be; '\0' past the end of the input.
+  char byte(size_t at) { return have(at - pos_ + 1) ? buffer_[at] : '\0'; }
+
+  // The header block at pos_. It is junk from its first byte that no header can hold, so no
+  // bytes are waited for that a header would not need.
+  Header header() {
+    if (!have(1)) return {Header::end, 0, "", 0};
+    Header h;
+    std::optional<size_t> length;
+    size_t at = pos_;
+    for (size_t lines = 0;; ++lines) {
+      if (byte(at) == '\n' || (byte(at) == '\r' && byte(at + 1) == '\n')) {
+        at += byte(at) == '\r' ? 2 : 1;
+        break;
+      }
+      if (lines == kMaxHeaderLines) return h;
+      size_t name = at;
+      while (is_token_byte(byte(at)) && at - name < kMaxHeaderLine) ++at;
+      if (at == name || byte(at) != ':') return h;
+      size_t colon = at;
+      while (byte(at) != '\n' && byte(at) != '\0' && at - name < kMaxHeaderLine) ++at;
+      if (byte(at) != '\n') return h;
+      std::string_view line(buffer_.data() + name, at - name);
+      if (line.back() == '\r') line.remove_suffix(1);
+      ++at;
+      if (colon - name != kLengthName.size() || !length_name_at(line, 0)) continue;
+      std::string_view value = trimmed(line.substr(colon - name + 1));
+      size_t n = 0;
+      auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), n);
+      length.reset();
+      if (value.empty() || end != value.data() + value.size() || error == std::errc::invalid_argument)
+        h.problem = fmt::format("its Content-Length \"{}\" is not a number", excerpt(value));
+      else if (error == std::errc::result_out_of_range || n > kMaxMessageBytes)
+        h.problem = fmt::format("its Content-Length ({}) is more than the 256 MB a message may have", excerpt(value));
+      else
+        length = n;
+    }
+    h.size = at - pos_;
+    h.kind = length ? Header::message : Header::broken;
+    h.length = length.value_or(0);
+    if (!length && h.problem.empty()) h.problem = "its header has no Content-Length";
+    return h;
+  }
+
+  // Drops bytes up to the next "Content-Length" (in any case) or the end of the input (false), or
+  // up to the end of an object the dropped bytes started (true).
+  bool skip_to_length_header(Dropped& dropped) {
+    for (;;) {
+      if (dropped.object.state() == ObjectEnd::closed) return true;
+      if (!have(1)) return false;
+      // Looked for only at a 'c': a closing brace is never waited past.
+      if (lower(buffer_[pos_]) == 'c' && have(kLengthName.size()) && length_name_at(buffer_, pos_)) return false;
+      dropped.add(std::string_view(buffer_).substr(pos_++, 1));
+      if (pos_ >= (1u << 16)) {
+        buffer_.erase(0, pos_);
+        pos_ = 0;
+      }
+    }
+  }
+
+  std::istream& in_;
+  std::string buffer_;  // bytes read and not taken yet, from pos_
+  size_t pos_ = 0;
+  bool ended_ = false;
+};
 
 }  // namespace
 
@@ -92,27 +349,15 @@ bool Inbox::change_waits(const std::string& uri) {
 }
 
 void Inbox::read(std::istream& in) {
-  for (;;) {
-    Frame frame = read_frame(in);
-    if (frame.end) break;
-    Incoming incoming;
-    if (!frame.error.empty()) {
-      incoming.error = frame.error;
-    } else {
-      JsonRead read = read_json(frame.body);
-      if (!read.error.empty() || !read.value.is_object()) {
-        incoming.error = read.error.empty() ? "the message is not a JSON object" : "the message is not valid JSON: " + read.error;
-      } else {
-        incoming.message = std::move(read.value);
-      }
-      if (incoming.message.contains("params") && !incoming.message["params"].is_object() && !incoming.message["params"].is_array()) {
-        incoming.message.erase("params");  // invalid; the handler reports what is missing
-      }
-    }
-    bool exit = value_at(incoming.message, {"method"}) == "exit";
+  MessageReader reader(in);
+  while (std::optional<Incoming> incoming = reader.next()) {
+    json& message = incoming->message;
+    if (message.contains("params") && !message["params"].is_object() && !message["params"].is_array())
+      message.erase("params");  // invalid; the handler reports what is missing
+    bool exit = value_at(message, {"method"}) == "exit";
     {
       std::lock_guard lock(mutex_);
-      queue_.push_back(std::move(incoming));
+      queue_.push_back(std::move(*incoming));
     }
     arrived_.notify_one();
     if (exit) break;  // nothing after `exit` is read: the server is gone

@@ -30,10 +30,13 @@ bool holds(const json& array, const char* value);
 // JSON text of a value. Text from the user's files may not be UTF-8: replaced, never a thrown dump.
 std::string json_text(const json& value);
 
-// A message from the client, or why it could not be read.
+// A message from the client, or why none could be read.
 struct Incoming {
-  json message;
-  std::string error;
+  json message;              // an object; null when none could be read
+  std::string error;         // why none could be read, answered with `code` (id null)
+  int code = kParseError;
+  std::string framing;       // what was wrong with the framing of a message read all the same
+  std::string dropped;       // the first of the bytes dropped, for the log
 };
 
 // The client's messages, read on a thread of their own as they arrive: a request still waiting
