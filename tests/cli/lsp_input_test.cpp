@@ -1,5 +1,6 @@
 // `lwcport lsp` on messages a client got wrong or that carry what JSON carries badly: documents
-// that are not UTF-8 (raw bytes, lone surrogates) are analysed as `lint` reads the same bytes.
+// that are not UTF-8 (raw bytes, lone surrogates) are analysed as `lint` reads the same bytes; ids
+// JSON-RPC and LSP do not allow are refused.
 #include <gtest/gtest.h>
 
 #include <fmt/format.h>
@@ -134,6 +135,54 @@ TEST(LanguageServerInput, NonUtf8BytesInIncrementalChanges) {
     EXPECT_EQ(diagnostics(s).back()["version"], 3);
     expect_lints_findings(s, dir, kHead + "/* \xE9\xFF */ uniform highp " + kTail.substr(8));
   }
+}
+
+std::string framed(const std::string& body) { return "Content-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body; }
+
+// Ids that are objects, arrays, booleans, null, numbers with a fraction, integers past 32 bits
+// (2^70 among them, which no integer holds) or strings that are not UTF-8 are refused: -32600
+// Invalid Request with id null, and the method is not run (here `shutdown`: the server still
+// answers requests after them). Ids LSP allows come back exactly as they were sent.
+TEST(LanguageServerInput, InvalidIdsAreRefusedAndValidOnesComeBackAsSent) {
+  const std::vector<std::string> invalid = {R"({"a":1})", "[1]", "true", "false", "null", "1.5", "1e3", "1180591620717411303424",
+                                            "2147483648", "-2147483649", "18446744073709551615", "\"\\udce9\"", "\"\xE9\""};
+  const std::vector<std::string> valid = {"0", "2147483647", "-2147483648", "\"\"", "\"lwcport/7\"", "\"caf\\u00e9\""};
+  std::string input = frame(initialize());
+  for (const std::string& id : invalid) input += framed(R"({"jsonrpc":"2.0","id":)" + id + R"(,"method":"shutdown"})");
+  for (const std::string& id : valid) input += framed(R"({"jsonrpc":"2.0","id":)" + id + R"(,"method":"no/such"})");
+  Session s = serve(input + end_session());
+  EXPECT_EQ(s.exit_code, 0);
+  int refused = 0;
+  for (const json& m : s.messages)
+    if (m.contains("error") && m["error"]["code"] == -32600) {
+      ++refused;
+      EXPECT_TRUE(m["id"].is_null()) << m.dump();
+      EXPECT_NE(m["error"]["message"].get<std::string>().find("the request's id "), std::string::npos) << m.dump();
+    }
+  EXPECT_EQ(refused, static_cast<int>(invalid.size()));
+  std::vector<json> answered;
+  for (const json& m : s.messages)
+    if (m.contains("error") && m["error"]["code"] == -32601) answered.push_back(m["id"]);
+  std::vector<json> sent;
+  for (const std::string& id : valid) sent.push_back(json::parse(id));
+  EXPECT_EQ(answered, sent);
+  const json* shutdown = reply_to(s, 99);
+  ASSERT_NE(shutdown, nullptr);
+  EXPECT_FALSE(shutdown->contains("error"));  // no refused shutdown ran
+}
+
+// A message with no method and no result (nor error) is no request and no response: Invalid
+// Request, with its id when that is one LSP allows.
+TEST(LanguageServerInput, AMessageWithoutAMethodOrAResult) {
+  Session s = serve(frame(initialize()) + framed(R"({"jsonrpc":"2.0","id":4})") + framed(R"({"jsonrpc":"2.0","id":4.5,"method":7})") +
+                    framed(R"({"jsonrpc":"2.0","id":"lwcport/1","result":null})") + end_session());
+  const json* four = reply_to(s, 4);
+  ASSERT_NE(four, nullptr);
+  EXPECT_EQ((*four)["error"]["code"], -32600);
+  int null_ids = 0;
+  for (const json& m : s.messages) null_ids += m.contains("error") && m["id"].is_null() && m["error"]["code"] == -32600;
+  EXPECT_EQ(null_ids, 1);
+  EXPECT_EQ(s.messages.size(), 5u);  // the log line and answer of initialize, the two refusals, shutdown's answer
 }
 
 }  // namespace

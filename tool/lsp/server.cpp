@@ -47,13 +47,24 @@ class Server {
 
   // Handles one message; the exit code once the client says `exit`.
   std::optional<int> handle(const json& message) {
+    bool request = message.contains("id");
+    json id = request ? message["id"] : json();
+    std::string bad_id = request ? id_problem(id) : "";
     if (!message.contains("method") || !message["method"].is_string()) {
-      response_received(message);
+      if (message.contains("result") || message.contains("error")) {
+        response_received(message);
+        return std::nullopt;
+      }
+      log("an invalid request: it has no method (a string), nor a result");
+      reply_error(bad_id.empty() ? id : json(), kInvalidRequest, "the message is no request: it has no method (a string), nor a result");
       return std::nullopt;
     }
     std::string method = message["method"];
-    bool request = message.contains("id");
-    json id = request ? message["id"] : json();
+    if (!bad_id.empty()) {  // answered as JSON-RPC says, never with an id other than it came with
+      log("an invalid request: " + method + ": " + bad_id);
+      reply_error(nullptr, kInvalidRequest, bad_id);
+      return std::nullopt;
+    }
     const json params = message.value("params", json::object());
     auto started = Clock::now();
     replied_ = false;

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "core/source.h"
 #include "lsp/json_reader.h"
 
 namespace lwc::lsp {
@@ -319,6 +320,24 @@ json value_at(const json& object, std::initializer_list<const char*> path) {
 }
 
 bool holds(const json& array, const char* value) { return array.is_array() && std::find(array.begin(), array.end(), value) != array.end(); }
+
+std::string type_in_words(const json& value) {
+  if (value.is_number_integer()) return "an integer";
+  if (value.is_number()) return "a number with a fraction";
+  if (value.is_boolean()) return value.get<bool>() ? "true" : "false";
+  if (value.is_null()) return "null";
+  return value.is_object() ? "an object" : value.is_array() ? "an array" : "a string";
+}
+
+std::string id_problem(const json& id) {
+  constexpr long long kLeast = -2147483648LL, kMost = 2147483647LL;
+  if (id.is_string()) return find_invalid_utf8(id.get_ref<const std::string&>()) ? "the request's id is a string that is not UTF-8" : "";
+  bool in_range = id.is_number_unsigned() ? id.get<unsigned long long>() <= kMost
+                                          : id.is_number_integer() && id.get<long long>() >= kLeast && id.get<long long>() <= kMost;
+  if (in_range) return "";
+  std::string what = id.is_number() ? json_text(id) : type_in_words(id);
+  return fmt::format("the request's id must be a string or an integer from {} to {}, not {}", kLeast, kMost, what);
+}
 
 std::string json_text(const json& value) { return value.dump(-1, ' ', false, json::error_handler_t::replace); }
 

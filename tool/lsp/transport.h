@@ -30,6 +30,15 @@ bool holds(const json& array, const char* value);
 // JSON text of a value. Text from the user's files may not be UTF-8: replaced, never a thrown dump.
 std::string json_text(const json& value);
 
+// A JSON type in words: "an object", "a string", "an integer".
+std::string type_in_words(const json& value);
+
+// What is wrong with a request's id, or "" for none. JSON-RPC allows strings and numbers; LSP's
+// ids are strings and integers (32-bit), and a reply must carry the id as it came: a number with
+// a fraction, one past 32 bits, or a string that is not UTF-8 (JSON would send it back changed) is
+// refused with the rest.
+std::string id_problem(const json& id);
+
 // A message from the client, or why none could be read.
 struct Incoming {
   json message;              // an object; null when none could be read
