@@ -1,7 +1,10 @@
 // `lwcport lsp` on messages a client got wrong or that carry what JSON carries badly: documents
 // that are not UTF-8 (raw bytes, lone surrogates) are analysed as `lint` reads the same bytes; ids
-// JSON-RPC and LSP do not allow are refused.
+// JSON-RPC and LSP do not allow are refused; parameters of the wrong shape are said to be so in
+// plain words.
 #include <gtest/gtest.h>
+
+#include <map>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -137,6 +140,10 @@ TEST(LanguageServerInput, NonUtf8BytesInIncrementalChanges) {
   }
 }
 
+json open_document_notification(const std::string& uri) {
+  return notification("textDocument/didOpen", {{"textDocument", {{"uri", uri}, {"languageId", "glsl"}, {"version", 1}, {"text", kHead + kTail}}}});
+}
+
 std::string framed(const std::string& body) { return "Content-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body; }
 
 // Ids that are objects, arrays, booleans, null, numbers with a fraction, integers past 32 bits
@@ -183,6 +190,56 @@ TEST(LanguageServerInput, AMessageWithoutAMethodOrAResult) {
   for (const json& m : s.messages) null_ids += m.contains("error") && m["id"].is_null() && m["error"]["code"] == -32600;
   EXPECT_EQ(null_ids, 1);
   EXPECT_EQ(s.messages.size(), 5u);  // the log line and answer of initialize, the two refusals, shutdown's answer
+}
+
+// Parameters a method cannot use get an error that says which member is missing or of what type,
+// in plain words: never a library's internals ("[json.exception.out_of_range.403] key ..."), not
+// to the client, not in the log.
+TEST(LanguageServerInput, BadParametersAreSaidInPlainWords) {
+  std::string dir = test::scratch("lsp-bad-params");
+  std::string uri = "file://" + dir + "/a.vert";
+  json document = {{"uri", uri}};
+  json position = {{"line", 1}, {"character", 2}};
+  json bad_change = {{"range", {{"start", {{"line", 0}, {"character", true}}}, {"end", position}}}, {"text", ""}};
+  std::map<int, std::string> expected = {
+      {2, "bad parameters: `position` is missing"},
+      {3, "bad parameters: `position.line` must be an integer, not a string"},
+      {4, "bad parameters: `range.start` is missing"},
+      {5, "bad parameters: `arguments.0` must be a string, not an integer"},
+      {6, "bad parameters: `previousResultId` must be a string, not an integer"},
+      {7, "bad parameters: `textDocument` is missing"},
+      {8, "bad parameters: `action` must be a string, not null"},
+  };
+  std::string input =
+      frame(initialize()) + frame(open_document_notification(uri)) +
+      frame(request(2, "textDocument/hover", {{"textDocument", document}})) +
+      frame(request(3, "textDocument/hover", {{"textDocument", document}, {"position", {{"line", "1"}, {"character", 0}}}})) +
+      frame(request(4, "textDocument/codeAction", {{"textDocument", document}, {"range", {{"end", position}}}})) +
+      frame(request(5, "workspace/executeCommand", {{"command", "lwcport.fixAll"}, {"arguments", {5}}})) +
+      frame(request(6, "textDocument/diagnostic", {{"textDocument", document}, {"previousResultId", 5}})) +
+      frame(request(7, "textDocument/hover", json::array({document}))) +
+      frame(request(8, "codeAction/resolve", {{"title", "x"}, {"data", {{"uri", uri}, {"version", 1}, {"action", nullptr}}}})) +
+      frame(notification("textDocument/didOpen", {{"textDocument", {{"uri", uri}, {"version", 2}}}})) +
+      frame(notification("textDocument/didChange", {{"textDocument", {{"uri", uri}, {"version", 3}}}, {"contentChanges", json::array({bad_change})}})) +
+      frame(notification("textDocument/didChange", {{"textDocument", {{"uri", uri}, {"version", 4}}}, {"contentChanges", json::object({{"text", 7}})}})) +
+      end_session();
+  Session s = serve(input, "--log " + dir + "/server.log");
+  for (const auto& [id, message] : expected) {
+    const json* reply = reply_to(s, id);
+    ASSERT_NE(reply, nullptr) << id;
+    EXPECT_EQ((*reply)["error"]["code"], -32602) << id;
+    EXPECT_EQ((*reply)["error"]["message"], message) << id;
+  }
+  std::string log = test::read(dir + "/server.log");
+  for (const char* line : {"textDocument/didOpen: bad parameters: `textDocument.text` is missing",
+                           "textDocument/didChange: bad parameters: `contentChanges.0.range.start.character` must be an integer, not true",
+                           "textDocument/didChange: bad parameters: `contentChanges` must be an array, not an object"})
+    EXPECT_NE(log.find(line), std::string::npos) << line << "\n" << log;
+  std::string written;
+  for (const json& m : s.messages) written += m.dump() + "\n";
+  for (const std::string& text : {written, log})
+    for (const char* internal : {"json.exception", "[json", "type must be", "key '", "basic_string", "what()"})
+      EXPECT_EQ(text.find(internal), std::string::npos) << internal << "\n" << text;
 }
 
 }  // namespace

@@ -20,6 +20,7 @@
 #include "core/uri.h"
 #include "fix/apply.h"
 #include "lang/formats.h"
+#include "lsp/params.h"
 #include "lsp/positions.h"
 #include "lsp/transport.h"
 #include "project/config.h"
@@ -65,7 +66,7 @@ class Server {
       reply_error(nullptr, kInvalidRequest, bad_id);
       return std::nullopt;
     }
-    const json params = message.value("params", json::object());
+    const json params = message.contains("params") ? message["params"] : json::object();
     auto started = Clock::now();
     replied_ = false;
     log(fmt::format("<- {}{}", method, request ? " (" + json_text(id) + ")" : ""));
@@ -87,24 +88,28 @@ class Server {
       if (method == "initialize") reply(id, initialize(params));
       else if (method == "initialized") register_watchers();
       else if (method == "shutdown") shut_down_ = true, reply(id, nullptr);
-      else if (method == "textDocument/didOpen") open(params.at("textDocument"));
-      else if (method == "textDocument/didChange") change(params.at("textDocument"), params.at("contentChanges"));
-      else if (method == "textDocument/didSave") saved(params.at("textDocument").at("uri"));
-      else if (method == "textDocument/didClose") close(params.at("textDocument").at("uri"));
+      else if (method == "textDocument/didOpen") open(params);
+      else if (method == "textDocument/didChange") change(params);
+      else if (method == "textDocument/didSave") saved(string_member(params, "textDocument.uri"));
+      else if (method == "textDocument/didClose") close(string_member(params, "textDocument.uri"));
       else if (method == "textDocument/diagnostic") reply(id, pulled_diagnostics(params));
       else if (method == "textDocument/codeAction") reply(id, code_actions(params));
       else if (method == "codeAction/resolve") resolve_action(id, params);
       else if (method == "textDocument/hover") reply(id, hover(params));
       else if (method == "workspace/executeCommand") execute(id, params);
-      else if (method == "workspace/didChangeConfiguration") settings(params.value("settings", json())), reload();
+      else if (method == "workspace/didChangeConfiguration") settings(value_at(params, {"settings"})), reload();
       else if (method == "workspace/didChangeWatchedFiles") reload();
       else if (request) reply_error(id, kMethodNotFound, "no method " + method);
       // Other notifications ($/setTrace, $/cancelRequest for what is answered...) need nothing.
-    } catch (const json::exception& e) {
+    } catch (const BadParams& e) {
+      log(method + ": bad parameters: " + e.what());
       if (request) reply_error(id, kInvalidParams, std::string("bad parameters: ") + e.what());
+    } catch (const json::exception& e) {
+      log(method + ": bad parameters: " + plain_words(e));
+      if (request) reply_error(id, kInvalidParams, "bad parameters: " + plain_words(e));
     } catch (const std::exception& e) {
-      log_message(1, method + " failed: " + e.what());
-      if (request) reply_error(id, kInternalError, method + " failed: " + e.what());
+      log_message(1, method + " failed: " + plain_words(e));
+      if (request) reply_error(id, kInternalError, method + " failed: " + plain_words(e));
     }
     // A notification sent with an id is still a request: JSON-RPC owes it one answer.
     if (request && !replied_) reply_error(id, kInvalidRequest, method + " is a notification, not a request");
@@ -142,7 +147,7 @@ class Server {
     fs::path path;
     std::string text;
     std::vector<size_t> lines = {0};  // where each line of `text` starts
-    int version = 0;
+    long version = 0;
     std::optional<Lang> lang;
     bool analysed = false;          // the findings are of `text`
     long result = 0;                // which analysis the findings come from (pull diagnostics' result id)
@@ -178,7 +183,7 @@ class Server {
 
   json initialize(const json& params) {
     initialized_ = true;
-    const json capabilities = params.value("capabilities", json::object());
+    const json capabilities = value_at(params, {"capabilities"});
     utf8_ = holds(value_at(capabilities, {"general", "positionEncodings"}), "utf-8");
     pull_ = value_at(capabilities, {"textDocument", "diagnostic"}).is_object();
     refresh_ = value_at(capabilities, {"workspace", "diagnostics", "refreshSupport"}) == true;
@@ -186,7 +191,7 @@ class Server {
     watch_ = value_at(capabilities, {"workspace", "didChangeWatchedFiles", "dynamicRegistration"}) == true;
     create_files_ = value_at(capabilities, {"workspace", "workspaceEdit", "documentChanges"}) == true &&
                     holds(value_at(capabilities, {"workspace", "workspaceEdit", "resourceOperations"}), "create");
-    settings(params.value("initializationOptions", json()));
+    settings(value_at(params, {"initializationOptions"}));
     log_message(3, fmt::format("lwcport {}: {} positions, {} diagnostics", LWCPORT_VERSION, utf8_ ? "UTF-8" : "UTF-16", pull_ ? "pulled" : "pushed"));
     json provider = {{"codeActionKinds", {"quickfix", "source.fixAll.lwcport"}}, {"resolveProvider", true}};
     json result = {{"capabilities",
@@ -225,44 +230,49 @@ class Server {
   // A reply to one of our requests: a failed edit is worth a line in the log.
   void response_received(const json& message) {
     if (message.contains("error")) log("the client refused a request: " + json_text(message["error"]));
-    if (value_at(message, {"result", "applied"}) == false) log_message(2, "the editor did not apply lwcport's fixes: " + message["result"].value("failureReason", std::string("no reason given")));
+    json reason = value_at(message, {"result", "failureReason"});
+    if (value_at(message, {"result", "applied"}) == false)
+      log_message(2, "the editor did not apply lwcport's fixes: " + (reason.is_string() ? reason.get<std::string>() : "no reason given"));
   }
 
-  void open(const json& item) {
-    std::string uri = item.at("uri");
+  void open(const json& params) {
+    std::string uri = string_member(params, "textDocument.uri");
     // Read in full before it replaces anything: a malformed open leaves no half-made document.
     Document d;
     d.uri = uri;
     d.path = path_of_uri(uri);
-    d.text = item.at("text");
+    d.text = string_member(params, "textDocument.text");
     d.lines = line_starts(d.text);
-    d.version = item.value("version", 0);
-    d.lang = parse_lang(item.value("languageId", ""));
+    d.version = integer_member_or(params, "textDocument.version", 0);
+    d.lang = parse_lang(string_member_or(params, "textDocument.languageId", ""));
     Document& opened = documents_[uri] = std::move(d);
     analyse_and_publish(uri, opened);
     text_changed(uri, opened, opened.text);
   }
 
-  void change(const json& item, const json& changes) {
-    std::string uri = item.at("uri");
+  void change(const json& params) {
+    std::string uri = string_member(params, "textDocument.uri");
+    const json& changes = member(params, "contentChanges");
+    if (!changes.is_array()) throw BadParams("`contentChanges` must be an array, not " + type_in_words(changes));
     auto it = documents_.find(uri);
     if (it == documents_.end()) return;
     Document& d = it->second;
-    int version = item.value("version", d.version + 1);
+    long version = integer_member_or(params, "textDocument.version", d.version + 1);
     if (version <= d.version) return;  // stale: an edit the document already has
     // Applied to a copy: a malformed change leaves the document as it was.
     Document edited;
     edited.text = d.text;
     edited.lines = d.lines;
-    for (const json& c : changes) {
-      if (!c.contains("range")) {
-        edited.text = c.at("text");
+    for (size_t i = 0; i < changes.size(); ++i) {
+      std::string change = fmt::format("contentChanges.{}", i);
+      if (!changes[i].contains("range")) {
+        edited.text = string_member(params, change + ".text");
         edited.lines = line_starts(edited.text);
         continue;
       }
-      size_t begin = offset(edited, c["range"].at("start")), end = offset(edited, c["range"].at("end"));
+      size_t begin = offset(edited, params, change + ".range.start"), end = offset(edited, params, change + ".range.end");
       if (end < begin) std::swap(begin, end);
-      edited.text.replace(begin, end - begin, c.at("text").get<std::string>());
+      edited.text.replace(begin, end - begin, string_member(params, change + ".text"));
       edited.lines = line_starts(edited.text);
     }
     d.text = std::move(edited.text);
@@ -297,7 +307,7 @@ class Server {
     try {
       if (includes_->set_text(d.path, std::move(text), *configs_->for_dir(folder_of(d)))) ++include_generation_;
     } catch (const std::exception& e) {
-      log(std::string("include not re-read: ") + e.what());
+      log("include not re-read: " + plain_words(e));
       return;
     }
     for (auto& [other_uri, other] : documents_) {
@@ -307,9 +317,10 @@ class Server {
     }
   }
 
-  // The byte offset of an LSP position in the document (clamped to it).
-  size_t offset(const Document& d, const json& position) const {
-    return offset_at(d.text, d.lines, position.at("line").get<long>(), position.at("character").get<long>(), utf8_);
+  // The byte offset of the LSP position at `path` in `params`, in the document (clamped to it).
+  size_t offset(const Document& d, const json& params, const std::string& path) const {
+    long line = integer_member(params, path + ".line"), character = integer_member(params, path + ".character");
+    return offset_at(d.text, d.lines, line, character, utf8_);
   }
 
   std::pair<size_t, long> line_and_column(const Document& d, size_t at) const { return lsp::line_and_column(d.text, d.lines, at, utf8_); }
@@ -367,7 +378,7 @@ class Server {
       d.findings = analyze(Source(d.path.string(), d.text), options);
     } catch (const std::exception& e) {
       // One document's failure is that document's diagnostic, not a dead server.
-      d.failure = e.what();
+      d.failure = plain_words(e);
       log_message(1, fmt::format("{}: {}", d.path.string(), d.failure));
     }
     d.analysed = true;
@@ -470,13 +481,13 @@ class Server {
   // textDocument/diagnostic: the document's findings, or "unchanged" when the client already has
   // this analysis's.
   json pulled_diagnostics(const json& params) {
-    std::string uri = params.at("textDocument").at("uri");
+    std::string uri = string_member(params, "textDocument.uri");
     auto it = documents_.find(uri);
     if (it == documents_.end()) return {{"kind", "full"}, {"items", json::array()}};
     Document& d = it->second;
     ensure_analysed(uri, d);
     std::string id = std::to_string(d.result);
-    if (params.value("previousResultId", "") == id) return {{"kind", "unchanged"}, {"resultId", id}};
+    if (string_member_or(params, "previousResultId", "") == id) return {{"kind", "unchanged"}, {"resultId", id}};
     return {{"kind", "full"}, {"resultId", id}, {"items", json::parse(diagnostics_text(d))}};
   }
 
@@ -487,16 +498,16 @@ class Server {
     if (it == documents_.end()) return std::nullopt;
     Document& d = it->second;
     ensure_analysed(uri, d);
-    if (data.value("version", -1) != d.version) return std::nullopt;
-    std::string action = data.at("action");
-    if (action == "fixAll") return fix_all_edit(uri, d, data.value("unsafe", false));
-    size_t index = data.at("finding");
-    if (index >= d.findings.size()) return std::nullopt;
+    if (integer_member_or(data, "version", -1) != d.version) return std::nullopt;
+    std::string action = string_member(data, "action");
+    if (action == "fixAll") return fix_all_edit(uri, d, bool_member_or(data, "unsafe", false));
+    long index = integer_member(data, "finding");
+    if (index < 0 || static_cast<size_t>(index) >= d.findings.size()) return std::nullopt;
     const Finding& f = d.findings[index];
     Source source(d.path.string(), d.text);
     if (action == "fix") {
-      size_t k = data.at("fix");
-      if (k >= f.fixes.size()) return std::nullopt;
+      long k = integer_member(data, "fix");
+      if (k < 0 || static_cast<size_t>(k) >= f.fixes.size()) return std::nullopt;
       const Fix& fix = f.fixes[k];
       return workspace_edit(uri, d, fix.edits, source, false, {fix.library.begin(), fix.library.end()});
     }
@@ -571,13 +582,13 @@ class Server {
   // the client can create files (else `lwcport fix` writes it). With a client that resolves lazily
   // the edits come on codeAction/resolve.
   json code_actions(const json& params) {
-    std::string uri = params.at("textDocument").at("uri");
+    std::string uri = string_member(params, "textDocument.uri");
     json actions = json::array();
     auto it = documents_.find(uri);
     if (it == documents_.end()) return actions;
     Document& d = it->second;
     ensure_analysed(uri, d);
-    size_t from = offset(d, params.at("range").at("start")), to = offset(d, params.at("range").at("end"));
+    size_t from = offset(d, params, "range.start"), to = offset(d, params, "range.end");
     json only = value_at(params, {"context", "only"});
     auto wanted = [&](const std::string& kind) {
       if (!only.is_array()) return true;
@@ -628,9 +639,9 @@ class Server {
   }
 
   void resolve_action(const json& id, const json& action) {
-    json data = action.value("data", json());
+    json data = value_at(action, {"data"});
     if (!data.is_object()) return reply(id, action);
-    std::optional<json> edit = action_edit(data.value("uri", ""), data);
+    std::optional<json> edit = action_edit(string_member_or(data, "uri", ""), data);
     if (!edit) return reply_error(id, kContentModified, "the document changed since this action was offered; ask again");
     json resolved = action;
     resolved["edit"] = *edit;
@@ -640,13 +651,13 @@ class Server {
   // workspace/executeCommand `lwcport.fixAll` [uri] or [{uri, unsafe}]: every fix in the file,
   // sent to the client as workspace/applyEdit.
   void execute(const json& id, const json& params) {
-    std::string command = params.at("command");
+    std::string command = string_member(params, "command");
     if (command != kFixAllCommand) return reply_error(id, kInvalidParams, "no command " + command);
-    const json& arguments = params.at("arguments");
+    const json& arguments = value_at(params, {"arguments"});
     if (!arguments.is_array() || arguments.empty()) return reply_error(id, kInvalidParams, std::string(kFixAllCommand) + " needs the document's URI");
-    const json& first = arguments[0];
-    std::string uri = first.is_object() ? first.at("uri").get<std::string>() : first.get<std::string>();
-    bool unsafe = first.is_object() ? first.value("unsafe", unsafe_fixes_) : unsafe_fixes_;
+    bool named = arguments[0].is_object();  // [uri] or [{uri, unsafe}]
+    std::string uri = string_member(params, named ? "arguments.0.uri" : "arguments.0");
+    bool unsafe = named ? bool_member_or(params, "arguments.0.unsafe", unsafe_fixes_) : unsafe_fixes_;
     auto it = documents_.find(uri);
     if (it == documents_.end()) return reply_error(id, kInvalidParams, "the document is not open: " + uri);
     Document& d = it->second;
@@ -670,7 +681,7 @@ class Server {
       if (d.path.is_absolute()) try {
           includes_->set_text(d.path, d.text, *configs_->for_dir(folder_of(d)));
         } catch (const std::exception& e) {
-          log(std::string("include not re-read: ") + e.what());  // its analysis reports the config's problem
+          log("include not re-read: " + plain_words(e));  // its analysis reports the config's problem
         }
     for (auto& [uri, d] : documents_) {
       d.analysed = false;
@@ -682,12 +693,12 @@ class Server {
   // On a finding: its message, its rule's summary and rationale, and the rule's page. Elsewhere:
   // the world-space kind of the value under the cursor and where it came from.
   json hover(const json& params) {
-    std::string uri = params.at("textDocument").at("uri");
+    std::string uri = string_member(params, "textDocument.uri");
     auto it = documents_.find(uri);
     if (it == documents_.end()) return nullptr;
     Document& d = it->second;
     ensure_analysed(uri, d);
-    size_t at = offset(d, params.at("position"));
+    size_t at = offset(d, params, "position");
     if (std::optional<json> include = include_hover(d, at)) return *include;
     std::string text;
     std::optional<Span> covered;
@@ -708,7 +719,7 @@ class Server {
         if (!covered) covered = value->span;
       }
     } catch (const std::exception& e) {
-      log(std::string("hover: ") + e.what());
+      log("hover: " + plain_words(e));
     }
     if (text.empty()) return nullptr;
     return {{"contents", {{"kind", "markdown"}, {"value", text}}}, {"range", range(d, *covered)}};
