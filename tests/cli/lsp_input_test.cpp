@@ -242,5 +242,30 @@ TEST(LanguageServerInput, BadParametersAreSaidInPlainWords) {
       EXPECT_EQ(text.find(internal), std::string::npos) << internal << "\n" << text;
 }
 
+// A document that is not UTF-8 gets no edit that holds its whole text (JSON would carry those
+// bytes as U+FFFD): "fix all" is not offered, and the fix-all command says why instead of editing.
+TEST(LanguageServerInput, NoEditLosesBytesThatAreNotUtf8) {
+  std::string dir = test::scratch("lsp-raw-fix");
+  std::string uri = "file://" + dir + "/a.vert";
+  std::string bytes = kHead + "/* \xE9 */\n" + kTail;
+  json whole = {{"start", {{"line", 0}, {"character", 0}}}, {"end", {{"line", 9}, {"character", 0}}}};
+  Session s = serve(frame(initialize()) + open_with(uri, raw_inside(bytes)) +
+                    frame(request(2, "textDocument/codeAction", {{"textDocument", {{"uri", uri}}}, {"range", whole}, {"context", {{"diagnostics", json::array()}}}})) +
+                    frame(request(3, "workspace/executeCommand", {{"command", "lwcport.fixAll"}, {"arguments", {uri}}})) + end_session());
+  const json* actions = reply_to(s, 2);
+  ASSERT_NE(actions, nullptr);
+  bool quick_fix = false;
+  for (const json& a : (*actions)["result"]) {
+    EXPECT_NE(a["kind"], "source.fixAll.lwcport") << a.dump();
+    quick_fix |= a["kind"] == "quickfix" && a.contains("edit");
+  }
+  EXPECT_TRUE(quick_fix);  // a rewrite of one line still is
+  EXPECT_TRUE(notifications(s, "workspace/applyEdit").empty());
+  for (const json& m : s.messages) EXPECT_NE(m.value("method", ""), "workspace/applyEdit");
+  bool said = false;
+  for (const json& m : notifications(s, "window/logMessage")) said |= m["message"].get<std::string>().find("is not UTF-8") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
 }  // namespace
 }  // namespace lwc
