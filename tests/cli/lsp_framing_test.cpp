@@ -152,6 +152,23 @@ TEST(LanguageServerFraming, TheInputEndsInsideTheLastMessage) {
   EXPECT_EQ(s.exit_code, 0);
 }
 
+// Headers as clients write them, sound if not by the letter: another header first, the name in
+// any case, a space before the colon, bare line feeds, a line end between messages. Each message
+// is read with no warning and no error.
+TEST(LanguageServerFraming, HeadersAsClientsWriteThem) {
+  std::string body = hover_at_finding(5).dump();
+  std::string size = std::to_string(body.size());
+  Outcome o = serve_around("Content-Type: application/vscode-jsonrpc; charset=utf-8\r\nContent-Length: " + size + "\r\n\r\n" + body +
+                           "content-length:" + size + "\n\n" + hover_at_finding(6).dump() + "\r\n" +
+                           "CONTENT-LENGTH : " + size + "\r\n\r\n" + hover_at_finding(7).dump());
+  expect_three_answered(o.session);
+  for (int id : {5, 6, 7}) ASSERT_NE(reply_to(o.session, id), nullptr) << id;
+  for (const json& m : o.session.messages) {
+    EXPECT_FALSE(m.contains("error")) << m.dump();
+    EXPECT_NE(m.value("params", json::object()).value("type", 0), 2) << m.dump();
+  }
+}
+
 // A client sends a message and waits for its answer: a message whose header is broken, or whose
 // Content-Length is less than it, is answered once its last byte is here, not when the next
 // message comes. (The wait for the answer is bounded, so a server that waits fails the test.)

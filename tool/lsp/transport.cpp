@@ -260,14 +260,16 @@ class MessageReader {
       if (lines == kMaxHeaderLines) return h;
       size_t name = at;
       while (is_token_byte(byte(at)) && at - name < kMaxHeaderLine) ++at;
-      if (at == name || byte(at) != ':') return h;
+      size_t name_end = at;
+      while ((byte(at) == ' ' || byte(at) == '\t') && at - name < kMaxHeaderLine) ++at;  // HTTP has none here; a client may
+      if (name_end == name || byte(at) != ':') return h;
       size_t colon = at;
       while (byte(at) != '\n' && byte(at) != '\0' && at - name < kMaxHeaderLine) ++at;
       if (byte(at) != '\n') return h;
       std::string_view line(buffer_.data() + name, at - name);
       if (line.back() == '\r') line.remove_suffix(1);
       ++at;
-      if (colon - name != kLengthName.size() || !length_name_at(line, 0)) continue;
+      if (name_end - name != kLengthName.size() || !length_name_at(line, 0)) continue;
       std::string_view value = trimmed(line.substr(colon - name + 1));
       size_t n = 0;
       auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), n);
