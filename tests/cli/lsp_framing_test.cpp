@@ -83,9 +83,11 @@ void expect_read_despite(const Outcome& o, const std::string& problem) {
 }
 
 TEST(LanguageServerFraming, AContentLengthThatIsNotANumber) {
-  Outcome o = serve_around("Content-Length: twelve\r\n\r\n" + kBroken);
-  expect_three_answered(o.session);
-  expect_read_despite(o, "its Content-Length \"twelve\" is not a number");
+  for (std::string before : {"", "\r\n"}) {  // the message right after the header, or after a line end
+    Outcome o = serve_around("Content-Length: twelve\r\n\r\n" + before + kBroken);
+    expect_three_answered(o.session);
+    expect_read_despite(o, "its Content-Length \"twelve\" is not a number");
+  }
 }
 
 TEST(LanguageServerFraming, AContentLengthLessThanTheMessage) {

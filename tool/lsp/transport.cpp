@@ -151,7 +151,8 @@ struct Dropped {
     } else {
       std::string why = !problem.empty() ? problem : "no Content-Length header came before them";
       if (declared) why = fmt::format("read with a Content-Length of {}: {}", *declared, why);
-      in.error = fmt::format("{} bytes that are not a message were dropped ({})", count, why);
+      in.error = count == 0 ? fmt::format("a header no message came after ({})", why)
+                            : fmt::format("{} bytes that are not a message were dropped ({})", count, why);
     }
     in.dropped = excerpt(bytes);
     return in;
@@ -207,7 +208,7 @@ class MessageReader {
       }
       // Not a message as framed. An object at its start, or a header inside it, says where the
       // message ends.
-      if (size_t end = ObjectEnd::after(body); whole && end < body.size()) {
+      if (size_t end = ObjectEnd::after(body); end < body.size()) {
         JsonRead r = read_json(body.substr(0, end));
         if (r.error.empty() && r.value.is_object()) {
           pos_ += end;
@@ -250,10 +251,11 @@ class MessageReader {
   Header header() {
     if (!have(1)) return {Header::end, 0, "", 0};
     Header h;
-    std::optional<size_t> length;
+    size_t length = npos;  // none yet
     size_t at = pos_;
     for (size_t lines = 0;; ++lines) {
       if (byte(at) == '\n' || (byte(at) == '\r' && byte(at + 1) == '\n')) {
+        if (lines == 0) return h;  // no header before it: junk (a message after it is read from its object)
         at += byte(at) == '\r' ? 2 : 1;
         break;
       }
@@ -273,7 +275,7 @@ class MessageReader {
       std::string_view value = trimmed(line.substr(colon - name + 1));
       size_t n = 0;
       auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), n);
-      length.reset();
+      length = npos;
       if (value.empty() || end != value.data() + value.size() || error == std::errc::invalid_argument)
         h.problem = fmt::format("its Content-Length \"{}\" is not a number", excerpt(value));
       else if (error == std::errc::result_out_of_range || n > kMaxMessageBytes)
@@ -282,9 +284,9 @@ class MessageReader {
         length = n;
     }
     h.size = at - pos_;
-    h.kind = length ? Header::message : Header::broken;
-    h.length = length.value_or(0);
-    if (!length && h.problem.empty()) h.problem = "its header has no Content-Length";
+    h.kind = length != npos ? Header::message : Header::broken;
+    h.length = length != npos ? length : 0;
+    if (length == npos && h.problem.empty()) h.problem = "its header has no Content-Length";
     return h;
   }
 
