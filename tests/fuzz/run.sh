@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Replays every input in tests/fuzz/regressions (each a crash or hang once found, minimised),
-# then fuzzes for SECONDS (default 120) from the corpus with the shader dictionary. A crash, an
+# Replays every input in tests/fuzz/regressions and tests/fuzz/lsp-regressions (each a crash or
+# hang once found, minimised), then fuzzes for SECONDS in all (default 120): three quarters for the
+# shader target (from the corpus, with the shader dictionary), a quarter for the language server's
+# stream (lwcport_lsp_fuzz, from tests/fuzz/lsp-seeds with tests/fuzz/lsp.dict). A crash, an
 # ASan/UBSan report, an uncaught exception or an input slower than 10 s fails the run; the input
 # is kept in build-fuzz/artifacts/.
 #   usage: tests/fuzz/run.sh [SECONDS] [extra libFuzzer flags...]
@@ -8,15 +10,23 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 seconds=${1:-120}
 shift || true
+lsp_seconds=$((seconds / 4))
 fuzz=build-fuzz/lwcport_fuzz
-[ -x "$fuzz" ] || { echo "$fuzz is missing: run tests/fuzz/build.sh (.ci/setup does)" >&2; exit 2; }
+lsp_fuzz=build-fuzz/lwcport_lsp_fuzz
+for target in "$fuzz" "$lsp_fuzz"; do
+  [ -x "$target" ] || { echo "$target is missing: run tests/fuzz/build.sh (.ci/setup does)" >&2; exit 2; }
+done
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 
-regressions=(tests/fuzz/regressions/*)
-if [ -e "${regressions[0]}" ]; then
-  "$fuzz" -timeout=10 -rss_limit_mb=2048 "${regressions[@]}" > build-fuzz/replay.log 2>&1 || { cat build-fuzz/replay.log; exit 1; }
-  echo "replayed ${#regressions[@]} regression input(s)"
-fi
+replay() {  # target folder
+  local inputs=("$2"/*)
+  if [ -e "${inputs[0]}" ]; then
+    "$1" -timeout=10 -rss_limit_mb=2048 "${inputs[@]}" > build-fuzz/replay.log 2>&1 || { cat build-fuzz/replay.log; exit 1; }
+    echo "replayed ${#inputs[@]} regression input(s) of $(basename "$1")"
+  fi
+}
+replay "$fuzz" tests/fuzz/regressions
+replay "$lsp_fuzz" tests/fuzz/lsp-regressions
 
 # Seeds: each corpus file behind the byte that makes the target read it with its own extension
 # (the order of kPaths in fuzz_target.cpp).
@@ -38,5 +48,9 @@ done < <(find corpus -type f | sort)
 for f in corpus/glsl/forward.vert corpus/ue4/HeightFogCommon.ush corpus/ue5.4/DoubleFloatHelpers.ush; do
   { printf '\360'; cat "$f"; } > "$seeds/lsp-$(basename "$f")"
 done
-"$fuzz" "$work" "$seeds" -dict=tests/fuzz/shader.dict -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+"$fuzz" "$work" "$seeds" -dict=tests/fuzz/shader.dict -max_total_time="$((seconds - lsp_seconds))" -timeout=10 -rss_limit_mb=2048 \
   -max_len=16384 -print_final_stats=1 -artifact_prefix=build-fuzz/artifacts/ "$@" 2>&1 | tail -25
+
+mkdir -p build-fuzz/lsp-work
+"$lsp_fuzz" build-fuzz/lsp-work tests/fuzz/lsp-seeds -dict=tests/fuzz/lsp.dict -max_total_time="$lsp_seconds" -timeout=10 -rss_limit_mb=2048 \
+  -max_len=16384 -print_final_stats=1 -artifact_prefix=build-fuzz/artifacts/lsp- "$@" 2>&1 | tail -25
