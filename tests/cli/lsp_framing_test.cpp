@@ -111,6 +111,16 @@ TEST(LanguageServerFraming, AContentLengthThatOverflows) {
   }
 }
 
+// A Content-Length that ends inside the next message's header ("{" and "Content-Length" of the
+// next header, here): that header is read as a header, so the next message is not lost. (Found by
+// the fuzzer: tests/fuzz/lsp-regressions.)
+TEST(LanguageServerFraming, AContentLengthThatCutsTheNextHeaderInTwo) {
+  for (int cut : {1, 7, 14, 15}) {  // "C", "Content", "Content-Length", "Content-Length:" after the "{"
+    Outcome o = serve_around("Content-Length: " + std::to_string(1 + cut) + "\r\n\r\n{");
+    expect_three_answered(o.session);
+  }
+}
+
 // Binary junk (every byte value, line ends and colons among them) is dropped with one parse error,
 // its size said to the client and in the log with its first bytes.
 TEST(LanguageServerFraming, KilobytesOfBinaryJunk) {

@@ -20,12 +20,17 @@ constexpr size_t npos = std::string_view::npos;
 
 char lower(char c) { return c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c; }
 
+// `text` is "Content-Length", or a start of it, in any case.
+bool starts_length_name(std::string_view text) {
+  if (text.size() > kLengthName.size()) return false;
+  for (size_t i = 0; i < text.size(); ++i)
+    if (lower(text[i]) != kLengthName[i]) return false;
+  return true;
+}
+
 // `text` holds "Content-Length" (in any case) at `at`.
 bool length_name_at(std::string_view text, size_t at) {
-  if (at > text.size() || text.size() - at < kLengthName.size()) return false;
-  for (size_t i = 0; i < kLengthName.size(); ++i)
-    if (lower(text[at + i]) != kLengthName[i]) return false;
-  return true;
+  return at <= text.size() && text.size() - at >= kLengthName.size() && starts_length_name(text.substr(at, kLengthName.size()));
 }
 
 // Where in `text` a header that may start a message begins: "Content-Length", spaces, ':'.
@@ -36,6 +41,17 @@ size_t find_length_header(std::string_view text) {
     if (colon != npos && text[colon] == ':') return at;
   }
   return npos;
+}
+
+// How many bytes at the end of `text` may begin a "Content-Length" header (its name, or a start
+// of it, or it and spaces): a Content-Length that cuts the next header in two.
+size_t header_start_at_end(std::string_view text) {
+  for (size_t k = std::min(text.size(), kLengthName.size() + 8); k > 0; --k) {
+    std::string_view tail = text.substr(text.size() - k);
+    size_t name = std::min(k, kLengthName.size());
+    if (starts_length_name(tail.substr(0, name)) && tail.find_first_not_of(" \t", name) == npos) return k;
+  }
+  return 0;
 }
 
 // A byte of a header's name (an HTTP token).
@@ -220,8 +236,10 @@ class MessageReader {
         pos_ += next;
         return dropped.finish();
       }
-      dropped.add(body);
-      pos_ += body.size();
+      // What may start the next header is read again as such.
+      size_t kept = header_start_at_end(body);
+      dropped.add(body.substr(0, body.size() - kept));
+      pos_ += body.size() - kept;
       // One whole object that is no message, or no object at all: no byte after it can mend it.
       if (whole && dropped.object.state() != ObjectEnd::inside) return dropped.finish();
     }
