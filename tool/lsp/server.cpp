@@ -264,15 +264,15 @@ class Server {
     edited.text = d.text;
     edited.lines = d.lines;
     for (size_t i = 0; i < changes.size(); ++i) {
-      std::string change = fmt::format("contentChanges.{}", i);
+      std::string item = fmt::format("contentChanges.{}", i);
       if (!changes[i].contains("range")) {
-        edited.text = string_member(params, change + ".text");
+        edited.text = string_member(params, item + ".text");
         edited.lines = line_starts(edited.text);
         continue;
       }
-      size_t begin = offset(edited, params, change + ".range.start"), end = offset(edited, params, change + ".range.end");
+      size_t begin = offset(edited, params, item + ".range.start"), end = offset(edited, params, item + ".range.end");
       if (end < begin) std::swap(begin, end);
-      edited.text.replace(begin, end - begin, string_member(params, change + ".text"));
+      edited.text.replace(begin, end - begin, string_member(params, item + ".text"));
       edited.lines = line_starts(edited.text);
     }
     d.text = std::move(edited.text);
