@@ -41,6 +41,21 @@ class ChunkedStream : public std::streambuf {
   size_t handed_ = 0;
 };
 
+// A library's internals in an error's words: after the last of our prefixes that are followed by
+// words of ours alone (a client's text, a method's name, is echoed before them and may hold anything).
+bool shows_internals(const nlohmann::json& message) {
+  const nlohmann::json none = nlohmann::json::object();
+  nlohmann::json text = message.contains("error") ? message["error"].value("message", nlohmann::json())
+                                                  : message.value("params", none).value("message", nlohmann::json());
+  if (!text.is_string()) return false;
+  const std::string& words = text.get_ref<const std::string&>();
+  for (const char* prefix : {"bad parameters: ", " failed: "}) {
+    size_t at = words.rfind(prefix);
+    if (at != std::string::npos && words.find("json.exception", at) != std::string::npos) return true;
+  }
+  return false;
+}
+
 std::string frame(const std::string& body) { return "Content-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body; }
 
 constexpr const char* kFinalId = "lwcport-fuzz-final";
@@ -57,7 +72,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::ostringstream out;
   lwc::run_language_server(in, out);
 
-  // Every message written is framed, JSON, and free of a library's internals.
+  // Every message written is framed, JSON, and shows no library's internals.
   std::string written = out.str();
   bool answered = false;
   for (size_t at = 0; at < written.size();) {
@@ -68,7 +83,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     check(head + 4 + length <= written.size());
     nlohmann::json message = nlohmann::json::parse(written.substr(head + 4, length), nullptr, false);
     check(message.is_object());
-    check(written.substr(head + 4, length).find("json.exception") == std::string::npos);
+    check(!shows_internals(message));
     answered |= message.value("id", nlohmann::json()) == kFinalId;
     at = head + 4 + length;
   }
