@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# Replays every input in tests/fuzz/regressions (each a crash or hang once found, minimised),
-# then fuzzes for SECONDS (default 120) from the corpus with the shader dictionary; then the same
-# for `lwcport host` (tests/fuzz/host-regressions, C++ text from corpus/host, SECONDS / 2). A
+# Replays every input that once crashed or hung a target, minimised (tests/fuzz/regressions,
+# lsp-regressions, host-regressions), then fuzzes for SECONDS in all (default 120): half for the
+# shader target (from the corpus, with the shader dictionary), a quarter for the language server's
+# stream (lwcport_lsp_fuzz, from tests/fuzz/lsp-seeds with tests/fuzz/lsp.dict), a quarter for
+# `lwcport host` (lwcport_host_fuzz: C++ text from the host corpus, with tests/fuzz/cpp.dict). A
 # crash, an ASan/UBSan report, an uncaught exception or an input slower than 10 s (30 s for C++)
 # fails the run; the input is kept in build-fuzz/artifacts/.
 #   usage: tests/fuzz/run.sh [SECONDS] [extra libFuzzer flags...]
@@ -9,15 +11,26 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 seconds=${1:-120}
 shift || true
+lsp_seconds=$((seconds / 4))
+host_seconds=$((seconds / 4))
 fuzz=build-fuzz/lwcport_fuzz
-[ -x "$fuzz" ] || { echo "$fuzz is missing: run tests/fuzz/build.sh (.ci/setup does)" >&2; exit 2; }
+lsp_fuzz=build-fuzz/lwcport_lsp_fuzz
+host_fuzz=build-fuzz/lwcport_host_fuzz
+for target in "$fuzz" "$lsp_fuzz" "$host_fuzz"; do
+  [ -x "$target" ] || { echo "$target is missing: run tests/fuzz/build.sh (.ci/setup does)" >&2; exit 2; }
+done
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 
-regressions=(tests/fuzz/regressions/*)
-if [ -e "${regressions[0]}" ]; then
-  "$fuzz" -timeout=10 -rss_limit_mb=2048 "${regressions[@]}" > build-fuzz/replay.log 2>&1 || { cat build-fuzz/replay.log; exit 1; }
-  echo "replayed ${#regressions[@]} regression input(s)"
-fi
+replay() {  # target folder [timeout]
+  local inputs=("$2"/*)
+  if [ -e "${inputs[0]}" ]; then
+    "$1" -timeout="${3:-10}" -rss_limit_mb=4096 "${inputs[@]}" > build-fuzz/replay.log 2>&1 || { cat build-fuzz/replay.log; exit 1; }
+    echo "replayed ${#inputs[@]} regression input(s) of $(basename "$1")"
+  fi
+}
+replay "$fuzz" tests/fuzz/regressions
+replay "$lsp_fuzz" tests/fuzz/lsp-regressions
+replay "$host_fuzz" tests/fuzz/host-regressions 30
 
 # Seeds: each corpus file behind the byte that makes the target read it with its own extension
 # (the order of kPaths in fuzz_target.cpp).
@@ -39,19 +52,18 @@ done < <(find corpus -type f | sort)
 for f in corpus/glsl/forward.vert corpus/ue4/HeightFogCommon.ush corpus/ue5.4/DoubleFloatHelpers.ush; do
   { printf '\360'; cat "$f"; } > "$seeds/lsp-$(basename "$f")"
 done
-"$fuzz" "$work" "$seeds" -dict=tests/fuzz/shader.dict -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+"$fuzz" "$work" "$seeds" -dict=tests/fuzz/shader.dict -max_total_time="$((seconds - lsp_seconds - host_seconds))" -timeout=10 -rss_limit_mb=2048 \
   -max_len=16384 -print_final_stats=1 -artifact_prefix=build-fuzz/artifacts/ "$@" 2>&1 | tail -25
 
-# lwcport host: C++ text through Clang and the host checks, seeded with the host corpus's units.
-host_fuzz=build-fuzz/lwcport_host_fuzz
-[ -x "$host_fuzz" ] || { echo "$host_fuzz is missing: run tests/fuzz/build.sh (.ci/setup does)" >&2; exit 2; }
-host_regressions=(tests/fuzz/host-regressions/*)
-"$host_fuzz" -timeout=30 -rss_limit_mb=4096 "${host_regressions[@]}" > build-fuzz/host-replay.log 2>&1 || { cat build-fuzz/host-replay.log; exit 1; }
-echo "replayed ${#host_regressions[@]} host regression input(s)"
-# Seeds: the regressions, and the host corpus's units that include only its stand-in headers (a
-# unit that includes glm or the standard library parses ten times slower, and so is fuzzed less).
+mkdir -p build-fuzz/lsp-work
+"$lsp_fuzz" build-fuzz/lsp-work tests/fuzz/lsp-seeds -dict=tests/fuzz/lsp.dict -max_total_time="$lsp_seconds" -timeout=10 -rss_limit_mb=2048 \
+  -max_len=16384 -print_final_stats=1 -artifact_prefix=build-fuzz/artifacts/lsp- "$@" 2>&1 | tail -25
+
+# lwcport host: C++ text through Clang and the host checks. Seeds: the regressions, and the host
+# corpus's units that include only its stand-in headers (a unit that includes glm or the standard
+# library parses ten times slower, and so is fuzzed less).
 mkdir -p build-fuzz/host-seeds build-fuzz/host-work
 cp tests/fuzz/host-regressions/* build-fuzz/host-seeds/
 grep -L -E '#include <' $(find corpus/host -name '*.cpp') | xargs -I{} cp {} build-fuzz/host-seeds/
-"$host_fuzz" build-fuzz/host-work build-fuzz/host-seeds -dict=tests/fuzz/cpp.dict -max_total_time="$((seconds / 2))" -timeout=30 \
+"$host_fuzz" build-fuzz/host-work build-fuzz/host-seeds -dict=tests/fuzz/cpp.dict -max_total_time="$host_seconds" -timeout=30 \
   -rss_limit_mb=4096 -max_len=8192 -print_final_stats=1 -artifact_prefix=build-fuzz/artifacts/host- "$@" 2>&1 | tail -25

@@ -1,20 +1,16 @@
 #include "lsp/server.h"
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <ctime>
-#include <condition_variable>
 #include <deque>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <set>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <fmt/format.h>
@@ -24,6 +20,9 @@
 #include "core/uri.h"
 #include "fix/apply.h"
 #include "lang/formats.h"
+#include "lsp/params.h"
+#include "lsp/positions.h"
+#include "lsp/transport.h"
 #include "project/config.h"
 #include "project/files.h"
 #include "project/includes.h"
@@ -34,169 +33,11 @@
 namespace lwc {
 namespace {
 
-using nlohmann::json;
+using namespace lsp;
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-// JSON-RPC and LSP error codes.
-constexpr int kParseError = -32700, kInvalidRequest = -32600, kMethodNotFound = -32601, kInvalidParams = -32602,
-              kInternalError = -32603, kServerNotInitialized = -32002, kRequestCancelled = -32800, kContentModified = -32801;
-constexpr size_t kMaxMessageBytes = 256u << 20;  // a bound on one message, so no client exhausts memory
 constexpr const char* kFixAllCommand = "lwcport.fixAll";
-
-// One framed message from the client. `end`: the input is over.
-struct Frame {
-  bool end = false;
-  std::string body;
-  std::string error;  // a header block the message cannot be read from
-};
-
-Frame read_frame(std::istream& in) {
-  Frame f;
-  std::optional<size_t> length;
-  bool any = false;
-  for (std::string line; std::getline(in, line);) {
-    any = true;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty()) break;
-    size_t colon = line.find(':');
-    if (colon == std::string::npos) continue;  // not a header: the block's length decides
-    std::string name = line.substr(0, colon);
-    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (name != "content-length") continue;
-    std::string value = line.substr(colon + 1);
-    char* end = nullptr;
-    unsigned long long n = std::strtoull(value.c_str(), &end, 10);
-    if (end != value.c_str() && n <= kMaxMessageBytes) length = static_cast<size_t>(n);
-  }
-  if (!any) {
-    f.end = true;
-    return f;
-  }
-  if (!length) {
-    f.error = "a message without a valid Content-Length header (at most 256 MB)";
-    return f;
-  }
-  f.body.resize(*length);
-  in.read(f.body.data(), static_cast<std::streamsize>(*length));
-  if (static_cast<size_t>(in.gcount()) != *length) f.end = true;
-  return f;
-}
-
-// A member deep in `object`, or null where the path is missing (any message may be malformed).
-json value_at(const json& object, std::initializer_list<const char*> path) {
-  const json* at = &object;
-  for (const char* key : path) {
-    if (!at->is_object() || !at->contains(key)) return json();
-    at = &(*at)[key];
-  }
-  return *at;
-}
-
-// `array` is a JSON array holding `value`.
-bool holds(const json& array, const char* value) { return array.is_array() && std::find(array.begin(), array.end(), value) != array.end(); }
-
-// A message from the client, or why it could not be read.
-struct Incoming {
-  json message;
-  std::string error;
-};
-
-// The client's messages, read on a thread of their own as they arrive: a request still waiting
-// can then be cancelled, and a burst of typing analysed once.
-class Inbox {
- public:
-  // std::cin is tied to std::cout (reading flushes it): untied here, or the reading thread would
-  // flush the output while the server writes it.
-  explicit Inbox(std::istream& in) : untied_(in.tie(nullptr)), reader_([this, &in] { read(in); }) {}
-  ~Inbox() { reader_.join(); }
-
-  // The next message; none once the input is over.
-  std::optional<Incoming> next() {
-    std::unique_lock lock(mutex_);
-    arrived_.wait(lock, [&] { return !queue_.empty() || done_; });
-    if (queue_.empty()) return std::nullopt;
-    Incoming in = std::move(queue_.front());
-    queue_.pop_front();
-    return in;
-  }
-
-  // Takes a waiting `$/cancelRequest` for this id, if there is one.
-  bool take_cancel(const json& id) {
-    std::lock_guard lock(mutex_);
-    auto it = std::find_if(queue_.begin(), queue_.end(), [&](const Incoming& in) {
-      return value_at(in.message, {"method"}) == "$/cancelRequest" && value_at(in.message, {"params", "id"}) == id;
-    });
-    if (it == queue_.end()) return false;
-    queue_.erase(it);
-    return true;
-  }
-
-  // A later change of this document already waits.
-  bool change_waits(const std::string& uri) {
-    std::lock_guard lock(mutex_);
-    return std::any_of(queue_.begin(), queue_.end(), [&](const Incoming& in) {
-      return value_at(in.message, {"method"}) == "textDocument/didChange" && value_at(in.message, {"params", "textDocument", "uri"}) == uri;
-    });
-  }
-
- private:
-  void read(std::istream& in) {
-    for (;;) {
-      Frame frame = read_frame(in);
-      if (frame.end) break;
-      Incoming incoming;
-      if (!frame.error.empty()) {
-        incoming.error = frame.error;
-      } else {
-        incoming.message = json::parse(frame.body, nullptr, false);
-        if (incoming.message.is_discarded() || !incoming.message.is_object()) {
-          incoming.message = json();
-          incoming.error = "the message is not a JSON object";
-        } else if (incoming.message.contains("params") && !incoming.message["params"].is_object() && !incoming.message["params"].is_array()) {
-          incoming.message.erase("params");  // invalid; the handler reports what is missing
-        }
-      }
-      bool exit = value_at(incoming.message, {"method"}) == "exit";
-      {
-        std::lock_guard lock(mutex_);
-        queue_.push_back(std::move(incoming));
-      }
-      arrived_.notify_one();
-      if (exit) break;  // nothing after `exit` is read: the server is gone
-    }
-    std::lock_guard lock(mutex_);
-    done_ = true;
-    arrived_.notify_one();
-  }
-
-  std::mutex mutex_;
-  std::condition_variable arrived_;
-  std::deque<Incoming> queue_;
-  bool done_ = false;
-  std::ostream* untied_;
-  std::thread reader_;  // last: starts once the rest is built
-};
-
-// Where each line starts: LSP lines end at "\n", "\r\n" or a lone "\r", and a line's end
-// belongs to no column.
-std::vector<size_t> line_starts(const std::string& text) {
-  std::vector<size_t> starts = {0};
-  if (text.find('\r') == std::string::npos) {  // the usual file: memchr finds its lines far faster than a byte loop
-    for (size_t at = text.find('\n'); at != std::string::npos; at = text.find('\n', at + 1)) starts.push_back(at + 1);
-    return starts;
-  }
-  for (size_t i = 0; i < text.size(); ++i)
-    if (text[i] == '\n' || (text[i] == '\r' && (i + 1 == text.size() || text[i + 1] != '\n'))) starts.push_back(i + 1);
-  return starts;
-}
-
-// JSON text of a value. Text from the user's files may not be UTF-8: replaced, never a thrown dump.
-std::string json_text(const json& value) { return value.dump(-1, ' ', false, json::error_handler_t::replace); }
-
-// Bytes of the UTF-8 sequence that starts with `lead` (1 for a byte that starts none).
-size_t sequence_length(unsigned char lead) { return lead >= 0xF0 ? 4 : lead >= 0xE0 ? 3 : lead >= 0xC0 ? 2 : 1; }
-
 
 class Server {
  public:
@@ -207,17 +48,28 @@ class Server {
 
   // Handles one message; the exit code once the client says `exit`.
   std::optional<int> handle(const json& message) {
+    bool request = message.contains("id");
+    json id = request ? message["id"] : json();
+    std::string bad_id = request ? id_problem(id) : "";
     if (!message.contains("method") || !message["method"].is_string()) {
-      response_received(message);
+      if (message.contains("result") || message.contains("error")) {
+        response_received(message);
+        return std::nullopt;
+      }
+      log("an invalid request: it has no method (a string), nor a result");
+      reply_error(bad_id.empty() ? id : json(), kInvalidRequest, "the message is no request: it has no method (a string), nor a result");
       return std::nullopt;
     }
     std::string method = message["method"];
-    bool request = message.contains("id");
-    json id = request ? message["id"] : json();
-    const json params = message.value("params", json::object());
+    if (!bad_id.empty()) {  // answered as JSON-RPC says, never with an id other than it came with
+      log("an invalid request: " + method + ": " + bad_id);
+      reply_error(nullptr, kInvalidRequest, bad_id);
+      return std::nullopt;
+    }
+    const json params = message.contains("params") ? message["params"] : json::object();
     auto started = Clock::now();
     replied_ = false;
-    log(fmt::format("<- {}{}", method, request ? " (" + id.dump() + ")" : ""));
+    log(fmt::format("<- {}{}", method, request ? " (" + json_text(id) + ")" : ""));
     if (method == "exit") return shut_down_ ? 0 : 1;
     if (!initialized_ && method != "initialize") {
       if (request) reply_error(id, kServerNotInitialized, "the server is not initialized yet");
@@ -228,7 +80,7 @@ class Server {
       return std::nullopt;
     }
     if (request && inbox_.take_cancel(id)) {
-      log(fmt::format("   cancelled ({})", id.dump()));
+      log(fmt::format("   cancelled ({})", json_text(id)));
       reply_error(id, kRequestCancelled, "cancelled by the client");
       return std::nullopt;
     }
@@ -236,24 +88,28 @@ class Server {
       if (method == "initialize") reply(id, initialize(params));
       else if (method == "initialized") register_watchers();
       else if (method == "shutdown") shut_down_ = true, reply(id, nullptr);
-      else if (method == "textDocument/didOpen") open(params.at("textDocument"));
-      else if (method == "textDocument/didChange") change(params.at("textDocument"), params.at("contentChanges"));
-      else if (method == "textDocument/didSave") saved(params.at("textDocument").at("uri"));
-      else if (method == "textDocument/didClose") close(params.at("textDocument").at("uri"));
+      else if (method == "textDocument/didOpen") open(params);
+      else if (method == "textDocument/didChange") change(params);
+      else if (method == "textDocument/didSave") saved(string_member(params, "textDocument.uri"));
+      else if (method == "textDocument/didClose") close(string_member(params, "textDocument.uri"));
       else if (method == "textDocument/diagnostic") reply(id, pulled_diagnostics(params));
       else if (method == "textDocument/codeAction") reply(id, code_actions(params));
       else if (method == "codeAction/resolve") resolve_action(id, params);
       else if (method == "textDocument/hover") reply(id, hover(params));
       else if (method == "workspace/executeCommand") execute(id, params);
-      else if (method == "workspace/didChangeConfiguration") settings(params.value("settings", json())), reload();
+      else if (method == "workspace/didChangeConfiguration") settings(value_at(params, {"settings"})), reload();
       else if (method == "workspace/didChangeWatchedFiles") reload();
       else if (request) reply_error(id, kMethodNotFound, "no method " + method);
       // Other notifications ($/setTrace, $/cancelRequest for what is answered...) need nothing.
-    } catch (const json::exception& e) {
+    } catch (const BadParams& e) {
+      log(method + ": bad parameters: " + e.what());
       if (request) reply_error(id, kInvalidParams, std::string("bad parameters: ") + e.what());
+    } catch (const json::exception& e) {
+      log(method + ": bad parameters: " + plain_words(e));
+      if (request) reply_error(id, kInvalidParams, "bad parameters: " + plain_words(e));
     } catch (const std::exception& e) {
-      log_message(1, method + " failed: " + e.what());
-      if (request) reply_error(id, kInternalError, method + " failed: " + e.what());
+      log_message(1, method + " failed: " + plain_words(e));
+      if (request) reply_error(id, kInternalError, method + " failed: " + plain_words(e));
     }
     // A notification sent with an id is still a request: JSON-RPC owes it one answer.
     if (request && !replied_) reply_error(id, kInvalidRequest, method + " is a notification, not a request");
@@ -270,6 +126,16 @@ class Server {
     if (log_.is_open()) log_ << fmt::format("[{:10.1f} ms] ", ms_since(started_)) << line << std::endl;
   }
 
+  // A framing error or a message that could not be read: the log gets what was dropped, the client
+  // a warning (once initialized: before, the protocol lets a server send it nothing) and, when no
+  // message could be read, the error JSON-RPC answers it with.
+  void unsound(const Incoming& in) {
+    std::string what = in.error.empty() ? "a message was read despite its framing: " + in.framing : in.error;
+    log(what + (in.dropped.empty() ? "" : "; dropped: " + in.dropped));
+    if (initialized_) send({{"jsonrpc", "2.0"}, {"method", "window/logMessage"}, {"params", {{"type", 2}, {"message", "lwcport: " + what}}}});
+    if (!in.error.empty()) reply_error(nullptr, in.code, in.error);
+  }
+
  private:
   // A diagnostic as JSON text, in two parts: before its document version and after it.
   struct DiagnosticText {
@@ -281,7 +147,7 @@ class Server {
     fs::path path;
     std::string text;
     std::vector<size_t> lines = {0};  // where each line of `text` starts
-    int version = 0;
+    long version = 0;
     std::optional<Lang> lang;
     bool analysed = false;          // the findings are of `text`
     long result = 0;                // which analysis the findings come from (pull diagnostics' result id)
@@ -317,7 +183,7 @@ class Server {
 
   json initialize(const json& params) {
     initialized_ = true;
-    const json capabilities = params.value("capabilities", json::object());
+    const json capabilities = value_at(params, {"capabilities"});
     utf8_ = holds(value_at(capabilities, {"general", "positionEncodings"}), "utf-8");
     pull_ = value_at(capabilities, {"textDocument", "diagnostic"}).is_object();
     refresh_ = value_at(capabilities, {"workspace", "diagnostics", "refreshSupport"}) == true;
@@ -325,7 +191,7 @@ class Server {
     watch_ = value_at(capabilities, {"workspace", "didChangeWatchedFiles", "dynamicRegistration"}) == true;
     create_files_ = value_at(capabilities, {"workspace", "workspaceEdit", "documentChanges"}) == true &&
                     holds(value_at(capabilities, {"workspace", "workspaceEdit", "resourceOperations"}), "create");
-    settings(params.value("initializationOptions", json()));
+    settings(value_at(params, {"initializationOptions"}));
     log_message(3, fmt::format("lwcport {}: {} positions, {} diagnostics", LWCPORT_VERSION, utf8_ ? "UTF-8" : "UTF-16", pull_ ? "pulled" : "pushed"));
     json provider = {{"codeActionKinds", {"quickfix", "source.fixAll.lwcport"}}, {"resolveProvider", true}};
     json result = {{"capabilities",
@@ -363,45 +229,50 @@ class Server {
 
   // A reply to one of our requests: a failed edit is worth a line in the log.
   void response_received(const json& message) {
-    if (message.contains("error")) log("the client refused a request: " + message["error"].dump());
-    if (value_at(message, {"result", "applied"}) == false) log_message(2, "the editor did not apply lwcport's fixes: " + message["result"].value("failureReason", std::string("no reason given")));
+    if (message.contains("error")) log("the client refused a request: " + json_text(message["error"]));
+    json reason = value_at(message, {"result", "failureReason"});
+    if (value_at(message, {"result", "applied"}) == false)
+      log_message(2, "the editor did not apply lwcport's fixes: " + (reason.is_string() ? reason.get<std::string>() : "no reason given"));
   }
 
-  void open(const json& item) {
-    std::string uri = item.at("uri");
+  void open(const json& params) {
+    std::string uri = string_member(params, "textDocument.uri");
     // Read in full before it replaces anything: a malformed open leaves no half-made document.
     Document d;
     d.uri = uri;
     d.path = path_of_uri(uri);
-    d.text = item.at("text");
+    d.text = string_member(params, "textDocument.text");
     d.lines = line_starts(d.text);
-    d.version = item.value("version", 0);
-    d.lang = parse_lang(item.value("languageId", ""));
+    d.version = integer_member_or(params, "textDocument.version", 0);
+    d.lang = parse_lang(string_member_or(params, "textDocument.languageId", ""));
     Document& opened = documents_[uri] = std::move(d);
     analyse_and_publish(uri, opened);
     text_changed(uri, opened, opened.text);
   }
 
-  void change(const json& item, const json& changes) {
-    std::string uri = item.at("uri");
+  void change(const json& params) {
+    std::string uri = string_member(params, "textDocument.uri");
+    const json& changes = member(params, "contentChanges");
+    if (!changes.is_array()) throw BadParams("`contentChanges` must be an array, not " + type_in_words(changes));
     auto it = documents_.find(uri);
     if (it == documents_.end()) return;
     Document& d = it->second;
-    int version = item.value("version", d.version + 1);
+    long version = integer_member_or(params, "textDocument.version", d.version + 1);
     if (version <= d.version) return;  // stale: an edit the document already has
     // Applied to a copy: a malformed change leaves the document as it was.
     Document edited;
     edited.text = d.text;
     edited.lines = d.lines;
-    for (const json& c : changes) {
-      if (!c.contains("range")) {
-        edited.text = c.at("text");
+    for (size_t i = 0; i < changes.size(); ++i) {
+      std::string item = fmt::format("contentChanges.{}", i);
+      if (!changes[i].contains("range")) {
+        edited.text = string_member(params, item + ".text");
         edited.lines = line_starts(edited.text);
         continue;
       }
-      size_t begin = offset(edited, c["range"].at("start")), end = offset(edited, c["range"].at("end"));
+      size_t begin = offset(edited, params, item + ".range.start"), end = offset(edited, params, item + ".range.end");
       if (end < begin) std::swap(begin, end);
-      edited.text.replace(begin, end - begin, c.at("text").get<std::string>());
+      edited.text.replace(begin, end - begin, string_member(params, item + ".text"));
       edited.lines = line_starts(edited.text);
     }
     d.text = std::move(edited.text);
@@ -436,7 +307,7 @@ class Server {
     try {
       if (includes_->set_text(d.path, std::move(text), *configs_->for_dir(folder_of(d)))) ++include_generation_;
     } catch (const std::exception& e) {
-      log(std::string("include not re-read: ") + e.what());
+      log("include not re-read: " + plain_words(e));
       return;
     }
     for (auto& [other_uri, other] : documents_) {
@@ -446,39 +317,13 @@ class Server {
     }
   }
 
-  // The byte offset of an LSP position, clamped to the document (a line past the end is its end,
-  // a character past a line's end is that end).
-  size_t offset(const Document& d, const json& position) const {
-    const std::string& text = d.text;
-    long line = position.at("line").get<long>(), character = position.at("character").get<long>();
-    if (line < 0) return 0;
-    if (static_cast<size_t>(line) >= d.lines.size()) return text.size();
-    size_t at = d.lines[line], end = static_cast<size_t>(line) + 1 < d.lines.size() ? d.lines[line + 1] : text.size();
-    if (end > at && text[end - 1] == '\n') --end;
-    if (end > at && text[end - 1] == '\r') --end;
-    for (long units = 0; at < end && units < character;) {
-      size_t n = std::min(sequence_length(static_cast<unsigned char>(text[at])), end - at);
-      units += units_of(n);
-      at += n;
-    }
-    return at;
+  // The byte offset of the LSP position at `path` in `params`, in the document (clamped to it).
+  size_t offset(const Document& d, const json& params, const std::string& path) const {
+    long line = integer_member(params, path + ".line"), character = integer_member(params, path + ".character");
+    return offset_at(d.text, d.lines, line, character, utf8_);
   }
 
-  // A character of `bytes` UTF-8 bytes in the negotiated units (UTF-16: two beyond the BMP).
-  long units_of(size_t bytes) const { return utf8_ ? static_cast<long>(bytes) : bytes == 4 ? 2 : 1; }
-
-  // The line of a byte offset and its column in the negotiated units.
-  std::pair<size_t, long> line_and_column(const Document& d, size_t at) const {
-    at = std::min(at, d.text.size());
-    size_t line = static_cast<size_t>(std::upper_bound(d.lines.begin(), d.lines.end(), at) - d.lines.begin()) - 1;
-    long units = 0;
-    for (size_t i = d.lines[line]; i < at;) {
-      size_t n = std::min(sequence_length(static_cast<unsigned char>(d.text[i])), at - i);
-      units += units_of(n);
-      i += n;
-    }
-    return {line, units};
-  }
+  std::pair<size_t, long> line_and_column(const Document& d, size_t at) const { return lsp::line_and_column(d.text, d.lines, at, utf8_); }
 
   json position(const Document& d, size_t at) const {
     auto [line, column] = line_and_column(d, at);
@@ -533,7 +378,7 @@ class Server {
       d.findings = analyze(Source(d.path.string(), d.text), options);
     } catch (const std::exception& e) {
       // One document's failure is that document's diagnostic, not a dead server.
-      d.failure = e.what();
+      d.failure = plain_words(e);
       log_message(1, fmt::format("{}: {}", d.path.string(), d.failure));
     }
     d.analysed = true;
@@ -636,13 +481,13 @@ class Server {
   // textDocument/diagnostic: the document's findings, or "unchanged" when the client already has
   // this analysis's.
   json pulled_diagnostics(const json& params) {
-    std::string uri = params.at("textDocument").at("uri");
+    std::string uri = string_member(params, "textDocument.uri");
     auto it = documents_.find(uri);
     if (it == documents_.end()) return {{"kind", "full"}, {"items", json::array()}};
     Document& d = it->second;
     ensure_analysed(uri, d);
     std::string id = std::to_string(d.result);
-    if (params.value("previousResultId", "") == id) return {{"kind", "unchanged"}, {"resultId", id}};
+    if (string_member_or(params, "previousResultId", "") == id) return {{"kind", "unchanged"}, {"resultId", id}};
     return {{"kind", "full"}, {"resultId", id}, {"items", json::parse(diagnostics_text(d))}};
   }
 
@@ -653,16 +498,16 @@ class Server {
     if (it == documents_.end()) return std::nullopt;
     Document& d = it->second;
     ensure_analysed(uri, d);
-    if (data.value("version", -1) != d.version) return std::nullopt;
-    std::string action = data.at("action");
-    if (action == "fixAll") return fix_all_edit(uri, d, data.value("unsafe", false));
-    size_t index = data.at("finding");
-    if (index >= d.findings.size()) return std::nullopt;
+    if (integer_member_or(data, "version", -1) != d.version) return std::nullopt;
+    std::string action = string_member(data, "action");
+    if (action == "fixAll") return fix_all_edit(uri, d, bool_member_or(data, "unsafe", false));
+    long index = integer_member(data, "finding");
+    if (index < 0 || static_cast<size_t>(index) >= d.findings.size()) return std::nullopt;
     const Finding& f = d.findings[index];
     Source source(d.path.string(), d.text);
     if (action == "fix") {
-      size_t k = data.at("fix");
-      if (k >= f.fixes.size()) return std::nullopt;
+      long k = integer_member(data, "fix");
+      if (k < 0 || static_cast<size_t>(k) >= f.fixes.size()) return std::nullopt;
       const Fix& fix = f.fixes[k];
       return workspace_edit(uri, d, fix.edits, source, false, {fix.library.begin(), fix.library.end()});
     }
@@ -677,10 +522,12 @@ class Server {
   // The edits as a workspace edit; `written`: their text is in the document's line endings already.
   // With `library` (the DoubleFloat functions the new code calls), lwcport's library file beside
   // the document gets them too (created when missing); none when the client cannot create files or
-  // a file of that name exists that lwcport did not write.
+  // a file of that name exists that lwcport did not write, or when a new text holds bytes that are
+  // not UTF-8 (JSON would carry them as U+FFFD: the edit would lose them).
   std::optional<json> workspace_edit(const std::string& uri, const Document& d, const std::vector<Edit>& edits, const Source& source,
                                      bool written = false, const std::set<std::string>& library = {}) const {
     json list = json::array();
+    if (std::any_of(edits.begin(), edits.end(), [](const Edit& e) { return find_invalid_utf8(e.text).has_value(); })) return std::nullopt;
     for (const Edit& e : edits) list.push_back({{"range", range(d, e.span)}, {"newText", written ? e.text : in_line_endings(source, e.text)}});
     if (library.empty()) return json{{"changes", {{uri, list}}}};
     std::optional<json> changes = library_changes(d, library);
@@ -735,13 +582,13 @@ class Server {
   // the client can create files (else `lwcport fix` writes it). With a client that resolves lazily
   // the edits come on codeAction/resolve.
   json code_actions(const json& params) {
-    std::string uri = params.at("textDocument").at("uri");
+    std::string uri = string_member(params, "textDocument.uri");
     json actions = json::array();
     auto it = documents_.find(uri);
     if (it == documents_.end()) return actions;
     Document& d = it->second;
     ensure_analysed(uri, d);
-    size_t from = offset(d, params.at("range").at("start")), to = offset(d, params.at("range").at("end"));
+    size_t from = offset(d, params, "range.start"), to = offset(d, params, "range.end");
     json only = value_at(params, {"context", "only"});
     auto wanted = [&](const std::string& kind) {
       if (!only.is_array()) return true;
@@ -785,16 +632,16 @@ class Server {
     bool any_fix = std::any_of(d.findings.begin(), d.findings.end(), [&](const Finding& f) {
       return std::any_of(f.fixes.begin(), f.fixes.end(), [&](const Fix& x) { return unsafe_fixes_ || x.applicability == Applicability::safe; });
     });
-    if (any_fix && wanted("source.fixAll.lwcport"))
+    if (any_fix && !find_invalid_utf8(d.text) && wanted("source.fixAll.lwcport"))
       add(unsafe_fixes_ ? "lwcport: apply every fix (unsafe ones too)" : "lwcport: apply every safe fix", "source.fixAll.lwcport", std::nullopt,
           {{"action", "fixAll"}, {"unsafe", unsafe_fixes_}});
     return actions;
   }
 
   void resolve_action(const json& id, const json& action) {
-    json data = action.value("data", json());
+    json data = value_at(action, {"data"});
     if (!data.is_object()) return reply(id, action);
-    std::optional<json> edit = action_edit(data.value("uri", ""), data);
+    std::optional<json> edit = action_edit(string_member_or(data, "uri", ""), data);
     if (!edit) return reply_error(id, kContentModified, "the document changed since this action was offered; ask again");
     json resolved = action;
     resolved["edit"] = *edit;
@@ -804,19 +651,21 @@ class Server {
   // workspace/executeCommand `lwcport.fixAll` [uri] or [{uri, unsafe}]: every fix in the file,
   // sent to the client as workspace/applyEdit.
   void execute(const json& id, const json& params) {
-    std::string command = params.at("command");
+    std::string command = string_member(params, "command");
     if (command != kFixAllCommand) return reply_error(id, kInvalidParams, "no command " + command);
-    const json& arguments = params.at("arguments");
+    const json& arguments = value_at(params, {"arguments"});
     if (!arguments.is_array() || arguments.empty()) return reply_error(id, kInvalidParams, std::string(kFixAllCommand) + " needs the document's URI");
-    const json& first = arguments[0];
-    std::string uri = first.is_object() ? first.at("uri").get<std::string>() : first.get<std::string>();
-    bool unsafe = first.is_object() ? first.value("unsafe", unsafe_fixes_) : unsafe_fixes_;
+    bool named = arguments[0].is_object();  // [uri] or [{uri, unsafe}]
+    std::string uri = string_member(params, named ? "arguments.0.uri" : "arguments.0");
+    bool unsafe = named ? bool_member_or(params, "arguments.0.unsafe", unsafe_fixes_) : unsafe_fixes_;
     auto it = documents_.find(uri);
     if (it == documents_.end()) return reply_error(id, kInvalidParams, "the document is not open: " + uri);
     Document& d = it->second;
     ensure_analysed(uri, d);
     std::optional<json> edit = fix_all_edit(uri, d, unsafe);
     reply(id, nullptr);
+    if (!edit && find_invalid_utf8(d.text))
+      return log_message(2, "lwcport: " + d.path.filename().string() + " is not UTF-8, and an edit of it would lose those bytes; save it as UTF-8, or run `lwcport fix` on it");
     if (!edit) return log_message(3, "lwcport: nothing to fix in " + d.path.filename().string());
     send({{"jsonrpc", "2.0"}, {"id", fmt::format("lwcport/{}", ++requests_)}, {"method", "workspace/applyEdit"},
           {"params", {{"label", "lwcport: fix all"}, {"edit", *edit}}}});
@@ -832,7 +681,7 @@ class Server {
       if (d.path.is_absolute()) try {
           includes_->set_text(d.path, d.text, *configs_->for_dir(folder_of(d)));
         } catch (const std::exception& e) {
-          log(std::string("include not re-read: ") + e.what());  // its analysis reports the config's problem
+          log("include not re-read: " + plain_words(e));  // its analysis reports the config's problem
         }
     for (auto& [uri, d] : documents_) {
       d.analysed = false;
@@ -844,12 +693,12 @@ class Server {
   // On a finding: its message, its rule's summary and rationale, and the rule's page. Elsewhere:
   // the world-space kind of the value under the cursor and where it came from.
   json hover(const json& params) {
-    std::string uri = params.at("textDocument").at("uri");
+    std::string uri = string_member(params, "textDocument.uri");
     auto it = documents_.find(uri);
     if (it == documents_.end()) return nullptr;
     Document& d = it->second;
     ensure_analysed(uri, d);
-    size_t at = offset(d, params.at("position"));
+    size_t at = offset(d, params, "position");
     if (std::optional<json> include = include_hover(d, at)) return *include;
     std::string text;
     std::optional<Span> covered;
@@ -870,7 +719,7 @@ class Server {
         if (!covered) covered = value->span;
       }
     } catch (const std::exception& e) {
-      log(std::string("hover: ") + e.what());
+      log("hover: " + plain_words(e));
     }
     if (text.empty()) return nullptr;
     return {{"contents", {{"kind", "markdown"}, {"value", text}}}, {"range", range(d, *covered)}};
@@ -918,10 +767,7 @@ class Server {
 
   void send(const json& message) { send_text(json_text(message)); }
 
-  void send_text(const std::string& body) {
-    out_ << "Content-Length: " << body.size() << "\r\n\r\n" << body;
-    out_.flush();
-  }
+  void send_text(const std::string& body) { write_frame(out_, body); }
 
   std::ostream& out_;
   Inbox& inbox_;
@@ -945,11 +791,8 @@ int run_language_server(std::istream& in, std::ostream& out, const ServerOptions
   Inbox inbox(in);
   Server server(out, inbox, options);
   while (std::optional<Incoming> incoming = inbox.next()) {
-    if (!incoming->error.empty()) {
-      server.log("unreadable message: " + incoming->error);
-      server.reply_error(nullptr, kParseError, incoming->error);
-      continue;
-    }
+    if (!incoming->error.empty() || !incoming->framing.empty()) server.unsound(*incoming);
+    if (!incoming->error.empty()) continue;
     if (std::optional<int> code = server.handle(incoming->message)) return *code;
   }
   server.log("the input ended without `exit`");
