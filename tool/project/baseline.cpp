@@ -216,10 +216,8 @@ std::string Baseline::write(const fs::path& file, std::vector<Entry> entries) {
   std::error_code ec;
   if (file.has_parent_path()) fs::create_directories(file.parent_path(), ec);
   if (!fs::exists(file, ec)) return create_file(file, body);
-  std::ifstream in(file, std::ios::binary);
-  std::stringstream old;
-  old << in.rdbuf();
-  return replace_file(file, old.str(), body);
+  // Read and closed before the write: a file open anywhere, here too, is not replaced.
+  return replace_file(file, read_file(file, SIZE_MAX).text, body);
 }
 
 std::string Baseline::key(const fs::path& file) const {
