@@ -7,6 +7,7 @@
 #include <mutex>
 #include <set>
 #include <tuple>
+#include <unordered_map>
 
 #include "lang/embedded.h"
 #include "lang/lexer.h"
@@ -256,13 +257,19 @@ Fix remove_suppression(const RuleInfo& rule, const Suppression& s, const std::st
 // Drops the findings a suppression covers, marking the suppressions used.
 void suppress(std::vector<Suppression>& sups, const Source& src, std::vector<Finding>& findings) {
   if (sups.empty()) return;
+  // A finding meets the suppressions of its line and the whole-file ones, not every one.
+  std::unordered_map<int, std::vector<Suppression*>> at_line;
+  std::vector<Suppression*> whole_file;
+  for (Suppression& s : sups) (s.whole_file ? whole_file : at_line[s.line]).push_back(&s);
   std::vector<Finding> kept;
   for (Finding& f : findings) {
-    int line = src.position(f.span.begin).line;
     bool suppressed = false;
-    for (Suppression& s : sups) {
-      if ((s.rule.empty() || s.rule == f.rule) && (s.whole_file || s.line == line)) suppressed = s.used = true;
-    }
+    auto apply = [&](const std::vector<Suppression*>& candidates) {
+      for (Suppression* s : candidates)
+        if (s->rule.empty() || s->rule == f.rule) suppressed = s->used = true;
+    };
+    apply(whole_file);
+    if (auto it = at_line.find(src.position(f.span.begin).line); it != at_line.end()) apply(it->second);
     if (!suppressed) kept.push_back(std::move(f));
   }
   findings = std::move(kept);

@@ -127,10 +127,12 @@ int homogeneous_wrapper(const SyntaxTree& tree, int use) {
   return position_of_homogeneous(tree, call).empty() ? -1 : call;
 }
 
-bool name_taken(const WorldModel& world, const std::string& name, int function) {
-  for (const Variable& v : world.variables())
-    if (v.name == name && (v.function == function || v.function < 0)) return true;
-  return false;
+DeclaredNames::DeclaredNames(const WorldModel& world) {
+  for (const Variable& v : world.variables()) names_.emplace(v.name, std::max(v.function, -1));
+}
+
+bool DeclaredNames::taken(std::string_view name, int function) const {
+  return names_.count({name, function}) || names_.count({name, -1});
 }
 
 int subtraction_partner(const SyntaxTree& tree, int use) {
