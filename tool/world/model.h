@@ -38,6 +38,8 @@ std::optional<Kind> parse_kind(std::string_view name);
 // Kinds whose float32 form loses precision far from the origin.
 bool holds_absolute(Kind kind);
 bool is_matrix(Kind kind);
+// A field that is a swizzle: one to four of xyzw, or of rgba.
+bool is_swizzle(std::string_view field);
 
 enum class FunctionRole { transform, transform_point, direction, local, join, invert, same, world_value, add, subtract, translated };
 
