@@ -257,21 +257,27 @@ Fix remove_suppression(const RuleInfo& rule, const Suppression& s, const std::st
 // Drops the findings a suppression covers, marking the suppressions used.
 void suppress(std::vector<Suppression>& sups, const Source& src, std::vector<Finding>& findings) {
   if (sups.empty()) return;
-  // A finding meets the suppressions of its line and the whole-file ones, not every one.
+  // A finding meets the suppressions of its line, and the whole-file ones by rule ("": every
+  // rule), each of which is marked used once the run is over.
   std::unordered_map<int, std::vector<Suppression*>> at_line;
-  std::vector<Suppression*> whole_file;
-  for (Suppression& s : sups) (s.whole_file ? whole_file : at_line[s.line]).push_back(&s);
+  std::map<std::string, std::pair<std::vector<Suppression*>, bool>, std::less<>> whole_file;  // rule -> them, used
+  for (Suppression& s : sups) {
+    if (s.whole_file) whole_file[s.rule].first.push_back(&s);
+    else at_line[s.line].push_back(&s);
+  }
   std::vector<Finding> kept;
   for (Finding& f : findings) {
     bool suppressed = false;
-    auto apply = [&](const std::vector<Suppression*>& candidates) {
-      for (Suppression* s : candidates)
+    for (std::string_view rule : {std::string_view(), std::string_view(f.rule)})
+      if (auto it = whole_file.find(rule); it != whole_file.end()) suppressed = it->second.second = true;
+    if (auto it = at_line.find(src.position(f.span.begin).line); it != at_line.end())
+      for (Suppression* s : it->second)
         if (s->rule.empty() || s->rule == f.rule) suppressed = s->used = true;
-    };
-    apply(whole_file);
-    if (auto it = at_line.find(src.position(f.span.begin).line); it != at_line.end()) apply(it->second);
     if (!suppressed) kept.push_back(std::move(f));
   }
+  for (auto& [rule, them] : whole_file)
+    if (them.second)
+      for (Suppression* s : them.first) s->used = true;
   findings = std::move(kept);
 }
 

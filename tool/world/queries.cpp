@@ -80,10 +80,7 @@ bool WorldModel::only_harmless_uses(int var, int depth) const {
       continue;
     // A copy into a local that is itself harmless (or whose translation is then cleared).
     if (tree_.is(p, "init_declarator")) {
-      int name = tree_.declarator_name(tree_.child_by_field(p, "declarator"));
-      int local = -1;
-      for (size_t i = 0; i < variables_.size() && local < 0; ++i)
-        if (variables_[i].decl == name) local = static_cast<int>(i);
+      int local = variable_declared_at(tree_.declarator_name(tree_.child_by_field(p, "declarator")));
       if (local >= 0 && (cleared_.count(local) || only_harmless_uses(local, depth + 1))) continue;
       return false;
     }
@@ -120,6 +117,19 @@ bool WorldModel::only_harmless_uses(int var, int depth) const {
 
 bool WorldModel::used_where_precision_matters(int var, int depth) const {
   if (depth > 3 || cleared_.count(var)) return false;  // a matrix whose translation is cleared only rotates
+  const Variable& v = variables_[var];
+  if (v.role != Variable::Role::global) return precision_matters(var, depth);
+  // Every declaration of a global's name shares its uses (below): each is worked out once, not
+  // once per declaration (a name declared in many #if arms).
+  auto key = std::make_tuple(v.name, is_matrix(v.kind), v.decl >= 0 && tree_.is(tree_.at(v.decl).parent, "array_declarator"), depth);
+  auto known = global_precision_.find(key);
+  if (known != global_precision_.end()) return known->second;
+  bool matters = precision_matters(var, depth);
+  global_precision_.emplace(std::move(key), matters);
+  return matters;
+}
+
+bool WorldModel::precision_matters(int var, int depth) const {
   bool matrix = is_matrix(variables_[var].kind);
   int decl = variables_[var].decl;
   bool array = decl >= 0 && tree_.is(tree_.at(decl).parent, "array_declarator");
