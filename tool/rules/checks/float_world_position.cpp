@@ -111,7 +111,7 @@ class FloatWorldPosition : public Check {
     if (names.taken(new_name, v.function)) return withheld(fmt::format("the name `{}` is already taken", new_name));
     // The initialiser: a transform to absolute world whose matrix has a translated form.
     int mul = mul_call(t, v.init);
-    if (mul < 0) return withheld(fmt::format("its value (`{}`) has no translated form lwcport knows", t.text(v.init)));
+    if (mul < 0) return withheld(fmt::format("its value (`{}`) has no translated form lwcport knows", shortened(t.text(v.init))));
     auto args = call_arguments(t, mul);
     if (std::string m = translated_twin(ctx, args[1]); !m.empty()) {
       plan.edits.push_back({t.span(args[1]), m});
@@ -119,7 +119,7 @@ class FloatWorldPosition : public Check {
       plan.edits.push_back({t.span(v.init), fmt::format("DFTransformLocalToTranslatedWorld({}, {}, PrimaryView.PreViewTranslation)",
                                                         p, t.text(args[1]))});
     } else {
-      return withheld(fmt::format("its matrix `{}` has no translated twin", t.text(args[1])));
+      return withheld(fmt::format("its matrix `{}` has no translated twin", shortened(t.text(args[1]))));
     }
     plan.edits.push_back({t.span(v.decl), new_name});
     follow_translated(ctx, var, new_name, plan, 0);
@@ -198,10 +198,10 @@ class FloatWorldPosition : public Check {
     if (v.type != "float3") return withheld(fmt::format("its type `{}` is not a float3 position", v.type));
     int mul = mul_call(t, v.init);
     std::string p = mul >= 0 ? position_of_homogeneous(t, call_arguments(t, mul)[0]) : "";
-    if (p.empty()) return withheld(fmt::format("its value (`{}`) is not a transform of a position lwcport can redo in DoubleFloat", t.text(v.init)));
+    if (p.empty()) return withheld(fmt::format("its value (`{}`) is not a transform of a position lwcport can redo in DoubleFloat", shortened(t.text(v.init))));
     int matrix = call_arguments(t, mul)[1];
     Member m = member_of(t, matrix);
-    if (m.empty()) return withheld(fmt::format("its matrix `{}` is not a view or primitive member", t.text(matrix)));
+    if (m.empty()) return withheld(fmt::format("its matrix `{}` is not a view or primitive member", shortened(t.text(matrix))));
     std::string df_matrix = (m.object == "View" ? std::string("PrimaryView") : std::string(t.text(t.child_by_field(matrix, "argument")))) + "." + m.member;
     int type = t.child_by_field(v.declaration, "type");
     if (type < 0) return withheld("its declaration has no type lwcport can rewrite");

@@ -75,7 +75,7 @@ class TranslatedWorld : public Check {
     int init = v.init;
     auto args = t.is(init, "call_expression") && call_name(t, init) == "DFMultiply" ? call_arguments(t, init) : std::vector<int>{};
     if (args.size() != 2 || ctx.world.kind(args[1]) != Kind::world_matrix)
-      return withheld(fmt::format("its value (`{}`) is not a local position times a local-to-world matrix", init >= 0 ? t.text(init) : ""));
+      return withheld(fmt::format("its value (`{}`) is not a local position times a local-to-world matrix", init >= 0 ? shortened(t.text(init)) : ""));
     std::string name = translated_name(v.name);
     if (names.taken(name, v.function)) return withheld(fmt::format("the name `{}` is already taken", name));
     RewritePlan plan;
@@ -95,7 +95,7 @@ class TranslatedWorld : public Check {
         text = call_args[0] == use ? name + " - " + twin : twin + " - " + name;
         if (!bare_context(t, call)) text = "(" + text + ")";
       } else {
-        return withheld(fmt::format("`{}` (line {}) keeps the result in DoubleFloat, so the value must stay one", t.text(call), line_of(t, call)));
+        return withheld(fmt::format("`{}` (line {}) keeps the result in DoubleFloat, so the value must stay one", shortened(t.text(call)), line_of(t, call)));
       }
       plan.edits.push_back({t.span(call), text});
     }

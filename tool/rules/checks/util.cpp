@@ -154,12 +154,12 @@ std::string escape(const SyntaxTree& tree, int use) {
   }
   if (tree.is(parent, "return_statement")) return fmt::format("it is returned (line {}) as an absolute position", line);
   if (tree.is(parent, "assignment_expression") || tree.is(parent, "init_declarator"))
-    return fmt::format("it is stored (line {}: `{}`)", line, tree.text(parent));
+    return fmt::format("it is stored (line {}: `{}`)", line, shortened(tree.text(parent)));
   if (tree.is(parent, "binary_expression")) {
     int other = tree.child_by_field(parent, "left") == use ? tree.child_by_field(parent, "right") : tree.child_by_field(parent, "left");
-    return fmt::format("it is combined with `{}` (line {}), which has no translated twin", tree.text(other), line);
+    return fmt::format("it is combined with `{}` (line {}), which has no translated twin", shortened(tree.text(other)), line);
   }
-  return fmt::format("it is used as `{}` (line {})", tree.text(parent), line);
+  return fmt::format("it is used as `{}` (line {})", shortened(tree.text(parent)), line);
 }
 
 int version_directive(const SyntaxTree& t) {
