@@ -5,7 +5,8 @@
 # system) and peak RSS of `lint --format json`, each the median of ROUNDS runs; the rounds are
 # interleaved (every input once, then again), so a busy spell on the machine touches every size.
 # For each step the exponent log2(b/a) is printed for time and memory (1 is linear, 2 quadratic),
-# and for each shape the exponent fitted over all its sizes (least squares on log-log).
+# and for each shape the exponent fitted over all its sizes (least squares on log-log; for time,
+# over the sizes that take more than 0.02 s, the timer's resolution).
 #   usage: [LWCPORT=BIN] tests/bench/scaling.sh [ROUNDS]   (default 3 rounds)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -51,10 +52,12 @@ runs = collections.defaultdict(list)
 for line in open(sys.argv[1]):
     shape, size, user, sys_, rss = line.split()
     runs[(shape, int(size))].append((float(user) + float(sys_), int(rss) / 1024))
-def fit(xs, ys):  # the slope of log(y) over log(x)
-    lx, ly = [math.log(x) for x in xs], [math.log(max(y, 1e-3)) for y in ys]
-    mx, my = statistics.mean(lx), statistics.mean(ly)
-    return sum((a - mx) * (b - my) for a, b in zip(lx, ly)) / sum((a - mx) ** 2 for a in lx)
+def fit(xs, ys, floor=0):  # the slope of log(y) over log(x), over the points above the floor ("-": too few)
+    points = [(math.log(x), math.log(y)) for x, y in zip(xs, ys) if y > floor]
+    if len(points) < 2:
+        return "-"
+    mx, my = statistics.mean(p[0] for p in points), statistics.mean(p[1] for p in points)
+    return f"{sum((a - mx) * (b - my) for a, b in points) / sum((a - mx) ** 2 for a, _ in points):.2f}"
 print("| input | size | CPU s | peak MB | exponent (time) | exponent (memory) |")
 print("|---|---|---|---|---|---|")
 for shape in dict.fromkeys(s for s, _ in runs):
@@ -64,5 +67,5 @@ for shape in dict.fromkeys(s for s, _ in runs):
     for i, n in enumerate(sizes):
         step = lambda v: f"{math.log(v[i] / v[i - 1], sizes[i] / sizes[i - 1]):.2f}" if i and v[i - 1] > 0.02 else ""
         print(f"| {shape} | {n} | {cpu[i]:.2f} | {mem[i]:.0f} | {step(cpu)} | {step(mem)} |")
-    print(f"| {shape} | fitted {sizes[0]}-{sizes[-1]} | | | {fit(sizes, cpu):.2f} | {fit(sizes, mem):.2f} |")
+    print(f"| {shape} | fitted {sizes[0]}-{sizes[-1]} | | | {fit(sizes, cpu, 0.02)} | {fit(sizes, mem)} |")
 PY
