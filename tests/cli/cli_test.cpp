@@ -251,6 +251,22 @@ TEST(Cli, SuppressionsOnTheLineAboveAndForTheFileAndUnusedOnes) {
                  }));
 }
 
+// Every suppression a finding meets is used, not only the first: two for the whole file, two on its line.
+TEST(Cli, EverySuppressionAFindingMeetsIsUsed) {
+  std::string dir = test::scratch("suppress-all");
+  test::write(dir + "/a.usf",
+              "// lwcport-ignore-file: lwc-primary-view\n"
+              "// lwcport-ignore-file: lwc-primary-view, lwc-tile-offset\n"
+              "float3 F() { return View.WorldCameraOrigin; }\n"
+              "float3 G() { return View.WorldViewOrigin; } // lwcport-ignore: lwc-hack-marker, lwc-primary-view /* lwcport-ignore */\n");
+  auto doc = nlohmann::json::parse(lint(dir, "a.usf --format json --fail-on none --select lwc-primary-view,lwc-tile-offset,lwc-hack-marker,lwc-unused-suppression").out);
+  std::vector<std::string> got;
+  for (const auto& f : doc["findings"]) got.push_back(std::to_string(f["start"]["line"].get<int>()) + " " + f["message"].get<std::string>());
+  EXPECT_EQ(got, (std::vector<std::string>{"2 unused suppression of `lwc-tile-offset`: no `lwc-tile-offset` finding here to suppress",
+                                           "4 unused suppression of `lwc-hack-marker`: no `lwc-hack-marker` finding here to suppress"}))
+      << doc.dump(1);
+}
+
 TEST(Cli, BareAndNextLineSuppressionsAndUnknownIds) {
   std::string dir = test::scratch("suppress-forms");
   test::write(dir + "/a.usf",

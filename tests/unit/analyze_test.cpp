@@ -260,6 +260,23 @@ TEST(BoundedWork, AFindingOnAHugeLineStaysSmall) {
   EXPECT_GT(withheld, 1000u);
 }
 
+// Nor does why a rewrite is withheld: the use it names is quoted as a message quotes it (a chain of
+// products of a matrix the rewrite cannot demote: each use is the chain so far).
+TEST(BoundedWork, WhyARewriteIsWithheldStaysSmallOnAHugeLine) {
+  std::string code = "float4x4 F() { return View.WorldToClip";
+  for (int i = 1; i < 2000; ++i) code += " * View.WorldToClip";
+  code += "; }\n";
+  std::vector<Finding> findings = analyze(Source("huge.usf", code), {});
+  ASSERT_EQ(count(findings, "lwc-primary-view"), 2000u);
+  size_t quoted = 0;
+  for (const Finding& f : findings)
+    for (const std::string& why : f.withheld) {
+      EXPECT_LT(why.size(), kMaxQuoted + 300) << why.substr(0, 200);
+      quoted += why.find("and this use (`View.WorldToClip * View.WorldToClip") != std::string::npos;
+    }
+  EXPECT_GT(quoted, 1000u);
+}
+
 // Nesting 100,000 deep (parentheses, calls, braces, #if groups): analysed without a crash; the
 // bench (tests/bench/scaling.sh) shows the time grows linearly.
 TEST(BoundedWork, DeepNestingIsAnalysedWithoutACrash) {

@@ -135,6 +135,19 @@ TEST(WorldModel, EveryPreprocessorBranchIsAnalysed) {
                                            "8 lwc-primary-view", "10 lwc-float-world-position"}));
 }
 
+// A uniform declared in several #if arms is one name: the uses of every declaration count for
+// each, read as its own declaration reads them (an element of the array, a component of the vector).
+TEST(WorldModel, AUniformDeclaredInSeveralArmsIsJudgedByAllItsUsesAsEachArmDeclaresIt) {
+  std::string code =
+      "#if STEREO\nuniform vec3 cameraPosition[2];\n#elif MOBILE\nuniform vec3 cameraPosition;\n#else\nuniform vec3 cameraPosition;\n#endif\n"
+      "in vec3 worldPos;\nout vec4 color;\n"
+      "void main() {\n  color = vec4(cameraPosition[1] - worldPos, 1.0);\n}\n";
+  std::vector<int> lines;
+  Source src("t", code);
+  for (const Finding& f : test::lint_text(code, Lang::glsl, "lwc-uniform-world-float")) lines.push_back(src.position(f.span.begin).line);
+  EXPECT_EQ(lines, std::vector<int>{2});  // the right eye's position minus a world position; a vector's y is no position
+}
+
 }  // namespace
 }  // namespace lwc
 

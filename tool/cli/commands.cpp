@@ -1029,59 +1029,48 @@ int fix(const Options& o, std::ostream& out, std::ostream& err) {
   return o.fail_on && writer->failed(*o.fail_on) ? 1 : 0;
 }
 
-// Where the parser gave up: each outermost ERROR node or MISSING token, with its line and a caret.
-std::string syntax_error_lines(const SyntaxTree& tree) {
-  const Source& src = *tree.source;
+// Each syntax error with its line and a caret.
+std::string syntax_error_lines(const Source& src, const std::set<SyntaxError>& errors) {
   std::string out;
-  for (int id = 0; id < static_cast<int>(tree.nodes.size()); ++id) {
-    const Node& n = tree.at(id);
-    if (!n.error) continue;
-    bool nested = false;
-    for (int a = n.parent; a >= 0 && !nested; a = tree.at(a).parent) nested = tree.at(a).error;
-    if (nested) continue;
-    Position pos = src.position(n.begin);
-    std::string what = std::string_view(n.type) == "ERROR" ? "cannot parse this" : fmt::format("missing `{}`", n.type);
+  for (const SyntaxError& e : errors) {
+    Position pos = src.position(e.offset);
     std::string line(src.line_text(pos.line));
     for (char& c : line) if (c == '\t') c = ' ';
-    out += fmt::format("{}:{}:{}: syntax error: {}\n  {}\n  {}^\n", src.path(), pos.line, pos.column, what, line,
+    out += fmt::format("{}:{}:{}: syntax error: {}\n  {}\n  {}^\n", src.path(), pos.line, pos.column, e.what, line,
                        std::string(pos.column - 1, ' '));
   }
   return out;
 }
 
+// `lwcport parse`: each file's syntax errors, as lint counts them (syntax_errors: the same parse,
+// the same macros, the project's and its includes', the same count).
 int parse_only(const Options& o, std::ostream& out, std::ostream& err) {
   std::unique_ptr<ConfigFinder> configs = config_finder(o);
   std::vector<SkippedFile> skipped;
   std::vector<InputFile> files = discover(o.paths.empty() ? std::vector<std::string>{"."} : o.paths, *configs, &skipped);
-  std::vector<int> errors(files.size());
+  std::vector<size_t> errors(files.size());
   std::vector<std::string> details(files.size());
   std::vector<char> has_code(files.size(), 0);  // written by worker threads: not vector<bool>
   std::atomic<size_t> bytes{0};
+  IncludeSummaries includes;
   auto parse_file = [&](size_t i) {
-    ReadResult r = read_file(files[i].path, files[i].config->max_file_bytes);
-    AnalyzeOptions a;
-    a.lang = o.lang;
-    a.formats = &files[i].config->formats;
+    const ProjectConfig& config = *files[i].config;
+    ReadResult r = read_file(files[i].path, config.max_file_bytes);
     if (!r.error.empty() || r.too_large) return;
+    AnalyzeOptions a = analysis_options(config);
+    a.lang = o.lang;
     Source src(files[i].display, std::move(r.text));
-    ShaderCode code = shader_code(src, a);
-    if (code.empty(src)) return;
+    if (shader_code(src, a).empty(src)) return;
     has_code[i] = true;
     bytes += src.text().size();
-    for (const Source* unit : code.units(src)) {
-      MaskOptions mask{&known_macros(*code.lang), 0, files[i].config->max_parse_seconds};
-      for (int variants = 1; mask.variant < variants; ++mask.variant) {
-        SyntaxTree tree = parse(*unit, *code.lang, mask);
-        if (tree.timed_out) {
-          errors[i] += 1;
-          details[i] += fmt::format("{}: the parser gave up after {:g} s\n", unit->path(), mask.max_parse_seconds);
-          break;
-        }
-        variants = tree.variants;
-        errors[i] += tree.error_count;
-        if (o.verbose && tree.error_count) details[i] += syntax_error_lines(tree);
-      }
+    FileSummary included;
+    if (src.text().find("include") != std::string::npos) {
+      included.macros = includes.included_macros(files[i].path, src.text(), config);
+      a.includes = &included;
     }
+    std::set<SyntaxError> found = syntax_errors(src, a);
+    errors[i] = found.size();
+    if (o.verbose) details[i] = syntax_error_lines(src, found);
   };
   parallel_for(files.size(), job_count(o), [&](size_t i) {
     try {
@@ -1104,7 +1093,7 @@ int parse_only(const Options& o, std::ostream& out, std::ostream& err) {
     ++with_code[files[i].argument];
     if (errors[i]) {
       ++with_errors;
-      out << fmt::format("{}: {} syntax error node(s)\n", files[i].display, errors[i]) << details[i];
+      out << fmt::format("{}: {} syntax error(s)\n", files[i].display, errors[i]) << details[i];
     }
   }
   if (o.verbose)

@@ -115,8 +115,7 @@ const FileSummary& IncludeSummaries::summarised(const Entry& e, const ProjectCon
     if (e.own) return *e.own;
   }
   // Read with the macros it would be linted with (see offer): what its own includes define.
-  MacroTable included;
-  for (const Entry* inc : closure_of(e.file, e.includes, config)) included.insert(inc->macros.begin(), inc->macros.end());
+  MacroTable included = macros_of(closure_of(e.file, e.includes, config));
   MacroTable macros = macro_table(*e.lang, &included, config.macros);
   auto summary = std::make_shared<FileSummary>();
   ReadResult r = content(e.file, config);
@@ -184,6 +183,16 @@ FileSummary IncludeSummaries::for_file(const fs::path& path, std::string_view te
   FileSummary out;
   for (const Entry* inc : closure_of(canonical(path), include_paths(text), config)) out.merge(summarised(*inc, config));
   return out;
+}
+
+MacroTable IncludeSummaries::macros_of(const std::vector<const Entry*>& entries) {
+  MacroTable out;
+  for (const Entry* e : entries) out.insert(e->macros.begin(), e->macros.end());
+  return out;
+}
+
+MacroTable IncludeSummaries::included_macros(const fs::path& path, std::string_view text, const ProjectConfig& config) {
+  return macros_of(closure_of(canonical(path), include_paths(text), config));
 }
 
 std::vector<fs::path> IncludeSummaries::included_files(const fs::path& path, std::string_view text, const ProjectConfig& config) {

@@ -28,6 +28,10 @@ class IncludeSummaries {
   // What everything `text` (the file at `path`) includes declares, transitively: the first
   // declaration in include order wins.
   FileSummary for_file(const std::filesystem::path& path, std::string_view text, const ProjectConfig& config);
+  // What everything `text` (the file at `path`) includes teaches about macros, transitively (the
+  // first definition in include order wins): the macros of for_file's summary, read from the
+  // includes' #define lines alone, so that parsing the file as lint does parses none of them.
+  MacroTable included_macros(const std::filesystem::path& path, std::string_view text, const ProjectConfig& config);
   // The files `path` includes directly (canonical, in order): for scheduling includes first.
   std::vector<std::filesystem::path> direct_includes(const std::filesystem::path& path, const ProjectConfig& config);
   // A lint target's own parse gives its summary (include_summary), so a file that is both a
@@ -60,6 +64,8 @@ class IncludeSummaries {
   static void scan(Entry& e, const ReadResult& r);
   const Entry& scanned(const std::filesystem::path& canonical, const ProjectConfig& config);
   const FileSummary& summarised(const Entry& e, const ProjectConfig& config);
+  // What `entries` teach about macros, the first definition winning.
+  static MacroTable macros_of(const std::vector<const Entry*>& entries);
   // Everything `e` includes, transitively, in include order (`active`: the includes being
   // expanded above it, to stop at a cycle).
   std::vector<const Entry*> closure(const Entry& e, const ProjectConfig& config, std::set<const Entry*>& active);

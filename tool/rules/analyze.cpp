@@ -7,6 +7,7 @@
 #include <mutex>
 #include <set>
 #include <tuple>
+#include <unordered_map>
 
 #include "lang/embedded.h"
 #include "lang/lexer.h"
@@ -256,15 +257,27 @@ Fix remove_suppression(const RuleInfo& rule, const Suppression& s, const std::st
 // Drops the findings a suppression covers, marking the suppressions used.
 void suppress(std::vector<Suppression>& sups, const Source& src, std::vector<Finding>& findings) {
   if (sups.empty()) return;
+  // A finding meets the suppressions of its line, and the whole-file ones by rule ("": every
+  // rule), each of which is marked used once the run is over.
+  std::unordered_map<int, std::vector<Suppression*>> at_line;
+  std::map<std::string, std::pair<std::vector<Suppression*>, bool>, std::less<>> whole_file;  // rule -> them, used
+  for (Suppression& s : sups) {
+    if (s.whole_file) whole_file[s.rule].first.push_back(&s);
+    else at_line[s.line].push_back(&s);
+  }
   std::vector<Finding> kept;
   for (Finding& f : findings) {
-    int line = src.position(f.span.begin).line;
     bool suppressed = false;
-    for (Suppression& s : sups) {
-      if ((s.rule.empty() || s.rule == f.rule) && (s.whole_file || s.line == line)) suppressed = s.used = true;
-    }
+    for (std::string_view rule : {std::string_view(), std::string_view(f.rule)})
+      if (auto it = whole_file.find(rule); it != whole_file.end()) suppressed = it->second.second = true;
+    if (auto it = at_line.find(src.position(f.span.begin).line); it != at_line.end())
+      for (Suppression* s : it->second)
+        if (s->rule.empty() || s->rule == f.rule) suppressed = s->used = true;
     if (!suppressed) kept.push_back(std::move(f));
   }
+  for (auto& [rule, them] : whole_file)
+    if (them.second)
+      for (Suppression* s : them.first) s->used = true;
   findings = std::move(kept);
 }
 
@@ -476,8 +489,9 @@ void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, co
   const WorldData& data = world_data(lang, options.world_sources);
   std::vector<Suppression> sups;
   std::optional<VariantMerge> merge;
-  int errors = 0, too_deep = 0;
-  std::optional<uint32_t> first_error, first_too_deep;
+  std::set<SyntaxError> errors;
+  int too_deep = 0;
+  std::optional<uint32_t> first_too_deep;
   std::optional<SyntaxTree> first;  // variant 0, kept for the suppressions' own fixes
   for (int variant = 0, variants = 1; variant < variants; ++variant) {
     SyntaxTree tree = parse(code, lang, {&macros, variant, options.max_parse_seconds, literal ? nullptr : options.reuse});
@@ -488,10 +502,7 @@ void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, co
       return;
     }
     variants = tree.variants;
-    if (tree.error_count > 0) {
-      errors += tree.error_count;
-      if (!first_error) first_error = tree.first_error;
-    }
+    add_syntax_errors(tree, errors);
     ModelContext this_variant = context;
     this_variant.reuse = literal || !options.reuse ? nullptr : options.model_reuse;
     this_variant.variant = variant;
@@ -535,16 +546,16 @@ void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, co
                                      "unterminated block comment: everything after it is a comment",
                                      "close the comment with */ (no fixes are offered in this file until then)"));
     for (Finding& f : findings) f.fixes.clear();
-  } else if (errors > 0) {
+  } else if (!errors.empty()) {
     std::string hint = lang == Lang::glsl && reads_as_hlsl(text)
                            ? "this file reads as HLSL (`cbuffer`, `register(..)`, `SV_` semantics) but its extension says GLSL: map "
                              "the extension in .lwcport.json \"extensions\" (for example {\".frag\": \"hlsl\"}) or pass --lang hlsl"
                            : "run `lwcport parse --verbose` on this file to see where; a macro used as syntax can cause "
                              "this (declare it in .lwcport.json \"macros\"); no fixes are offered in the declarations "
                              "that hold an error";
-    findings.push_back(input_finding(Severity::note, *first_error,
+    findings.push_back(input_finding(Severity::note, errors.begin()->offset,
                                      fmt::format("{} syntax error(s) the parser could not place; findings next to them may be missed",
-                                                 errors),
+                                                 errors.size()),
                                      hint));
   }
   if (too_deep > 0) {
@@ -630,6 +641,36 @@ std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options
     analyze_unit(shader.views[i], *lang, shader.literals[i], with_siblings, findings);
   }
   return finish();
+}
+
+void add_syntax_errors(const SyntaxTree& tree, std::set<SyntaxError>& errors) {
+  if (tree.error_count == 0) return;
+  std::vector<char> in_error(tree.nodes.size(), 0);  // inside an error node: part of that error (pre-order: parents first)
+  for (size_t id = 0; id < tree.nodes.size(); ++id) {
+    const Node& n = tree.nodes[id];
+    if (n.parent >= 0) in_error[id] = in_error[n.parent] || tree.nodes[n.parent].error;
+    if (!n.error || in_error[id]) continue;
+    errors.insert({n.begin, std::string_view(n.type) == "ERROR" ? std::string("cannot parse this") : fmt::format("missing `{}`", n.type)});
+  }
+}
+
+std::set<SyntaxError> syntax_errors(const Source& source, const AnalyzeOptions& options) {
+  std::set<SyntaxError> errors;
+  ShaderCode code = shader_code(source, options);
+  if (code.empty(source)) return errors;
+  MacroTable macros = macro_table(*code.lang, options);
+  for (const Source* unit : code.units(source)) {
+    for (int variant = 0, variants = 1; variant < variants; ++variant) {
+      SyntaxTree tree = parse(*unit, *code.lang, {&macros, variant, options.max_parse_seconds});
+      if (tree.timed_out) {
+        errors.insert({0, fmt::format("the parser gave up after {:g} s", options.max_parse_seconds)});
+        break;
+      }
+      variants = tree.variants;
+      add_syntax_errors(tree, errors);
+    }
+  }
+  return errors;
 }
 
 std::optional<ValueDescription> describe_value(const Source& source, const AnalyzeOptions& options, uint32_t offset) {

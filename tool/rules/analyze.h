@@ -118,6 +118,20 @@ struct ValueDescription {
 };
 std::optional<ValueDescription> describe_value(const Source& source, const AnalyzeOptions& options, uint32_t offset);
 
+// One syntax error: text the parser could not read (an outermost ERROR node) or a token it had to
+// assume (a MISSING one). `lwcport parse` lists these and lint's lwc-input note counts them, both
+// through add_syntax_errors.
+struct SyntaxError {
+  uint32_t offset = 0;
+  std::string what;  // "cannot parse this", "missing `}`" (syntax_errors: or why the parser gave up)
+  auto operator<=>(const SyntaxError&) const = default;
+};
+// Adds the errors of one parsed variant; an error the variants share (outside their groups) is one.
+void add_syntax_errors(const SyntaxTree& tree, std::set<SyntaxError>& errors);
+// The syntax errors of a file, parsed as analyze() parses it (each unit and variant, with
+// macro_table's macros: the built-in ones, its includes' and the project's).
+std::set<SyntaxError> syntax_errors(const Source& source, const AnalyzeOptions& options);
+
 // An lwc-input finding: a problem with the file itself rather than its code.
 Finding input_finding(Severity severity, uint32_t offset, std::string message, std::string hint);
 Finding too_large_finding(size_t bytes, size_t limit);

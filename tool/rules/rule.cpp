@@ -113,6 +113,12 @@ static void append_shortened(std::string& out, std::string_view value) {
   out += value.substr(utf8_char_start(value, value.size() - kMaxQuoted / 4));
 }
 
+std::string shortened(std::string_view value) {
+  std::string out;
+  append_shortened(out, value);
+  return out;
+}
+
 std::string expand(std::string_view tmpl, const Vars& vars) {
   std::string out;
   size_t i = 0;
@@ -156,15 +162,18 @@ Fix make_fix(const RuleInfo& rule, std::string_view kind, const Vars& vars, std:
 
 Finding& CheckContext::report(Span span, const Vars& vars) const { return out.emplace_back(make_finding(rule, span, vars)); }
 
+bool CheckContext::too_long(Finding& finding, std::string_view kind, size_t bytes) const {
+  if (bytes <= kMaxFixText) return false;
+  Fix f = make_fix(rule, kind, {}, {});
+  finding.withheld.push_back(fmt::format("{}{}the rewrite would write {} bytes of this expression again; split the expression, or port it "
+                                         "by hand", f.strategy, f.strategy.empty() ? "" : ": ", bytes));
+  return true;
+}
+
 Fix* CheckContext::fix(Finding& finding, std::string_view kind, const Vars& vars, std::vector<Edit> edits) const {
   size_t bytes = 0;
   for (const Edit& e : edits) bytes += e.text.size();
-  if (bytes > kMaxFixText) {
-    Fix f = make_fix(rule, kind, {}, {});
-    finding.withheld.push_back(fmt::format("{}{}the rewrite would write {} bytes of this expression again; split the expression, or port it "
-                                           "by hand", f.strategy, f.strategy.empty() ? "" : ": ", bytes));
-    return nullptr;
-  }
+  if (too_long(finding, kind, bytes)) return nullptr;
   return &finding.fixes.emplace_back(make_fix(rule, kind, vars, std::move(edits)));
 }
 

@@ -63,6 +63,9 @@ using Vars = std::map<std::string, std::string>;
 constexpr size_t kMaxQuoted = 400;
 constexpr size_t kMaxFixText = 4096;
 std::string expand(std::string_view tmpl, const Vars& vars);
+// A value quoted as expand() quotes it: at most kMaxQuoted bytes, the start and the end of a longer
+// one around an ellipsis. For code a check quotes in a text of its own (why a rewrite is withheld).
+std::string shortened(std::string_view value);
 
 // A finding of a rule at a span, its message and hint filled from vars.
 Finding make_finding(const RuleInfo& rule, Span span, const Vars& vars);
@@ -82,6 +85,9 @@ struct CheckContext {
   // when its edits would copy more than kMaxFixText bytes (a pathological expression: the
   // finding says so instead, and output stays linear in the input).
   Fix* fix(Finding& finding, std::string_view kind, const Vars& vars, std::vector<Edit> edits) const;
+  // True when a rewrite of that kind writing `bytes` bytes is past kMaxFixText; the finding then
+  // says why it has none. fix() asks; a check asks first where building the text costs as much.
+  bool too_long(Finding& finding, std::string_view kind, size_t bytes) const;
 };
 
 // A check: the code half of a rule (its data half is rules/<id>.json).

@@ -6,6 +6,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <unordered_map>
 #include <vector>
 
@@ -38,6 +39,8 @@ std::optional<Kind> parse_kind(std::string_view name);
 // Kinds whose float32 form loses precision far from the origin.
 bool holds_absolute(Kind kind);
 bool is_matrix(Kind kind);
+// A field that is a swizzle: one to four of xyzw, or of rgba.
+bool is_swizzle(std::string_view field);
 
 enum class FunctionRole { transform, transform_point, direction, local, join, invert, same, world_value, add, subtract, translated };
 
@@ -254,6 +257,12 @@ class WorldModel {
   const FileSummary* includes_ = nullptr;  // valid while the model is: the caller's summary
   // "name/arity" -> each overload's parameter variables in order (-1 where unnamed), built on first use.
   mutable std::map<std::string, std::vector<std::vector<int>>> parameters_by_function_;
+  // used_where_precision_matters of the globals asked so far: the same for every declaration of a
+  // name with the same shape (a matrix or not, an array or not), at the same depth.
+  mutable std::map<std::tuple<std::string, bool, bool, int>, bool> global_precision_;
+
+  // used_where_precision_matters, worked out from the variable's uses.
+  bool precision_matters(int var, int depth) const;
 
   bool parameter_only_normalised(int call, int argument, int depth) const;
   // `vec4(v, 0.0)` / `float4(v, 0)`: a direction, which a matrix only rotates.

@@ -2,6 +2,7 @@
 // For a local initialised by a world transform it offers the rewrites: translated world (the
 // variable becomes camera-relative and every use follows) and, in Unreal code, DoubleFloat.
 #include <algorithm>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -24,6 +25,7 @@ class FloatWorldPosition : public Check {
         camera_{string_list(rule.data, "camera-words")} {}
 
   void run(const CheckContext& ctx) const override {
+    std::optional<DeclaredNames> names;  // for the rewrites' new names, made at the first one
     for (const AbsoluteHolder& h : ctx.world.absolute_holders()) {
       std::string what = h.what == AbsoluteHolder::What::variable    ? "variable"
                          : h.what == AbsoluteHolder::What::field     ? "field"
@@ -34,21 +36,20 @@ class FloatWorldPosition : public Check {
                                                       {"name", h.name},
                                                       {"type", h.type.empty() ? "float" : h.type},
                                                       {"holds", descriptions_.value(kind, kind)}});
-      if (h.what == AbsoluteHolder::What::variable && h.kind == Kind::absolute) offer_rewrites(ctx, f, h);
+      if (h.what != AbsoluteHolder::What::variable || h.kind != Kind::absolute) continue;
+      if (!names) names.emplace(ctx.world);
+      offer_rewrites(ctx, f, h, *names);
     }
   }
 
  private:
-  void offer_rewrites(const CheckContext& ctx, Finding& f, const AbsoluteHolder& h) const {
+  void offer_rewrites(const CheckContext& ctx, Finding& f, const AbsoluteHolder& h, const DeclaredNames& names) const {
     const SyntaxTree& t = ctx.tree;
-    const auto& vars = ctx.world.variables();
-    int var = -1;
-    for (size_t i = 0; i < vars.size() && var < 0; ++i)
-      if (vars[i].decl == h.site) var = static_cast<int>(i);
+    int var = ctx.world.variable_declared_at(h.site);
     if (var < 0) return;
-    const Variable& v = vars[var];
+    const Variable& v = ctx.world.variables()[var];
     bool local = v.role == Variable::Role::local && v.init >= 0;
-    RewritePlan translated = local ? plan_translated(ctx, var) : withheld("not a local with a value");
+    RewritePlan translated = local ? plan_translated(ctx, var, names) : withheld("not a local with a value");
     if (translated.blocker.empty()) {
       std::string helpers;
       for (const std::string& name : translated.helpers) helpers += (helpers.empty() ? "`" : ", `") + name + "`";
@@ -102,15 +103,15 @@ class FloatWorldPosition : public Check {
     return !m.empty() && m.member == "LocalToWorld" && matches_any(primitive_objects_, m.object);
   }
 
-  RewritePlan plan_translated(const CheckContext& ctx, int var) const {
+  RewritePlan plan_translated(const CheckContext& ctx, int var, const DeclaredNames& names) const {
     const SyntaxTree& t = ctx.tree;
     const Variable& v = ctx.world.variables()[var];
     RewritePlan plan;
     std::string new_name = translated_name(v.name);
-    if (name_taken(ctx.world, new_name, v.function)) return withheld(fmt::format("the name `{}` is already taken", new_name));
+    if (names.taken(new_name, v.function)) return withheld(fmt::format("the name `{}` is already taken", new_name));
     // The initialiser: a transform to absolute world whose matrix has a translated form.
     int mul = mul_call(t, v.init);
-    if (mul < 0) return withheld(fmt::format("its value (`{}`) has no translated form lwcport knows", t.text(v.init)));
+    if (mul < 0) return withheld(fmt::format("its value (`{}`) has no translated form lwcport knows", shortened(t.text(v.init))));
     auto args = call_arguments(t, mul);
     if (std::string m = translated_twin(ctx, args[1]); !m.empty()) {
       plan.edits.push_back({t.span(args[1]), m});
@@ -118,7 +119,7 @@ class FloatWorldPosition : public Check {
       plan.edits.push_back({t.span(v.init), fmt::format("DFTransformLocalToTranslatedWorld({}, {}, PrimaryView.PreViewTranslation)",
                                                         p, t.text(args[1]))});
     } else {
-      return withheld(fmt::format("its matrix `{}` has no translated twin", t.text(args[1])));
+      return withheld(fmt::format("its matrix `{}` has no translated twin", shortened(t.text(args[1]))));
     }
     plan.edits.push_back({t.span(v.decl), new_name});
     follow_translated(ctx, var, new_name, plan, 0);
@@ -197,10 +198,10 @@ class FloatWorldPosition : public Check {
     if (v.type != "float3") return withheld(fmt::format("its type `{}` is not a float3 position", v.type));
     int mul = mul_call(t, v.init);
     std::string p = mul >= 0 ? position_of_homogeneous(t, call_arguments(t, mul)[0]) : "";
-    if (p.empty()) return withheld(fmt::format("its value (`{}`) is not a transform of a position lwcport can redo in DoubleFloat", t.text(v.init)));
+    if (p.empty()) return withheld(fmt::format("its value (`{}`) is not a transform of a position lwcport can redo in DoubleFloat", shortened(t.text(v.init))));
     int matrix = call_arguments(t, mul)[1];
     Member m = member_of(t, matrix);
-    if (m.empty()) return withheld(fmt::format("its matrix `{}` is not a view or primitive member", t.text(matrix)));
+    if (m.empty()) return withheld(fmt::format("its matrix `{}` is not a view or primitive member", shortened(t.text(matrix))));
     std::string df_matrix = (m.object == "View" ? std::string("PrimaryView") : std::string(t.text(t.child_by_field(matrix, "argument")))) + "." + m.member;
     int type = t.child_by_field(v.declaration, "type");
     if (type < 0) return withheld("its declaration has no type lwcport can rewrite");

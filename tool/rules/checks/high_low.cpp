@@ -271,7 +271,7 @@ RewritePlan plan_high_low(const CheckContext& ctx, int var, const CameraNames& c
   const Variable& v = ctx.world.variables()[var];
   WorldTransform transform = world_transform(ctx, v.init);
   if (transform.matrix < 0)
-    return withheld(fmt::format("its value (`{}`) is not a world-matrix uniform applied to a position", t.text(v.init)));
+    return withheld(fmt::format("its value (`{}`) is not a world-matrix uniform applied to a position", shortened(t.text(v.init))));
   int matrix_var = ctx.world.variable_at(transform.matrix);
   const Variable& m = ctx.world.variables()[matrix_var];
   if (ctx.world.uses(matrix_var).size() != 1)

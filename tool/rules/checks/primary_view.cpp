@@ -47,11 +47,14 @@ class PrimaryView : public Check {
       int left = t.child_by_field(parent, "left"), right = t.child_by_field(parent, "right");
       auto operand = [&](int n) { return n == id ? "PrimaryView." + member : std::string(t.text(n)); };
       vars["call"] = t.text(op) == "-" ? "DFSubtractDemote" : "DFAddDemote";
+      // Measured before it is written: in a long chain of sums each operand is the chain so far.
+      auto operand_size = [&](int n) { return n == id ? 12 + member.size() : t.text(n).size(); };
+      if (ctx.too_long(f, "demote", vars["call"].size() + operand_size(left) + operand_size(right) + 4)) return;
       ctx.fix(f, "demote", vars, {{t.span(parent), vars["call"] + "(" + operand(left) + ", " + operand(right) + ")"}});
       return;
     }
     f.withheld.push_back("in UE 5.4 `PrimaryView." + member + "` is a DoubleFloat value and this use (`" +
-                         std::string(t.text(parent)) + "`) needs a float: the surrounding computation must move " +
+                         shortened(t.text(parent)) + "`) needs a float: the surrounding computation must move " +
                          "to translated world or DoubleFloat first (lwc-float-world-position)");
   }
 

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <map>
+#include <unordered_map>
 
 #include "rules/checks/util.h"
 
@@ -142,13 +143,15 @@ class TileOffset : public Check {
     }
     std::map<int, std::string> out;
     if (!any_renamed) return out;  // no signature names a tile/offset type
+    std::unordered_map<std::string_view, int> last_written;  // a signature as written -> the last function with it
+    for (const Signature& s : all) last_written[s.written] = s.fn;
     for (const Signature& a : all) {
-      if (a.renamed == a.written) continue;
-      for (const Signature& b : all)
-        if (b.fn != a.fn && b.written == a.renamed)
-          out[a.fn] = fmt::format("renaming the types of `{}` (line {}) would define it a second time: the file already has that "
-                                  "DoubleFloat overload (line {}); remove the tile/offset one by hand",
-                                  a.written.substr(0, a.written.find('(')), line_of(t, a.fn), line_of(t, b.fn));
+      if (a.renamed == a.written) continue;  // no tile/offset type: the rename leaves it as it is
+      auto b = last_written.find(a.renamed);
+      if (b != last_written.end())
+        out[a.fn] = fmt::format("renaming the types of `{}` (line {}) would define it a second time: the file already has that "
+                                "DoubleFloat overload (line {}); remove the tile/offset one by hand",
+                                a.written.substr(0, a.written.find('(')), line_of(t, a.fn), line_of(t, b->second));
     }
     return out;
   }

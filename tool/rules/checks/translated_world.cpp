@@ -1,6 +1,8 @@
 // lwc-translated-world: DoubleFloat math on an absolute position whose every use is
 // camera-relative: translated world (plain float) would be cheaper and as precise. The rewrite
 // computes it in translated world from the start and turns each use into plain float math.
+#include <optional>
+
 #include <fmt/format.h>
 
 #include "rules/checks/util.h"
@@ -19,6 +21,7 @@ class TranslatedWorld : public Check {
   void run(const CheckContext& ctx) const override {
     const SyntaxTree& t = ctx.tree;
     const auto& vars = ctx.world.variables();
+    std::optional<DeclaredNames> names;  // for the rewrites' new names, made at the first one
     for (size_t i = 0; i < vars.size(); ++i) {
       const Variable& v = vars[i];
       if (v.role != Variable::Role::local || v.kind != Kind::absolute || !matches_any(df_types_, v.type)) continue;
@@ -36,7 +39,8 @@ class TranslatedWorld : public Check {
       }
       if (!all_relative) continue;
       Finding& f = ctx.report(t.span(v.decl), {{"name", v.name}, {"type", v.type}, {"consumer", consumer}});
-      RewritePlan plan = plan_rewrite(ctx, static_cast<int>(i));
+      if (!names) names.emplace(ctx.world);
+      RewritePlan plan = plan_rewrite(ctx, static_cast<int>(i), *names);
       if (plan.blocker.empty()) ctx.fix(f, "translated", {{"name", v.name}, {"new-name", translated_name(v.name)}}, plan.edits);
       else f.withheld.push_back("translated world: " + plan.blocker);
     }
@@ -64,16 +68,16 @@ class TranslatedWorld : public Check {
   // FDFVector3 X = DFMultiply(P, LocalToWorld) -> float3 TranslatedX =
   // DFTransformLocalToTranslatedWorld(P, LocalToWorld, PrimaryView.PreViewTranslation); each use
   // (a camera difference or the move to translated world) becomes plain float.
-  RewritePlan plan_rewrite(const CheckContext& ctx, int var) const {
+  RewritePlan plan_rewrite(const CheckContext& ctx, int var, const DeclaredNames& names) const {
     const SyntaxTree& t = ctx.tree;
     const Variable& v = ctx.world.variables()[var];
     if (v.type != "FDFVector3") return withheld(fmt::format("`{}` is tile/offset or not a position vector: port it to `FDFVector3` first", v.type));
     int init = v.init;
     auto args = t.is(init, "call_expression") && call_name(t, init) == "DFMultiply" ? call_arguments(t, init) : std::vector<int>{};
     if (args.size() != 2 || ctx.world.kind(args[1]) != Kind::world_matrix)
-      return withheld(fmt::format("its value (`{}`) is not a local position times a local-to-world matrix", init >= 0 ? t.text(init) : ""));
+      return withheld(fmt::format("its value (`{}`) is not a local position times a local-to-world matrix", init >= 0 ? shortened(t.text(init)) : ""));
     std::string name = translated_name(v.name);
-    if (name_taken(ctx.world, name, v.function)) return withheld(fmt::format("the name `{}` is already taken", name));
+    if (names.taken(name, v.function)) return withheld(fmt::format("the name `{}` is already taken", name));
     RewritePlan plan;
     plan.edits.push_back({t.span(t.child_by_field(v.declaration, "type")), "float3"});
     plan.edits.push_back({t.span(v.decl), name});
@@ -91,7 +95,7 @@ class TranslatedWorld : public Check {
         text = call_args[0] == use ? name + " - " + twin : twin + " - " + name;
         if (!bare_context(t, call)) text = "(" + text + ")";
       } else {
-        return withheld(fmt::format("`{}` (line {}) keeps the result in DoubleFloat, so the value must stay one", t.text(call), line_of(t, call)));
+        return withheld(fmt::format("`{}` (line {}) keeps the result in DoubleFloat, so the value must stay one", shortened(t.text(call)), line_of(t, call)));
       }
       plan.edits.push_back({t.span(call), text});
     }

@@ -127,10 +127,12 @@ int homogeneous_wrapper(const SyntaxTree& tree, int use) {
   return position_of_homogeneous(tree, call).empty() ? -1 : call;
 }
 
-bool name_taken(const WorldModel& world, const std::string& name, int function) {
-  for (const Variable& v : world.variables())
-    if (v.name == name && (v.function == function || v.function < 0)) return true;
-  return false;
+DeclaredNames::DeclaredNames(const WorldModel& world) {
+  for (const Variable& v : world.variables()) names_.emplace(v.name, std::max(v.function, -1));
+}
+
+bool DeclaredNames::taken(std::string_view name, int function) const {
+  return names_.count({name, function}) || names_.count({name, -1});
 }
 
 int subtraction_partner(const SyntaxTree& tree, int use) {
@@ -152,12 +154,12 @@ std::string escape(const SyntaxTree& tree, int use) {
   }
   if (tree.is(parent, "return_statement")) return fmt::format("it is returned (line {}) as an absolute position", line);
   if (tree.is(parent, "assignment_expression") || tree.is(parent, "init_declarator"))
-    return fmt::format("it is stored (line {}: `{}`)", line, tree.text(parent));
+    return fmt::format("it is stored (line {}: `{}`)", line, shortened(tree.text(parent)));
   if (tree.is(parent, "binary_expression")) {
     int other = tree.child_by_field(parent, "left") == use ? tree.child_by_field(parent, "right") : tree.child_by_field(parent, "left");
-    return fmt::format("it is combined with `{}` (line {}), which has no translated twin", tree.text(other), line);
+    return fmt::format("it is combined with `{}` (line {}), which has no translated twin", shortened(tree.text(other)), line);
   }
-  return fmt::format("it is used as `{}` (line {})", tree.text(parent), line);
+  return fmt::format("it is used as `{}` (line {})", shortened(tree.text(parent)), line);
 }
 
 int version_directive(const SyntaxTree& t) {

@@ -1,5 +1,6 @@
 #pragma once
 #include <initializer_list>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -54,9 +55,18 @@ int mul_call(const SyntaxTree& tree, int node);
 std::string position_of_homogeneous(const SyntaxTree& tree, int node);
 // The `float4(use, 1)` / `vec4(use, 1.0)` call that wraps a use, or -1.
 int homogeneous_wrapper(const SyntaxTree& tree, int use);
-// True when a new variable called `name` in `function` (-1: file scope) would clash with one in
-// the same function or at file scope.
-bool name_taken(const WorldModel& world, const std::string& name, int function);
+// The names of a model's variables by where they are declared: in a function (locals and
+// parameters) or outside every function (globals, fields). Built once per run of a check.
+class DeclaredNames {
+ public:
+  explicit DeclaredNames(const WorldModel& world);
+  // True when a new variable called `name` in `function` (-1: file scope) would clash with one in
+  // the same function or at file scope.
+  bool taken(std::string_view name, int function) const;
+
+ private:
+  std::set<std::pair<std::string_view, int>> names_;  // name, function (-1 outside functions)
+};
 // The other operand of `use - X` / `X - use` (looking through parentheses), or -1.
 int subtraction_partner(const SyntaxTree& tree, int use);
 // Why a use of a world position cannot be followed, for the withheld message.
