@@ -368,10 +368,18 @@ HostResult analyze_host(const HostOptions& options) {
     int status = tool.run(&factory);
     if (status != 0 || !diagnostics.first.empty()) unit.error = diagnostics.first.empty() ? "no compile command" : diagnostics.first;
     unit.given = std::move(given.values);
+    std::set<std::string> edited;  // other files a fix edits: their text is needed to place the edits
+    for (auto& [path, f] : out.files())
+      for (const Finding& finding : f.findings)
+        for (const Fix& fix : finding.fixes)
+          for (const Edit& e : fix.edits) edited.insert(e.path);
     for (auto& [path, f] : out.files()) {
       HostFile& into = unit.files[path];
-      into.text = std::move(f.text);
-      into.comments = std::move(f.comments);
+      // Only what the run reads comes back: the comments that may suppress, and the text of a file
+      // with findings or such comments (a unit's hundred headers are otherwise just counted).
+      for (const Span& c : f.comments)
+        if (std::string_view(f.text).substr(c.begin, c.end - c.begin).find("lwcport-ignore") != std::string_view::npos) into.comments.push_back(c);
+      if (!f.findings.empty() || !into.comments.empty() || edited.count(path)) into.text = std::move(f.text);
       for (size_t k = 0; k < f.findings.size(); ++k) {
         if (f.rests_on[k].empty()) into.findings.push_back(std::move(f.findings[k]));
         else unit.resting.push_back({path, std::move(f.findings[k]), f.rests_on[k]});
