@@ -3,11 +3,8 @@
 -- diagnostics it has.
 package.path = vim.fn.fnamemodify(os.getenv('LWCPORT_SCRIPTS'), ':p') .. '?.lua;' .. package.path
 local session = require('lsp_session')
-local buffers = {}
-for _, file in ipairs(session.files()) do table.insert(buffers, session.open(file)) end
 local lines = {}
-for _, buf in ipairs(buffers) do
-  session.wait_for_diagnostics(buf)
+for _, buf in ipairs(session.open_all()) do
   table.insert(lines, table.concat({ vim.fn.fnamemodify(vim.api.nvim_buf_get_name(buf), ':t'), vim.bo[buf].filetype,
                                      session.client(buf).name, #vim.diagnostic.get(buf) }, ' '))
 end

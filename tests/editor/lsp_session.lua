@@ -38,6 +38,14 @@ function M.wait_for_diagnostics(buf)
   end
 end
 
+-- Opens every file of $LWCPORT_FILES, then waits for lwcport's diagnostics on each; their buffers.
+function M.open_all()
+  local buffers = {}
+  for _, file in ipairs(M.files()) do table.insert(buffers, M.open(file)) end
+  for _, buf in ipairs(buffers) do M.wait_for_diagnostics(buf) end
+  return buffers
+end
+
 -- Opens $LWCPORT_FILE, waits for its diagnostics and puts the cursor at $LWCPORT_LINE (1-based)
 -- and $LWCPORT_COLUMN (0-based byte).
 function M.start()

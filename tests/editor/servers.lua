@@ -3,11 +3,8 @@
 -- client's server), then how many clients Neovim runs and how many lwcport processes it started.
 package.path = vim.fn.fnamemodify(os.getenv('LWCPORT_SCRIPTS'), ':p') .. '?.lua;' .. package.path
 local session = require('lsp_session')
-local buffers = {}
-for _, file in ipairs(session.files()) do table.insert(buffers, session.open(file)) end
 local lines = {}
-for _, buf in ipairs(buffers) do
-  session.wait_for_diagnostics(buf)
+for _, buf in ipairs(session.open_all()) do
   local client = session.client(buf)
   table.insert(lines, table.concat({ vim.fn.fnamemodify(vim.api.nvim_buf_get_name(buf), ':t'), client.id, client.rpc.pid }, ' '))
 end
