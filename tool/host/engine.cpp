@@ -28,7 +28,6 @@ namespace lwc {
 namespace fs = std::filesystem;
 using namespace clang;
 
-
 bool HostOptions::enabled(const std::string& rule) const {
   return (select.empty() || select.count(rule)) && !ignore.count(rule);
 }
@@ -338,7 +337,7 @@ HostResult analyze_host(const HostOptions& options) {
   };
 
   host::Tables tables = host::Tables::load(options.tables);
-  // One unit, in a process of its own (isolate.h): what it gives the run, as bytes.
+  // One unit, in a worker process (isolate.h): what it gives the run, as bytes.
   auto analyze_unit = [&](size_t i) {
     host::Reporter out(reported);
     for (const tooling::CompileCommand& c : databases[i]->getCompileCommands(sources[i])) out.command = c.CommandLine;
@@ -378,7 +377,7 @@ HostResult analyze_host(const HostOptions& options) {
       // Only what the run reads comes back: the comments that may suppress, and the text of a file
       // with findings or such comments (a unit's hundred headers are otherwise just counted).
       for (const Span& c : f.comments)
-        if (std::string_view(f.text).substr(c.begin, c.end - c.begin).find("lwcport-ignore") != std::string_view::npos) into.comments.push_back(c);
+        if (std::string_view(f.text).substr(c.begin, c.end - c.begin).find(kSuppressionMarker) != std::string_view::npos) into.comments.push_back(c);
       if (!f.findings.empty() || !into.comments.empty() || edited.count(path)) into.text = std::move(f.text);
       for (size_t k = 0; k < f.findings.size(); ++k) {
         if (f.rests_on[k].empty()) into.findings.push_back(std::move(f.findings[k]));

@@ -170,12 +170,11 @@ namespace {
 // covers the next line, a trailing one its own; `-next-line` always the next; `-file` the file.
 std::vector<Suppression> find_suppressions(const Source& src, const std::vector<Span>& comments) {
   std::vector<Suppression> out;
-  constexpr std::string_view kMarker = "lwcport-ignore";
   for (Span comment : comments) {
     std::string_view text = src.slice(comment);
-    size_t at = text.find(kMarker);
+    size_t at = text.find(kSuppressionMarker);
     if (at == std::string_view::npos || (at > 0 && suppression_id_char(text[at - 1]))) continue;
-    size_t after = at + kMarker.size();
+    size_t after = at + kSuppressionMarker.size();
     bool whole_file = false, next_line = false;
     if (text.substr(after).starts_with("-file")) whole_file = true, after += 5;
     else if (text.substr(after).starts_with("-next-line")) next_line = true, after += 10;

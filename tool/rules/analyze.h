@@ -98,6 +98,8 @@ FileSummary include_summary(const Source& source, const SyntaxTree& tree, const 
 // span in `text`; blanks and commas separate them and anything else ends the list. The parser of
 // suppressions and `lint --add-suppressions` read the list the same way.
 std::vector<Span> suppression_ids(std::string_view text, size_t from);
+// The word every suppression comment holds (`// lwcport-ignore...`): a comment without it suppresses nothing.
+constexpr std::string_view kSuppressionMarker = "lwcport-ignore";
 // The `lwcport-ignore` comments among a file's comments applied to its findings from another
 // front end (lwcport host): suppressed ones dropped, unused suppressions reported (when `ran`
 // says lwc-unused-suppression, and the rule a suppression names, ran on the file).

@@ -2,6 +2,7 @@
 #include "host/checks/high_low.h"
 #include "host/member_values.h"
 
+#include <fmt/format.h>
 #include <clang/AST/ExprCXX.h>
 #include <clang/AST/ExprObjC.h>
 #include <clang/ASTMatchers/ASTMatchers.h>
@@ -72,8 +73,8 @@ bool made_linear(const Expr* narrowing, const World& world, ASTContext& context)
 
 std::string where(const FieldDecl* field) {
   const RecordDecl* record = field->getParent();
-  std::string of = record && record->getIdentifier() ? " of `" + record->getNameAsString() + "`" : "";
-  return "`" + field->getNameAsString() + "`" + of;
+  std::string of = record && record->getIdentifier() ? fmt::format(" of `{}`", record->getNameAsString()) : "";
+  return fmt::format("`{}`{}", field->getNameAsString(), of);  // not `"`" + name`: GCC 12 warns of it, wrongly (-Wrestrict)
 }
 
 // What a member is to the GPU, in words ("" when nothing): a shader parameter when declared through
