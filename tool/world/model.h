@@ -19,6 +19,10 @@
 
 namespace lwc {
 
+namespace analysis {
+class Analyzer;  // world/analyzer.h: fills a WorldModel
+}  // namespace analysis
+
 // What a value is, as far as large coordinates go.
 enum class Kind : uint8_t {
   unknown,
@@ -163,7 +167,7 @@ class ModelReuse {
   struct Log;
 
  private:
-  friend class Analyzer;
+  friend class analysis::Analyzer;
   std::map<int, std::unique_ptr<Log>> logs_;  // by variant
 };
 
@@ -232,7 +236,7 @@ class WorldModel {
   const WorldData& data() const { return data_; }
 
  private:
-  friend class Analyzer;
+  friend class analysis::Analyzer;
   const SyntaxTree& tree_;
   const WorldData& data_;
   std::vector<Variable> variables_;
