@@ -62,7 +62,7 @@ TEST(AddSuppressions, TrailingCommentsJoinedIdsContinuedLinesAndScripts) {
 }
 
 const char* kTwo =
-    "float3 F(float3 L)\n{\n\tfloat3 W = mul(float4(L, 1), Primitive.LocalToWorld).xyz;\n\treturn W - View.WorldCameraOrigin;\n}\n";
+    "float3 F(float3 L)\n{\n\tfloat3 W = DFDemote(DFMultiply(L, Primitive.LocalToWorld));\n\treturn W - View.WorldCameraOrigin;\n}\n";
 
 test::Run lint_in(const std::string& dir, const std::string& args) {
   return test::run("cd " + dir + " && " + test::binary() + " lint " + args + " --color never");

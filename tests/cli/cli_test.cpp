@@ -25,7 +25,7 @@ TEST(Cli, TextFormatHasPositionSourceLineCaretAndHint) {
   // The caret line keeps the tab so it lines up under the span, and spans its 22 characters.
   EXPECT_NE(r.out.find("      | \t" + std::string(11, ' ') + "^" + std::string(21, '~') + "\n"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("= help: use `PrimaryView.WorldCameraOrigin`"), std::string::npos);
-  EXPECT_NE(r.out.find("Found 2 finding(s) in 1 file(s): 1 error(s), 1 warning(s), 0 note(s)."), std::string::npos);
+  EXPECT_NE(r.out.find("Found 3 finding(s) in 1 file(s): 2 error(s), 1 warning(s), 0 note(s)."), std::string::npos);
   EXPECT_EQ(r.out.find("\x1b["), std::string::npos);
   EXPECT_NE(lint(dir, "a.usf --color always").out.find("\x1b[1;31merror:"), std::string::npos);
 }
@@ -66,9 +66,10 @@ TEST(Cli, JsonFormatIsDocumented) {
   EXPECT_EQ(doc["version"], 1);
   EXPECT_EQ(doc["tool"]["name"], "lwcport");
   EXPECT_EQ(doc["files"], 1);
-  EXPECT_EQ(doc["summary"]["error"], 1);
+  EXPECT_EQ(doc["summary"]["error"], 2);  // the primitive's matrix used as a float, and View's camera origin
   EXPECT_EQ(doc["summary"]["warning"], 1);
-  const auto& f = doc["findings"][1];
+  EXPECT_EQ(doc["findings"][1]["rule"], "lwc-large-world-member");
+  const auto& f = doc["findings"][2];
   EXPECT_EQ(f["path"], "a.usf");
   EXPECT_EQ(f["rule"], "lwc-primary-view");
   EXPECT_EQ(f["start"], (nlohmann::json{{"line", 4}, {"column", 13}}));
@@ -221,9 +222,9 @@ TEST(Cli, BytesThatAreNotUtf8NeverAbortAnOutput) {
   for (const auto& f : doc["findings"])
     got.push_back(f["path"].get<std::string>() + " " + std::to_string(f["start"]["line"].get<int>()) + ":" +
                   std::to_string(f["start"]["column"].get<int>()));
-  EXPECT_EQ(got, (std::vector<std::string>{"caf\uFFFD.usf 1:4", "caf\uFFFD.usf 2:8", "caf\uFFFD.usf 2:27"}));
+  EXPECT_EQ(got, (std::vector<std::string>{"caf\uFFFD.usf 1:4", "caf\uFFFD.usf 2:8", "caf\uFFFD.usf 2:27", "caf\uFFFD.usf 2:55"}));
   nlohmann::json sarif = nlohmann::json::parse(lint(dir, ". --fail-on none --format sarif").out);
-  EXPECT_EQ(sarif["runs"][0]["results"].size(), 3u);
+  EXPECT_EQ(sarif["runs"][0]["results"].size(), 4u);
   std::string text = lint(dir, ". --fail-on none").out;
   EXPECT_NE(text.find("caf\\xE9.usf:2:27:"), std::string::npos) << text;
   EXPECT_NE(text.find("/*\\xE9*/ float3 P"), std::string::npos) << text;

@@ -16,7 +16,7 @@ namespace lwc {
 namespace {
 
 const char* kTwoFindings =
-    "float3 F(float3 L)\n{\n\tfloat3 W = mul(float4(L, 1), Primitive.LocalToWorld).xyz;\n\treturn W - View.WorldCameraOrigin;\n}\n";
+    "float3 F(float3 L)\n{\n\tfloat3 W = DFDemote(DFMultiply(L, Primitive.LocalToWorld));\n\treturn W - View.WorldCameraOrigin;\n}\n";
 const char* kFusable = "float3 F(FDFVector3 P) { return DFDemote(DFAdd(P, P)); }\n";
 
 // Standard error only (standard output dropped).
@@ -82,7 +82,7 @@ TEST(CommandLine, StandardInputTakesItsNameLanguageConfigAndSuppressionsFromStdi
   EXPECT_EQ(named.exit_code, 1);
   // The same text under a name with a suppression on its line: nothing left.
   std::string suppressed = kTwoFindings;
-  suppressed.replace(suppressed.find(".xyz;") + 5, 0, " // lwcport-ignore: lwc-float-world-position");
+  suppressed.replace(suppressed.find("));") + 3, 0, " // lwcport-ignore: lwc-float-world-position");
   test::write(dir + "/s.usf", suppressed);
   auto quiet = test::run("cd " + dir + " && " + test::binary() + " lint - --stdin-filename sub/b.usf < s.usf");
   EXPECT_EQ(quiet.exit_code, 0) << quiet.out;

@@ -6,6 +6,7 @@ std::unique_ptr<Check> make_demote_fusion(const RuleInfo&);
 std::unique_ptr<Check> make_fast_twosum_order(const RuleInfo&);
 std::unique_ptr<Check> make_float_world_position(const RuleInfo&);
 std::unique_ptr<Check> make_hack_marker(const RuleInfo&);
+std::unique_ptr<Check> make_large_world_member(const RuleInfo&);
 std::unique_ptr<Check> make_missing_precise(const RuleInfo&);
 std::unique_ptr<Check> make_primary_view(const RuleInfo&);
 std::unique_ptr<Check> make_tile_offset(const RuleInfo&);
@@ -19,6 +20,7 @@ const std::map<std::string_view, CheckFactory>& check_factories() {
       {"lwc-fast-twosum-order", checks::make_fast_twosum_order},
       {"lwc-float-world-position", checks::make_float_world_position},
       {"lwc-hack-marker", checks::make_hack_marker},
+      {"lwc-large-world-member", checks::make_large_world_member},
       {"lwc-missing-precise", checks::make_missing_precise},
       {"lwc-primary-view", checks::make_primary_view},
       {"lwc-tile-offset", checks::make_tile_offset},
