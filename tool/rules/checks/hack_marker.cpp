@@ -5,6 +5,7 @@
 
 #include <set>
 
+#include "rules/checks/library_rewrite.h"
 #include "rules/checks/util.h"
 
 namespace lwc::checks {
@@ -53,15 +54,17 @@ class HackMarker : public Check {
     std::string twin = translated_twin(ctx, value);
     std::string op = t.is(parent, "binary_expression") ? std::string(t.text(t.child_by_field(parent, "operator"))) : "";
     if (twin.empty()) {
-      f.withheld.push_back(fmt::format("translated world: `{}` has no translated twin lwcport knows, so the demotion stays until the code "
-                                       "around it is ported (to translated world or DoubleFloat)",
-                                       t.text(value)));
+      if (!offer_library(ctx, f, marker, call, value))
+        f.withheld.push_back(fmt::format("translated world: `{}` has no translated twin lwcport knows, so the demotion stays until the code "
+                                         "around it is ported (to translated world or DoubleFloat)",
+                                         t.text(value)));
       return;
     }
     if (op != "-" && op != "+") {
-      f.withheld.push_back(fmt::format("translated world: the demoted value is used as `{}` (line {}), not as a difference with the "
-                                       "camera, so its translated twin would change the result",
-                                       t.text(parent), line_of(t, parent)));
+      if (!offer_library(ctx, f, marker, call, value))
+        f.withheld.push_back(fmt::format("translated world: the demoted value is used as `{}` (line {}), not as a difference with the "
+                                         "camera, so its translated twin would change the result",
+                                         t.text(parent), line_of(t, parent)));
       return;
     }
     bool first = t.child_by_field(parent, "left") == use;
@@ -77,9 +80,54 @@ class HackMarker : public Check {
       ctx.fix(f, "translated", {{"marker", std::string(t.text(marker))}, {"text", twin}}, {{t.span(parent), twin}});
       return;
     }
-    f.withheld.push_back(fmt::format("translated world: `{}` is combined with `{}` (line {}), which is not the camera, so its "
-                                     "translated twin would change the result",
-                                     t.text(value), t.text(other), line_of(t, parent)));
+    if (!offer_library(ctx, f, marker, call, value))
+      f.withheld.push_back(fmt::format("translated world: `{}` is combined with `{}` (line {}), which is not the camera, so its "
+                                       "translated twin would change the result",
+                                       t.text(value), t.text(other), line_of(t, parent)));
+  }
+
+  // No translated twin fits: the demoted value's float arithmetic is done in the library of the
+  // marker's own era instead (DFHackToFloat: DoubleFloat; LWCHackToFloat: tile/offset), rounded
+  // once. The value stays absolute; only the demotion and its rounding go.
+  bool offer_library(const CheckContext& ctx, Finding& f, int marker, int call, int value) const {
+    const SyntaxTree& t = ctx.tree;
+    std::string_view name = t.text(marker);
+    if (name != "DFHackToFloat" && name != "LWCHackToFloat") return false;
+    // Beside another float32 absolute value the two roundings often cancel; one exact operand
+    // only moves the error, so the pair must move to translated world together.
+    int use = call, parent = t.at(call).parent;
+    while (t.is(parent, "parenthesized_expression")) use = parent, parent = t.at(use).parent;
+    if (t.is(parent, "binary_expression") || t.is(parent, "assignment_expression")) {
+      int other = t.child_by_field(parent, "left") == use ? t.child_by_field(parent, "right") : t.child_by_field(parent, "left");
+      if (other >= 0 && holds_absolute(ctx.world.kind(other)) && is_position(ctx.world.kind(other))) {
+        f.withheld.push_back(fmt::format("DoubleFloat: `{}` is itself a float32 absolute position (line {}): taking `{}` exactly beside it "
+                                         "gains nothing, so both must move to translated world together",
+                                         shortened(t.text(other)), line_of(t, other), t.text(value)));
+        return true;
+      }
+    }
+    Member m = member_of(t, value);
+    LargeWorldValue v{call, std::string(t.text(value)), large_world_kind(ctx, value), m.object, m.member};
+    LibraryRewrite r = library_rewrite(t, ctx.world.data(), v, name == "DFHackToFloat");
+    if (r.fix.empty() && !r.blocker.empty()) f.withheld.push_back(r.blocker);
+    if (r.fix.empty()) return !r.blocker.empty();
+    r.vars["marker"] = name;
+    ctx.fix(f, r.fix, r.vars, r.edits);
+    return true;
+  }
+
+  static bool is_position(Kind kind) { return kind == Kind::absolute || kind == Kind::camera_offset; }
+
+  // What a demoted value is: its kind, else what its declared large-world type says.
+  static Kind large_world_kind(const CheckContext& ctx, int value) {
+    Kind kind = ctx.world.kind(value);
+    if (kind != Kind::unknown && kind != Kind::local) return kind;
+    int var = ctx.tree.is(value, "identifier") ? ctx.world.variable_at(value) : -1;
+    std::string type = var >= 0 ? ctx.world.variables()[static_cast<size_t>(var)].type : "";
+    if (type == "FDFVector3" || type == "FLWCVector3") return Kind::absolute;
+    if (type == "FDFMatrix" || type == "FLWCMatrix") return Kind::world_matrix;
+    if (type == "FDFInverseMatrix" || type == "FLWCInverseMatrix") return Kind::from_world_matrix;
+    return kind;
   }
 
   // A tile/offset <-> DoubleFloat conversion whose argument already has the target type (a

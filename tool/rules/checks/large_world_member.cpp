@@ -4,6 +4,7 @@
 // precision the type was made for. The rewrite does the float arithmetic in the era's library.
 #include <fmt/format.h>
 
+#include "rules/checks/library_rewrite.h"
 #include "rules/checks/util.h"
 
 namespace lwc::checks {
@@ -169,115 +170,23 @@ class LargeWorldMember : public Check {
     return type;
   }
 
-  // The arithmetic done in the era's large-world library, rounded to float once at the end.
+  // The arithmetic done in the era's large-world library (library_rewrite.h).
   void offer_fix(const CheckContext& ctx, Finding& f, int id, const Use& use, Kind kind, UnrealEra era, Vars vars) const {
     const SyntaxTree& t = ctx.tree;
-    bool df = era != UnrealEra::ue5_0;
     // UE4's primitive uniform buffer: UE5 reads the same data through a call.
     int base = t.child_by_field(id, "argument");
     std::string object(t.text(base));
     if (t.is(base, "identifier") && object == uniform_buffer_ && ctx.world.variable_at(base) < 0) object = uniform_buffer_call_;
-    std::string member = object + "." + vars["member"];
-    // The operand that stands for the member (through parentheses and `.xyz`) is written as the member.
-    auto text = [&](int n) {
-      int inner = n;
-      while (t.is(inner, "parenthesized_expression")) inner = t.named_child(inner);
-      return inner == id || inner == use.node ? member : std::string(t.text(n));
-    };
-    std::string_view ptype = t.at(use.parent).type;
-    int p = use.parent;
-    std::string op;
-    if (int o = t.child_by_field(p, "operator"); o >= 0) op = t.text(o);
-    bool position = kind == Kind::absolute || kind == Kind::camera_offset;
-
-    // A sum or difference with a position: the era's demoting add or subtract.
-    if (position && (ptype == "binary_expression" || ptype == "assignment_expression") &&
-        (op == "+" || op == "-" || op == "+=" || op == "-=")) {
-      int left = t.child_by_field(p, "left"), right = t.child_by_field(p, "right");
-      bool subtract = op[0] == '-';
-      auto wrap = [&](const std::string& a, const std::string& b) {
-        return df ? fmt::format("{}({}, {})", subtract ? "DFSubtractDemote" : "DFAddDemote", a, b)
-                  : fmt::format("LWCToFloat({}({}, {}))", subtract ? "LWCSubtract" : "LWCAdd", a, b);
-      };
-      if (ptype == "binary_expression") {
-        vars["call"] = df ? (subtract ? "DFSubtractDemote" : "DFAddDemote") : (subtract ? "LWCSubtract" : "LWCAdd");
-        ctx.fix(f, "demote", vars, {{t.span(p), wrap(text(left), text(right))}});
-        return;
-      }
-      // `X += M`: the target is read once more, so only a plain name or field.
-      if (t.is(left, "identifier") || t.is(left, "field_expression")) {
-        vars["call"] = df ? (subtract ? "DFSubtractDemote" : "DFAddDemote") : (subtract ? "LWCSubtract" : "LWCAdd");
-        ctx.fix(f, "demote", vars, {{t.span(p), fmt::format("{} = {}", t.text(left), wrap(std::string(t.text(left)), member))}});
-        return;
-      }
+    LargeWorldValue value{use.node, object + "." + vars["member"], kind, object, vars["member"]};
+    LibraryRewrite r = library_rewrite(t, ctx.world.data(), value, era != UnrealEra::ue5_0);
+    if (!r.fix.empty()) {
+      for (const auto& [key, text] : r.vars) vars[key] = text;
+      ctx.fix(f, r.fix, vars, r.edits);
+      return;
     }
-    // The rotation of a transform: the era's 3x3 conversion.
-    if (is_matrix(kind) && ptype == "cast_expression") {
-      std::string cast(t.text(t.child_by_field(p, "type")));
-      std::string call = fmt::format("{}({})", df ? "DFToFloat3x3" : "LWCToFloat3x3", member);
-      if (cast.ends_with("3x3")) {
-        vars["call"] = df ? "DFToFloat3x3" : "LWCToFloat3x3";
-        ctx.fix(f, "rotation", vars, {{t.span(p), cast.starts_with("float") ? call : "(" + cast + ")" + call}});
-        return;
-      }
-    }
-    // A row of the rotation (`M[0].xyz`): the same row of the 3x3 conversion.
-    if (is_matrix(kind) && ptype == "subscript_expression") {
-      int index = t.subscript_index(p);
-      int outer = t.at(p).parent;
-      int field = t.is(outer, "field_expression") ? t.child_by_field(outer, "field") : -1;
-      std::string_view row = index >= 0 ? t.text(index) : "";
-      if ((row == "0" || row == "1" || row == "2") && field >= 0 && t.text(field) == "xyz") {
-        vars["call"] = df ? "DFToFloat3x3" : "LWCToFloat3x3";
-        ctx.fix(f, "rotation", vars, {{t.span(outer), fmt::format("{}({})[{}]", vars["call"], member, row)}});
-        return;
-      }
-      if (row == "3") {
-        f.withheld.push_back(fmt::format("row 3 of `{}` is its absolute translation: the computation that reads it must move to translated world", t.text(id)));
-        return;
-      }
-    }
-    // A transform by the matrix: in the library, or by its translated twin.
-    if (is_matrix(kind) && ptype == "argument_list" && call_name(t, t.at(p).parent) == "mul") {
-      int call = t.at(p).parent;
-      auto args = call_arguments(t, call);
-      std::string point = args.size() == 2 ? position_of_homogeneous(t, args[0]) : "";
-      if (args.size() == 2 && (args[1] == id || args[1] == use.node) && !point.empty()) {
-        // `mul(float4(P, 1), M).xyz` becomes the 3-vector itself; without the swizzle, w stays 1.
-        int outer = t.at(call).parent;
-        bool xyz = t.is(outer, "field_expression") && t.child_by_field(outer, "field") >= 0 && t.text(t.child_by_field(outer, "field")) == "xyz";
-        Span span = t.span(xyz ? outer : call);
-        auto homogeneous = [&](const std::string& p3) { return xyz ? p3 : fmt::format("float4({}, 1)", p3); };
-        std::string twin = twin_of(ctx, vars["member"]);
-        if (kind == Kind::world_matrix) {
-          vars["call"] = df ? "DFMultiply" : "LWCMultiply";
-          ctx.fix(f, "transform", vars, {{span, homogeneous(df ? fmt::format("DFDemote(DFMultiply({}, {}))", point, member)
-                                                               : fmt::format("LWCToFloat(LWCMultiply({}, {}))", point, member))}});
-          return;
-        }
-        if (!twin.empty()) {
-          // A projection (w is not 1): the point moves to translated world, the matrix to its twin.
-          std::string translation = object + "." + (vars["member"].starts_with("Prev") ? "PrevPreViewTranslation" : "PreViewTranslation");
-          std::string moved = df ? fmt::format("DFAddDemote({}, {})", point, translation) : fmt::format("LWCToFloat(LWCAdd({}, {}))", point, translation);
-          vars["call"] = df ? "DFAddDemote" : "LWCAdd";
-          vars["twin"] = object + "." + twin;
-          ctx.fix(f, "translated-twin", vars, {{t.span(call), fmt::format("mul(float4({}, 1), {}.{})", moved, object, twin)}});
-          return;
-        }
-        vars["call"] = df ? "DFMultiplyDemote" : "LWCMultiply";
-        ctx.fix(f, "transform", vars, {{span, homogeneous(df ? fmt::format("DFMultiplyDemote(DFPromote({}), {})", point, member)
-                                                             : fmt::format("LWCMultiply(LWCPromote({}), {})", point, member))}});
-        return;
-      }
-    }
-    f.withheld.push_back(fmt::format("`{}` is an `{}` and is {} here: the computation around it must move to translated world or to the large-world library first",
-                                     t.text(id), vars["type"], vars["use"]));
-  }
-
-  static std::string twin_of(const CheckContext& ctx, const std::string& member) {
-    const auto& twins = ctx.world.data().twins.members;
-    auto it = twins.find(member);
-    return it != twins.end() ? it->second : std::string();
+    f.withheld.push_back(!r.blocker.empty() ? r.blocker
+                                            : fmt::format("`{}` is an `{}` and is {} here: the computation around it must move to translated world "
+                                                          "or to the large-world library first", t.text(id), vars["type"], vars["use"]));
   }
 
   std::map<std::string, std::string> objects_;  // engine global or call -> its struct

@@ -1,0 +1,117 @@
+#include "rules/checks/library_rewrite.h"
+
+#include <fmt/format.h>
+
+namespace lwc::checks {
+namespace {
+
+bool is_field(const SyntaxTree& t, int node, std::string_view name) {
+  int field = t.is(node, "field_expression") ? t.child_by_field(node, "field") : -1;
+  return field >= 0 && t.text(field) == name;
+}
+
+}  // namespace
+
+LibraryRewrite library_rewrite(const SyntaxTree& t, const WorldData& data, const LargeWorldValue& value, bool df) {
+  LibraryRewrite out;
+  int node = value.node, p = t.at(node).parent;
+  while (t.is(p, "parenthesized_expression")) node = p, p = t.at(p).parent;
+  if (p < 0) return out;
+  // The operand that stands for the value (through parentheses) is written as the value.
+  auto text = [&](int n) {
+    int inner = n;
+    while (t.is(inner, "parenthesized_expression")) inner = t.named_child(inner);
+    return inner == value.node ? value.text : std::string(t.text(n));
+  };
+  std::string_view ptype = t.at(p).type;
+  std::string op;
+  if (int o = t.child_by_field(p, "operator"); o >= 0) op = t.text(o);
+  bool position = value.kind == Kind::absolute || value.kind == Kind::camera_offset;
+
+  // A sum or difference with a position: the era's demoting add or subtract.
+  if (position && (ptype == "binary_expression" || ptype == "assignment_expression") && (op == "+" || op == "-" || op == "+=" || op == "-=")) {
+    int left = t.child_by_field(p, "left"), right = t.child_by_field(p, "right");
+    bool subtract = op[0] == '-';
+    out.vars["call"] = df ? (subtract ? "DFSubtractDemote" : "DFAddDemote") : (subtract ? "LWCSubtract" : "LWCAdd");
+    auto call = [&](const std::string& a, const std::string& b) {
+      return df ? fmt::format("{}({}, {})", out.vars["call"], a, b) : fmt::format("LWCToFloat({}({}, {}))", out.vars["call"], a, b);
+    };
+    if (ptype == "binary_expression") {
+      out.fix = "demote";
+      out.edits = {{t.span(p), call(text(left), text(right))}};
+      return out;
+    }
+    // `X += M`: the target is read once more, so only a plain name or field.
+    if (t.is(left, "identifier") || t.is(left, "field_expression")) {
+      out.fix = "demote";
+      out.edits = {{t.span(p), fmt::format("{} = {}", t.text(left), call(std::string(t.text(left)), text(right)))}};
+      return out;
+    }
+    return out;
+  }
+  if (!is_matrix(value.kind)) return out;
+  std::string to3x3 = df ? "DFToFloat3x3" : "LWCToFloat3x3";
+  // The rotation of a transform: the era's 3x3 conversion.
+  if (ptype == "cast_expression") {
+    std::string cast(t.text(t.child_by_field(p, "type")));
+    if (!cast.ends_with("3x3")) return out;
+    std::string call = fmt::format("{}({})", to3x3, value.text);
+    out.fix = "rotation";
+    out.vars["call"] = to3x3;
+    out.edits = {{t.span(p), cast.starts_with("float") ? call : "(" + cast + ")" + call}};
+    return out;
+  }
+  // A row of the rotation (`M[0].xyz`): the same row of the 3x3 conversion.
+  if (ptype == "subscript_expression") {
+    int index = t.subscript_index(p);
+    std::string_view row = index >= 0 ? t.text(index) : "";
+    int outer = t.at(p).parent;
+    if ((row == "0" || row == "1" || row == "2") && is_field(t, outer, "xyz")) {
+      out.fix = "rotation";
+      out.vars["call"] = to3x3;
+      out.edits = {{t.span(outer), fmt::format("{}({})[{}]", to3x3, value.text, row)}};
+    } else if (row == "3") {
+      out.blocker = fmt::format("row 3 of `{}` is its absolute translation: the computation that reads it must move to translated world", t.text(node));
+    }
+    return out;
+  }
+  // A point transformed by the matrix: in the library, or by its translated twin.
+  if (ptype != "argument_list" || call_name(t, t.at(p).parent) != "mul") return out;
+  int call = t.at(p).parent;
+  auto args = call_arguments(t, call);
+  std::string point = args.size() == 2 && args[1] == node ? position_of_homogeneous(t, args[0]) : "";
+  if (point.empty()) return out;
+  // `mul(float4(P, 1), M).xyz` becomes the 3-vector itself; without the swizzle, w stays 1.
+  bool xyz = is_field(t, t.at(call).parent, "xyz");
+  Span span = t.span(xyz ? t.at(call).parent : call);
+  auto homogeneous = [&](const std::string& p3) { return xyz ? p3 : fmt::format("float4({}, 1)", p3); };
+  auto twin = data.twins.members.find(value.member);
+  bool view = !value.object.empty() && matches_any(data.twins.objects, value.object);
+  if (value.kind == Kind::world_matrix && !xyz && view && twin != data.twins.members.end()) {
+    // From clip or screen space the product's w is not 1, and the code reads it.
+    out.blocker = fmt::format("`{}` is a projection whose w the code reads: the reconstruction must move to its translated twin "
+                              "(`{}`) as a whole", value.text, twin->second);
+  } else if (value.kind == Kind::world_matrix) {
+    out.fix = "transform";
+    out.vars["call"] = df ? "DFMultiply" : "LWCMultiply";
+    out.edits = {{span, homogeneous(df ? fmt::format("DFDemote(DFMultiply({}, {}))", point, value.text)
+                                       : fmt::format("LWCToFloat(LWCMultiply({}, {}))", point, value.text))}};
+  } else if (view && twin != data.twins.members.end()) {
+    // A projection (w is not 1): the point moves to translated world, the matrix to its twin.
+    std::string object = value.object == "View" ? "PrimaryView" : value.object;
+    std::string translation = object + "." + (value.member.starts_with("Prev") ? "PrevPreViewTranslation" : "PreViewTranslation");
+    std::string moved = df ? fmt::format("DFAddDemote({}, {})", point, translation) : fmt::format("LWCToFloat(LWCAdd({}, {}))", point, translation);
+    out.fix = "translated-twin";
+    out.vars["call"] = df ? "DFAddDemote" : "LWCAdd";
+    out.vars["twin"] = object + "." + twin->second;
+    out.edits = {{t.span(call), fmt::format("mul(float4({}, 1), {})", moved, out.vars["twin"])}};
+  } else {
+    out.fix = "transform";
+    out.vars["call"] = df ? "DFMultiplyDemote" : "LWCMultiply";
+    out.edits = {{span, homogeneous(df ? fmt::format("DFMultiplyDemote(DFPromote({}), {})", point, value.text)
+                                       : fmt::format("LWCMultiply(LWCPromote({}), {})", point, value.text))}};
+  }
+  return out;
+}
+
+}  // namespace lwc::checks
