@@ -36,9 +36,10 @@ class FloatWorldPosition : public Check {
                                                       {"name", h.name},
                                                       {"type", h.type.empty() ? "float" : h.type},
                                                       {"holds", descriptions_.value(kind, kind)}});
-      if (h.what != AbsoluteHolder::What::variable || h.kind != Kind::absolute) continue;
+      if (h.kind != Kind::absolute) continue;
       if (!names) names.emplace(ctx.world);
-      offer_rewrites(ctx, f, h, *names);
+      if (h.what == AbsoluteHolder::What::variable) offer_rewrites(ctx, f, h, *names);
+      if (h.what == AbsoluteHolder::What::return_value) offer_function_rewrite(ctx, f, h, *names);
     }
   }
 
@@ -109,51 +110,228 @@ class FloatWorldPosition : public Check {
     RewritePlan plan;
     std::string new_name = translated_name(v.name);
     if (names.taken(new_name, v.function)) return withheld(fmt::format("the name `{}` is already taken", new_name));
-    // The initialiser: a transform to absolute world whose matrix has a translated form.
-    int mul = mul_call(t, v.init);
-    if (mul < 0) return withheld(fmt::format("its value (`{}`) has no translated form lwcport knows", shortened(t.text(v.init))));
-    auto args = call_arguments(t, mul);
-    if (std::string m = translated_twin(ctx, args[1]); !m.empty()) {
-      plan.edits.push_back({t.span(args[1]), m});
-    } else if (std::string p = position_of_homogeneous(t, args[0]); !p.empty() && primitive_to_world(t, args[1])) {
-      plan.edits.push_back({t.span(v.init), fmt::format("DFTransformLocalToTranslatedWorld({}, {}, PrimaryView.PreViewTranslation)",
-                                                        p, t.text(args[1]))});
-    } else {
-      return withheld(fmt::format("its matrix `{}` has no translated twin", shortened(t.text(args[1]))));
-    }
+    if (std::string why = translate_value(ctx, v.init, plan); !why.empty()) return withheld(why);
     plan.edits.push_back({t.span(v.decl), new_name});
     follow_translated(ctx, var, new_name, plan, 0);
     return plan;
   }
 
-  // Every use must stay meaningful in translated world: a difference with a camera term (whose
-  // twin replaces it), a transform by a from-world matrix with a twin, or the argument of a helper
-  // in this file whose parameter can follow in turn (it is renamed and becomes translated).
-  void follow_translated(const CheckContext& ctx, int var, const std::string& new_name, RewritePlan& plan, int depth) const {
+  // An absolute value's translated form, as edits: a transform whose matrix has a translated
+  // twin or is a primitive's, or a translated value minus the pre-view translation (which goes).
+  // Returns why not, or "".
+  std::string translate_value(const CheckContext& ctx, int value, RewritePlan& plan) const {
     const SyntaxTree& t = ctx.tree;
+    while (t.is(value, "parenthesized_expression")) value = t.named_child(value);
+    if (t.is(value, "binary_expression") && t.text(t.child_by_field(value, "operator")) == "-") {
+      int left = t.child_by_field(value, "left"), right = t.child_by_field(value, "right");
+      if (ctx.world.kind(right) == Kind::camera_offset && ctx.world.kind(left) == Kind::translated) {
+        plan.edits.push_back({t.span(value), std::string(t.text(left))});
+        return {};
+      }
+    }
+    int mul = mul_call(t, value);
+    if (mul < 0) return fmt::format("its value (`{}`) has no translated form lwcport knows", shortened(t.text(value)));
+    auto args = call_arguments(t, mul);
+    if (std::string m = translated_twin(ctx, args[1]); !m.empty()) {
+      plan.edits.push_back({t.span(args[1]), m});
+    } else if (std::string p = position_of_homogeneous(t, args[0]); !p.empty() && primitive_to_world(t, args[1])) {
+      plan.edits.push_back({t.span(value), fmt::format("DFTransformLocalToTranslatedWorld({}, {}, PrimaryView.PreViewTranslation)",
+                                                       p, t.text(args[1]))});
+    } else {
+      return fmt::format("its matrix `{}` has no translated twin", shortened(t.text(args[1])));
+    }
+    return {};
+  }
+
+  // A function returning an absolute position built from translated values: it returns the
+  // translated one instead, under a name that says so, and every caller in this file follows.
+  void offer_function_rewrite(const CheckContext& ctx, Finding& f, const AbsoluteHolder& h, const DeclaredNames& names) const {
+    const SyntaxTree& t = ctx.tree;
+    int fn = h.site;
+    while (fn >= 0 && !t.is(fn, "function_definition")) fn = t.at(fn).parent;
+    if (fn < 0) return;
+    RewritePlan plan;
+    std::string new_name = translated_name(h.name);
+    if (std::string why = translate_function(ctx, fn, new_name, names, plan, 0); !why.empty()) {
+      f.withheld.push_back("translated world: " + why);
+      return;
+    }
+    ctx.fix(f, "translated", {{"name", h.name}, {"new-name", new_name}, {"helpers", ""}}, plan.edits);
+  }
+
+  // Renames a function of this file to `new_name`, its returned values made translated, and
+  // follows every call. Returns why not, or "".
+  std::string translate_function(const CheckContext& ctx, int fn, const std::string& new_name, const DeclaredNames& names,
+                                 RewritePlan& plan, int depth) const {
+    const SyntaxTree& t = ctx.tree;
+    int name = function_name(t, fn);
+    if (name < 0) return "its definition has no plain name";
+    std::string old_name(t.text(name));
+    // Another file may call a header's function with an absolute position in mind.
+    if (!whole_program(t)) return fmt::format("`{}` is in a header other files may call", old_name);
+    if (names.taken(new_name, -1) || name_used(t, new_name)) return fmt::format("the name `{}` is already taken", new_name);
+    if (!has_caller(t, old_name)) return fmt::format("nothing in this file calls `{}` (an entry point's name is the engine's to call)", old_name);
+    std::vector<int> returns;
+    collect_returns(t, t.child_by_field(fn, "body"), returns);
+    if (returns.empty()) return "it has no return value to move";
+    for (int r : returns) {
+      int value = t.named_child(r);
+      if (value < 0) return "it returns nothing somewhere";
+      if (std::string why = translate_value(ctx, value, plan); !why.empty()) return why;
+    }
+    plan.edits.push_back({t.span(name), new_name});
+    for (int call : nodes_of(t, "call_expression")) {
+      if (call_name(t, call) != old_name || !plan.blocker.empty()) continue;
+      follow_use(ctx, call, new_name + std::string(t.text(t.child_by_field(call, "arguments"))), plan, depth + 1);
+    }
+    return plan.blocker;
+  }
+
+  static int function_name(const SyntaxTree& t, int fn) {
+    int declarator = t.child_by_field(fn, "declarator");
+    int name = declarator >= 0 ? t.child_by_field(declarator, "declarator") : -1;
+    return name >= 0 && t.is(name, "identifier") ? name : -1;
+  }
+
+  static bool has_caller(const SyntaxTree& t, std::string_view name) {
+    for (int call : nodes_of(t, "call_expression"))
+      if (call_name(t, call) == name) return true;
+    return false;
+  }
+
+  static bool name_used(const SyntaxTree& t, std::string_view name) {
+    for (int id : nodes_of(t, "identifier"))
+      if (t.text(id) == name) return true;
+    return false;
+  }
+
+  static void collect_returns(const SyntaxTree& t, int node, std::vector<int>& out) {
+    if (node < 0) return;
+    if (t.is(node, "return_statement")) out.push_back(node);
+    for (int c : t.named_children(node))
+      if (!t.is(c, "function_definition")) collect_returns(t, c, out);
+  }
+
+  // A file compiled as one program (an Unreal .usf, a GLSL stage): nothing outside it calls its functions.
+  static bool whole_program(const SyntaxTree& t) {
+    const std::string& p = t.source->path();
+    for (const char* ext : {".usf", ".vert", ".frag", ".comp", ".geom", ".tesc", ".tese"})
+      if (p.ends_with(ext)) return true;
+    return false;
+  }
+
+  // Every use must stay meaningful in translated world: a difference with a camera term (whose
+  // twin replaces it), a sum with the pre-view translation (the translated value itself), a
+  // transform by a from-world matrix with a twin, the value of a local or the return of a function
+  // of this file that follow in turn, or the argument of a helper in this file whose parameter can
+  // follow (it is renamed and becomes translated).
+  void follow_translated(const CheckContext& ctx, int var, const std::string& new_name, RewritePlan& plan, int depth) const {
     for (int use : ctx.world.uses(var)) {
       if (!plan.blocker.empty()) return;
-      int partner = subtraction_partner(t, use);
-      if (std::string m = partner >= 0 ? translated_twin(ctx, partner) : ""; !m.empty()) {
-        plan.edits.push_back({t.span(use), new_name});
-        plan.edits.push_back({t.span(partner), m});
-        continue;
-      }
-      int wrapper = homogeneous_wrapper(t, use);
-      int outer = wrapper >= 0 ? t.at(t.at(wrapper).parent).parent : -1;
-      if (outer >= 0 && mul_call(t, outer) == outer && call_arguments(t, outer)[0] == wrapper) {
-        if (std::string m = translated_twin(ctx, call_arguments(t, outer)[1]); !m.empty()) {
-          plan.edits.push_back({t.span(use), new_name});
-          plan.edits.push_back({t.span(call_arguments(t, outer)[1]), m});
-          continue;
-        }
-      }
-      if (depth < 4 && follow_into_helper(ctx, use, plan, depth)) {
-        plan.edits.push_back({t.span(use), new_name});
-        continue;
-      }
-      if (plan.blocker.empty()) plan.blocker = escape(t, use);
+      follow_use(ctx, use, new_name, plan, depth);
     }
+  }
+
+  // One use of a value that becomes translated (a variable, or a call of a function that now
+  // returns translated), written `text` there: the variable's new name, or the renamed call.
+  void follow_use(const CheckContext& ctx, int use, const std::string& text, RewritePlan& plan, int depth) const {
+    const SyntaxTree& t = ctx.tree;
+    auto renamed = [&] { plan.edits.push_back({t.span(use), text}); };
+    int partner = subtraction_partner(t, use);
+    if (std::string m = partner >= 0 ? translated_twin(ctx, partner) : ""; !m.empty()) {
+      renamed();
+      plan.edits.push_back({t.span(partner), m});
+      return;
+    }
+    // `.xyz` of the value (a float4 with w = 1, or a float3) is the same translated point.
+    int expr = use, parent = t.at(use).parent;
+    bool xyz = t.is(parent, "field_expression") && t.child_by_field(parent, "field") >= 0 && t.text(t.child_by_field(parent, "field")) == "xyz";
+    if (xyz) expr = parent;
+    if (int sum = pre_view_sum(ctx, expr); sum >= 0) {
+      plan.edits.push_back({t.span(sum), xyz ? text + ".xyz" : text});
+      return;
+    }
+    int wrapper = homogeneous_wrapper(t, use);
+    int outer = wrapper >= 0 ? t.at(t.at(wrapper).parent).parent : -1;
+    if (outer >= 0 && mul_call(t, outer) == outer && call_arguments(t, outer)[0] == wrapper) {
+      if (std::string m = translated_twin(ctx, call_arguments(t, outer)[1]); !m.empty()) {
+        renamed();
+        plan.edits.push_back({t.span(call_arguments(t, outer)[1]), m});
+        return;
+      }
+    }
+    if (depth < 4 && follow_into_helper(ctx, use, plan, depth)) {
+      renamed();
+      return;
+    }
+    if (depth < 4 && follow_into_local(ctx, expr, plan, depth)) {
+      renamed();
+      return;
+    }
+    if (depth < 4 && t.is(t.at(expr).parent, "return_statement")) {
+      int fn = expr;
+      while (fn >= 0 && !t.is(fn, "function_definition")) fn = t.at(fn).parent;
+      int name = fn >= 0 ? function_name(t, fn) : -1;
+      DeclaredNames names(ctx.world);
+      if (name >= 0) {
+        std::string why = translate_function_of_use(ctx, fn, translated_name(std::string(t.text(name))), names, plan, depth);
+        if (why.empty()) {
+          renamed();
+          return;
+        }
+        if (plan.blocker.empty()) plan.blocker = why;
+        return;
+      }
+    }
+    if (plan.blocker.empty()) plan.blocker = escape(t, use);
+  }
+
+  // `X + PreViewTranslation` (either order, through parentheses) around a use: the sum, or -1.
+  static int pre_view_sum(const CheckContext& ctx, int use) {
+    const SyntaxTree& t = ctx.tree;
+    int parent = t.at(use).parent;
+    while (t.is(parent, "parenthesized_expression")) use = parent, parent = t.at(use).parent;
+    if (!t.is(parent, "binary_expression") || t.text(t.child_by_field(parent, "operator")) != "+") return -1;
+    int left = t.child_by_field(parent, "left"), right = t.child_by_field(parent, "right");
+    return ctx.world.kind(left == use ? right : left) == Kind::camera_offset ? parent : -1;
+  }
+
+  // A local whose value is the use (`float3 P = use;`): it becomes translated under a translated
+  // name, and its own uses follow.
+  bool follow_into_local(const CheckContext& ctx, int expr, RewritePlan& plan, int depth) const {
+    const SyntaxTree& t = ctx.tree;
+    int declarator = t.at(expr).parent;
+    if (!t.is(declarator, "init_declarator") || t.child_by_field(declarator, "value") != expr) return false;
+    int id = t.child_by_field(declarator, "declarator");
+    int local = id >= 0 ? ctx.world.variable_declared_at(id) : -1;
+    if (local < 0) return false;
+    const Variable& v = ctx.world.variables()[local];
+    std::string new_name = translated_name(v.name);
+    if (new_name == v.name || DeclaredNames(ctx.world).taken(new_name, v.function)) return false;
+    plan.edits.push_back({t.span(v.decl), new_name});
+    follow_translated(ctx, local, new_name, plan, depth + 1);
+    return plan.blocker.empty();
+  }
+
+  // The function a returned use leaves through: its value is already translated (the use is), so
+  // only the name and the callers change.
+  std::string translate_function_of_use(const CheckContext& ctx, int fn, const std::string& new_name, const DeclaredNames& names,
+                                        RewritePlan& plan, int depth) const {
+    const SyntaxTree& t = ctx.tree;
+    int name = function_name(t, fn);
+    std::string old_name(t.text(name));
+    if (!whole_program(t)) return fmt::format("it is returned by `{}`, in a header other files may call", old_name);
+    if (names.taken(new_name, -1) || name_used(t, new_name)) return fmt::format("the name `{}` is already taken", new_name);
+    std::vector<int> returns;
+    collect_returns(t, t.child_by_field(fn, "body"), returns);
+    if (returns.size() != 1) return fmt::format("`{}` returns from more than one place", old_name);
+    if (!has_caller(t, old_name)) return fmt::format("nothing in this file calls `{}` (an entry point's name is the engine's to call)", old_name);
+    plan.edits.push_back({t.span(name), new_name});
+    for (int call : nodes_of(t, "call_expression")) {
+      if (call_name(t, call) != old_name || !plan.blocker.empty()) continue;
+      follow_use(ctx, call, new_name + std::string(t.text(t.child_by_field(call, "arguments"))), plan, depth + 1);
+    }
+    return plan.blocker;
   }
 
   // A use passed whole to a function defined in this file, called only with values being made
