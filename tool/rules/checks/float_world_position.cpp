@@ -26,6 +26,7 @@ class FloatWorldPosition : public Check {
 
   void run(const CheckContext& ctx) const override {
     std::optional<DeclaredNames> names;  // for the rewrites' new names, made at the first one
+    std::vector<size_t> reported;        // this check's findings, by index in ctx.out
     for (const AbsoluteHolder& h : ctx.world.absolute_holders()) {
       std::string what = h.what == AbsoluteHolder::What::variable    ? "variable"
                          : h.what == AbsoluteHolder::What::field     ? "field"
@@ -36,11 +37,13 @@ class FloatWorldPosition : public Check {
                                                       {"name", h.name},
                                                       {"type", h.type.empty() ? "float" : h.type},
                                                       {"holds", descriptions_.value(kind, kind)}});
+      reported.push_back(ctx.out.size() - 1);
       if (h.kind != Kind::absolute) continue;
       if (!names) names.emplace(ctx.world);
       if (h.what == AbsoluteHolder::What::variable) offer_rewrites(ctx, f, h, *names);
       if (h.what == AbsoluteHolder::What::return_value) offer_function_rewrite(ctx, f, h, *names);
     }
+    say_where_ported(ctx, reported);
   }
 
  private:
@@ -69,6 +72,25 @@ class FloatWorldPosition : public Check {
       ctx.fix(f, "df", {{"name", v.name}}, df.edits);
     else
       f.withheld.push_back("DoubleFloat: " + df.blocker);
+  }
+
+  // A holder with no rewrite of its own that another finding's translated-world port renames or
+  // rewrites (a local downstream of the value it moves, the function returning it) says so.
+  static void say_where_ported(const CheckContext& ctx, const std::vector<size_t>& reported) {
+    for (size_t i : reported) {
+      Finding& f = ctx.out[i];
+      if (!f.fixes.empty()) continue;
+      for (size_t j : reported) {
+        const Finding& by = ctx.out[j];
+        if (by.fixes.empty() || by.fixes.front().strategy != "translated") continue;
+        bool covers = std::any_of(by.fixes.front().edits.begin(), by.fixes.front().edits.end(),
+                                  [&](const Edit& e) { return e.span.begin <= f.span.begin && f.span.end <= e.span.end; });
+        if (!covers) continue;
+        Position at = ctx.tree.source->position(by.span.begin);
+        f.withheld.insert(f.withheld.begin(), fmt::format("the translated-world rewrite of line {} moves this too (no rewrite of its own)", at.line));
+        break;
+      }
+    }
   }
 
   // Code without Unreal's library: a local from a world-matrix uniform gets the High/Low design,
@@ -174,9 +196,22 @@ class FloatWorldPosition : public Check {
     std::vector<int> returns;
     collect_returns(t, t.child_by_field(fn, "body"), returns);
     if (returns.empty()) return "it has no return value to move";
+    plan.moving_functions.push_back(fn);
     for (int r : returns) {
       int value = t.named_child(r);
       if (value < 0) return "it returns nothing somewhere";
+      // A local it returns moves with it: its value, its name and its other uses.
+      int local = t.is(value, "identifier") ? ctx.world.variable_at(value) : -1;
+      if (local >= 0 && ctx.world.variables()[local].role == Variable::Role::local && ctx.world.variables()[local].init >= 0) {
+        const Variable& v = ctx.world.variables()[local];
+        std::string local_name = translated_name(v.name);
+        if (local_name == v.name || names.taken(local_name, v.function)) return fmt::format("the name `{}` is already taken", local_name);
+        if (std::string why = translate_value(ctx, v.init, plan); !why.empty()) return why;
+        plan.edits.push_back({t.span(v.decl), local_name});
+        follow_translated(ctx, local, local_name, plan, depth + 1);
+        if (!plan.blocker.empty()) return plan.blocker;
+        continue;
+      }
       if (std::string why = translate_value(ctx, value, plan); !why.empty()) return why;
     }
     plan.edits.push_back({t.span(name), new_name});
@@ -237,21 +272,28 @@ class FloatWorldPosition : public Check {
   void follow_use(const CheckContext& ctx, int use, const std::string& text, RewritePlan& plan, int depth) const {
     const SyntaxTree& t = ctx.tree;
     auto renamed = [&] { plan.edits.push_back({t.span(use), text}); };
-    int partner = subtraction_partner(t, use);
+    // The homogeneous w of a point is the same in translated world (a translation leaves it be).
+    if (is_field_of(t, t.at(use).parent, use, "w")) {
+      renamed();
+      return;
+    }
+    int expr = climb_point(ctx, use);
+    int partner = subtraction_partner(t, expr);
     if (std::string m = partner >= 0 ? translated_twin(ctx, partner) : ""; !m.empty()) {
       renamed();
       plan.edits.push_back({t.span(partner), m});
       return;
     }
-    // `.xyz` of the value (a float4 with w = 1, or a float3) is the same translated point.
-    int expr = use, parent = t.at(use).parent;
-    bool xyz = t.is(parent, "field_expression") && t.child_by_field(parent, "field") >= 0 && t.text(t.child_by_field(parent, "field")) == "xyz";
-    if (xyz) expr = parent;
+    // A sum with the pre-view translation is the translated value itself: the term goes.
     if (int sum = pre_view_sum(ctx, expr); sum >= 0) {
-      plan.edits.push_back({t.span(sum), xyz ? text + ".xyz" : text});
+      int inner = expr;
+      while (t.at(inner).parent != sum) inner = t.at(inner).parent;
+      bool left = t.child_by_field(sum, "left") == inner;
+      renamed();
+      plan.edits.push_back({left ? Span{t.at(inner).end, t.at(sum).end} : Span{t.at(sum).begin, t.at(inner).begin}, ""});
       return;
     }
-    int wrapper = homogeneous_wrapper(t, use);
+    int wrapper = homogeneous_wrapper(t, expr);
     int outer = wrapper >= 0 ? t.at(t.at(wrapper).parent).parent : -1;
     if (outer >= 0 && mul_call(t, outer) == outer && call_arguments(t, outer)[0] == wrapper) {
       if (std::string m = translated_twin(ctx, call_arguments(t, outer)[1]); !m.empty()) {
@@ -260,7 +302,7 @@ class FloatWorldPosition : public Check {
         return;
       }
     }
-    if (depth < 4 && follow_into_helper(ctx, use, plan, depth)) {
+    if (depth < 4 && expr == use && follow_into_helper(ctx, use, plan, depth)) {
       renamed();
       return;
     }
@@ -271,10 +313,14 @@ class FloatWorldPosition : public Check {
     if (depth < 4 && t.is(t.at(expr).parent, "return_statement")) {
       int fn = expr;
       while (fn >= 0 && !t.is(fn, "function_definition")) fn = t.at(fn).parent;
+      // Returned from a function this plan already moves: it is renamed there.
+      if (std::find(plan.moving_functions.begin(), plan.moving_functions.end(), fn) != plan.moving_functions.end()) {
+        renamed();
+        return;
+      }
       int name = fn >= 0 ? function_name(t, fn) : -1;
-      DeclaredNames names(ctx.world);
       if (name >= 0) {
-        std::string why = translate_function_of_use(ctx, fn, translated_name(std::string(t.text(name))), names, plan, depth);
+        std::string why = translate_function_of_use(ctx, fn, translated_name(std::string(t.text(name))), DeclaredNames(ctx.world), plan, depth);
         if (why.empty()) {
           renamed();
           return;
@@ -286,14 +332,67 @@ class FloatWorldPosition : public Check {
     if (plan.blocker.empty()) plan.blocker = escape(t, use);
   }
 
-  // `X + PreViewTranslation` (either order, through parentheses) around a use: the sum, or -1.
-  static int pre_view_sum(const CheckContext& ctx, int use) {
+  static bool is_field_of(const SyntaxTree& t, int node, int base, std::string_view name) {
+    if (!t.is(node, "field_expression") || t.child_by_field(node, "argument") != base) return false;
+    int field = t.child_by_field(node, "field");
+    return field >= 0 && t.text(field) == name;
+  }
+
+  // The largest expression around a use that is still the same point, moved by the same
+  // translation: through parentheses, `.xyz`, a perspective divide (`H.xyz / H.w`), and a small
+  // offset added to it or taken from it.
+  static int climb_point(const CheckContext& ctx, int n) {
     const SyntaxTree& t = ctx.tree;
-    int parent = t.at(use).parent;
-    while (t.is(parent, "parenthesized_expression")) use = parent, parent = t.at(use).parent;
+    for (;;) {
+      int p = t.at(n).parent;
+      if (p < 0) return n;
+      if (t.is(p, "parenthesized_expression") || is_field_of(t, p, n, "xyz")) {
+        n = p;
+        continue;
+      }
+      if (!t.is(p, "binary_expression")) return n;
+      std::string_view op = t.text(t.child_by_field(p, "operator"));
+      int left = t.child_by_field(p, "left"), right = t.child_by_field(p, "right");
+      bool small = small_vector(ctx, left == n ? right : left);
+      if ((op == "/" && left == n && small) || (op == "+" && small) || (op == "-" && left == n && small)) {
+        n = p;
+        continue;
+      }
+      return n;
+    }
+  }
+
+  // A vector that is not a position: small by its kind, or built only from names that say so
+  // (`Normal * Bias`, `Dir * T`) and numbers.
+  static bool small_vector(const CheckContext& ctx, int n) {
+    Kind kind = ctx.world.kind(n);
+    if (kind == Kind::local || kind == Kind::direction) return true;
+    if (kind != Kind::unknown) return false;
+    const SyntaxTree& t = ctx.tree;
+    bool named = false;
+    std::vector<int> stack{n};
+    while (!stack.empty()) {
+      int m = stack.back();
+      stack.pop_back();
+      if (t.is(m, "identifier") || t.is(m, "field_identifier")) {
+        if (ctx.world.data().named_kind(t.text(m), Kind::absolute) != Kind::local) return false;
+        named = true;
+      } else if (t.is(m, "call_expression")) {
+        return false;
+      }
+      for (int c : t.named_children(m)) stack.push_back(c);
+    }
+    return named;
+  }
+
+  // `X + PreViewTranslation` (either order, through parentheses) around an expression: the sum, or -1.
+  static int pre_view_sum(const CheckContext& ctx, int expr) {
+    const SyntaxTree& t = ctx.tree;
+    int parent = t.at(expr).parent;
+    while (t.is(parent, "parenthesized_expression")) expr = parent, parent = t.at(expr).parent;
     if (!t.is(parent, "binary_expression") || t.text(t.child_by_field(parent, "operator")) != "+") return -1;
     int left = t.child_by_field(parent, "left"), right = t.child_by_field(parent, "right");
-    return ctx.world.kind(left == use ? right : left) == Kind::camera_offset ? parent : -1;
+    return ctx.world.kind(left == expr ? right : left) == Kind::camera_offset ? parent : -1;
   }
 
   // A local whose value is the use (`float3 P = use;`): it becomes translated under a translated
@@ -326,6 +425,7 @@ class FloatWorldPosition : public Check {
     collect_returns(t, t.child_by_field(fn, "body"), returns);
     if (returns.size() != 1) return fmt::format("`{}` returns from more than one place", old_name);
     if (!has_caller(t, old_name)) return fmt::format("nothing in this file calls `{}` (an entry point's name is the engine's to call)", old_name);
+    plan.moving_functions.push_back(fn);
     plan.edits.push_back({t.span(name), new_name});
     for (int call : nodes_of(t, "call_expression")) {
       if (call_name(t, call) != old_name || !plan.blocker.empty()) continue;

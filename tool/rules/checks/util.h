@@ -43,6 +43,7 @@ struct RewritePlan {
   std::vector<std::string> notes;     // what must change outside the shader
   std::vector<std::string> library;   // shader-library names the new code calls
   std::vector<std::string> interface; // stage inputs/outputs renamed: the other stage must follow
+  std::vector<int> moving_functions;  // functions whose return becomes translated in this plan
 };
 RewritePlan withheld(std::string why);
 
