@@ -245,7 +245,7 @@ bool Analyzer::matrix_typed(int n) const {
     int f = t_.child_by_field(n, t_.is(n, "call_expression") ? "function" : "type");
     if (f >= 0) type = std::string(t_.text(f));
   }
-  return type.find('x') != std::string::npos ? d_.is_float_type(type) && type.back() != 'x' : type.rfind("mat", 0) == 0;
+  return d_.is_matrix_type(type);
 }
 
 bool Analyzer::is_point(int v) const {
@@ -363,14 +363,17 @@ Kind Analyzer::apply_role(FunctionRole role, const std::vector<int>& args, const
 
 Kind Analyzer::call_user(const std::vector<int>& overloads, const std::vector<int>& args, const std::vector<Kind>& kinds) {
   int fn = overloads.front();
+  bool arity = false;  // a definition takes as many arguments as the call passes
   for (int candidate : overloads) {
     int d = t_.child_by_field(candidate, "declarator");
     while (d >= 0 && !t_.is(d, "function_declarator")) d = t_.child_by_field(d, "declarator");
     int list = d >= 0 ? t_.child_by_field(d, "parameters") : -1;
-    if (list >= 0 && t_.named_children(list).size() == args.size()) fn = candidate;
+    if (list >= 0 && t_.named_children(list).size() == args.size()) fn = candidate, arity = true;
     if (run_) run_->functions.push_back(candidate);
   }
-  bool interesting = std::any_of(kinds.begin(), kinds.end(), [](Kind k) { return k != Kind::unknown && k != Kind::local; });
+  // Without one (its other arm of an `#if` is the definition this variant does not see), the
+  // arguments cannot be matched to parameters: none is given what the call passes.
+  bool interesting = arity && std::any_of(kinds.begin(), kinds.end(), [](Kind k) { return k != Kind::unknown && k != Kind::local; });
   Summary s = analyze_function(fn, interesting ? kinds : std::vector<Kind>{});
   for (size_t i = 0; i < s.outs.size() && i < args.size(); ++i)
     if (s.outs[i] != Kind::unknown) assign(args[i], s.outs[i]);

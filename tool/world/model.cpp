@@ -271,6 +271,10 @@ bool WorldData::is_float_type(std::string_view type) const {
   return false;
 }
 
+bool WorldData::is_matrix_type(std::string_view type) const {
+  return type.find('x') != std::string_view::npos ? is_float_type(type) && type.back() != 'x' : type.rfind("mat", 0) == 0;
+}
+
 std::vector<Span> library_definitions(const SyntaxTree& tree, const WorldData& data) {
   auto any = [](const std::vector<std::string>& globs, std::string_view name) {
     return std::any_of(globs.begin(), globs.end(), [&](const std::string& g) { return glob_match(g, name); });

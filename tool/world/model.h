@@ -94,6 +94,8 @@ struct WorldData {
   // {"match", "kind", "languages"?}. Throws std::runtime_error naming a bad entry.
   static WorldData load(const nlohmann::json& world_space, const nlohmann::json& extra_sources, Lang lang);
   bool is_float_type(std::string_view type) const;
+  // A float matrix type: `float4x4`, `half3x3`, `mat4`.
+  bool is_matrix_type(std::string_view type) const;
   // The kind a value has once held by a place of this name: a translated name makes an absolute
   // value translated, a local, relative or clip-space name makes a position small.
   Kind named_kind(std::string_view name, Kind kind) const;

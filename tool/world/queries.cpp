@@ -63,7 +63,7 @@ std::optional<Path> WorldModel::path(int node) const {
 bool WorldModel::only_harmless_uses(int var, int depth) const {
   if (depth > 3) return false;
   const Variable& v = variables_[var];
-  bool matrix = is_matrix(v.kind);
+  bool matrix = is_matrix(v.kind) || data_.is_matrix_type(v.type);
   std::vector<int> list = uses(var);
   if (list.empty()) return false;
   auto strip = [&](int n) {
@@ -100,6 +100,8 @@ bool WorldModel::only_harmless_uses(int var, int depth) const {
       if (tree_.is(call, "call_expression")) callee = tree_.text(tree_.child_by_field(call, "function"));
       else if (tree_.is(call, "cast_expression")) callee = tree_.text(tree_.child_by_field(call, "type"));
       if (callee == "mat3" || callee == "float3x3" || callee == "half3x3") continue;
+      // Passed to a function (of this file or an include) that only rotates with it.
+      if (tree_.is(call, "call_expression") && parameter_only_normalised(call, n, depth)) continue;
       return false;
     }
     // A position only ever normalised: its direction, which float32 keeps to 1e-7.
@@ -130,7 +132,8 @@ bool WorldModel::used_where_precision_matters(int var, int depth) const {
 }
 
 bool WorldModel::precision_matters(int var, int depth) const {
-  bool matrix = is_matrix(variables_[var].kind);
+  // By its kind, or by its type where nothing has flowed in (a header's parameter, summarised alone).
+  bool matrix = is_matrix(variables_[var].kind) || data_.is_matrix_type(variables_[var].type);
   int decl = variables_[var].decl;
   bool array = decl >= 0 && tree_.is(tree_.at(decl).parent, "array_declarator");
   // Up through parentheses, swizzles and (for an array) the element access.
