@@ -189,3 +189,33 @@ TEST(WorldModel, AStageOutputsStoresCanOverruleItsName) {
 
 }  // namespace
 }  // namespace lwc
+
+namespace lwc {
+namespace {
+
+// A comment between arguments (`/* out */ O`) is not an argument: each parameter gets what its
+// own argument carries, and an out parameter hands its value back to the right variable.
+TEST(WorldModel, ACommentBetweenArgumentsDoesNotShiftThemAgainstTheParameters) {
+  std::string code =
+      "float4x4 ObjectToWorld;\n"
+      "void Place(float3 Local, /* the result */ out float3 Placed)\n{\n\tPlaced = mul(float4(Local, 1), ObjectToWorld).xyz;\n}\n"
+      "float3 Run(float3 Local)\n{\n\tfloat3 P;\n\tPlace(/* in */ Local, /* out */ P);\n\treturn P - Local;\n}\n";
+  std::vector<std::string> names;
+  for (const Finding& f : test::lint_text(code, Lang::hlsl, "lwc-float-world-position")) names.push_back(f.message.substr(0, f.message.find(" (")));
+  EXPECT_NE(std::find(names.begin(), names.end(), "variable `P`"), names.end()) << ::testing::PrintToString(names);
+  EXPECT_EQ(std::find(names.begin(), names.end(), "parameter `Local`"), names.end()) << ::testing::PrintToString(names);
+}
+
+// A call whose argument count no definition has (the other arm of an `#if`'d header) gives no
+// parameter the kinds of its arguments.
+TEST(WorldModel, ACallMatchingNoDefinitionsArityGivesItsParametersNothing) {
+  std::string code =
+      "float4x4 ObjectToWorld;\n"
+      "float3 Place(float3 Local, float4x4 InstanceToObject, float4x4 Transform)\n{\n\treturn mul(mul(float4(Local, 1), InstanceToObject), Transform).xyz;\n}\n"
+      "float3 Run(float3 Local)\n{\n\treturn Place(Local, ObjectToWorld);\n}\n";
+  for (const Finding& f : test::lint_text(code, Lang::hlsl, "lwc-float-world-position"))
+    EXPECT_EQ(f.message.find("`InstanceToObject`"), std::string::npos) << f.message;
+}
+
+}  // namespace
+}  // namespace lwc

@@ -292,6 +292,7 @@ Kind Analyzer::eval_call(int id, int depth) {
   int fn = t_.child_by_field(id, "function");
   int args_node = t_.child_by_field(id, "arguments");
   std::vector<int> args = args_node >= 0 ? t_.named_children(args_node) : std::vector<int>{};
+  std::erase_if(args, [&](int a) { return t_.is(a, "comment"); });  // `/* out */ Ray.Origin`
   std::vector<Kind> kinds;
   for (int a : args) kinds.push_back(eval(a, depth));
   if (fn < 0) return Kind::unknown;
@@ -368,7 +369,9 @@ Kind Analyzer::call_user(const std::vector<int>& overloads, const std::vector<in
     int d = t_.child_by_field(candidate, "declarator");
     while (d >= 0 && !t_.is(d, "function_declarator")) d = t_.child_by_field(d, "declarator");
     int list = d >= 0 ? t_.child_by_field(d, "parameters") : -1;
-    if (list >= 0 && t_.named_children(list).size() == args.size()) fn = candidate, arity = true;
+    std::vector<int> params = list >= 0 ? t_.named_children(list) : std::vector<int>{};
+    std::erase_if(params, [&](int p) { return t_.is(p, "comment"); });
+    if (list >= 0 && params.size() == args.size()) fn = candidate, arity = true;
     if (run_) run_->functions.push_back(candidate);
   }
   // Without one (its other arm of an `#if` is the definition this variant does not see), the
