@@ -184,6 +184,16 @@ class LargeWorldMember : public Check {
       ctx.fix(f, r.fix, vars, r.edits);
       return;
     }
+    // One coordinate of a position (a height, a clamp): the absolute value is what the code
+    // wants, as Epic's own port keeps it, so the era's marker demotes it, as UE4 did.
+    int parent = t.at(id).parent;
+    int field = t.is(parent, "field_expression") ? t.child_by_field(parent, "field") : -1;
+    bool coordinate = field >= 0 && is_swizzle(t.text(field)) && t.text(field) != "xyz" && t.text(field).size() <= 2;
+    if (coordinate && (kind == Kind::absolute || kind == Kind::camera_offset)) {
+      vars["marker"] = era == UnrealEra::ue5_0 ? "LWCHackToFloat" : "DFHackToFloat";
+      ctx.fix(f, "marker", vars, {{t.span(id), vars["marker"] + "(" + value.text + ")"}});
+      return;
+    }
     f.withheld.push_back(!r.blocker.empty() ? r.blocker
                                             : fmt::format("`{}` is an `{}` and is {} here: the computation around it must move to translated world "
                                                           "or to the large-world library first", t.text(id), vars["type"], vars["use"]));
