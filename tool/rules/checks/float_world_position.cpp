@@ -189,10 +189,7 @@ class FloatWorldPosition : public Check {
     int name = function_name(t, fn);
     if (name < 0) return "its definition has no plain name";
     std::string old_name(t.text(name));
-    // Another file may call a header's function with an absolute position in mind.
-    if (!whole_program(t)) return fmt::format("`{}` is in a header other files may call", old_name);
-    if (names.taken(new_name, -1) || name_used(t, new_name)) return fmt::format("the name `{}` is already taken", new_name);
-    if (!has_caller(t, old_name)) return fmt::format("nothing in this file calls `{}` (an entry point's name is the engine's to call)", old_name);
+    if (std::string why = movable(t, names, old_name, new_name); !why.empty()) return why;
     std::vector<int> returns;
     collect_returns(t, t.child_by_field(fn, "body"), returns);
     if (returns.empty()) return "it has no return value to move";
@@ -214,12 +211,29 @@ class FloatWorldPosition : public Check {
       }
       if (std::string why = translate_value(ctx, value, plan); !why.empty()) return why;
     }
+    rename_with_callers(ctx, name, new_name, plan, depth);
+    return plan.blocker;
+  }
+
+  // Why a function of this file cannot take `new_name` with its callers following, or "".
+  static std::string movable(const SyntaxTree& t, const DeclaredNames& names, const std::string& old_name, const std::string& new_name) {
+    // Another file may call a header's function with an absolute position in mind.
+    if (!whole_program(t)) return fmt::format("`{}` is in a header other files may call", old_name);
+    if (names.taken(new_name, -1) || name_used(t, new_name)) return fmt::format("the name `{}` is already taken", new_name);
+    if (!has_caller(t, old_name)) return fmt::format("nothing in this file calls `{}` (an entry point's name is the engine's to call)", old_name);
+    return {};
+  }
+
+  // The function's name (node `name`) becomes `new_name`, and every call of it follows as a
+  // translated value.
+  void rename_with_callers(const CheckContext& ctx, int name, const std::string& new_name, RewritePlan& plan, int depth) const {
+    const SyntaxTree& t = ctx.tree;
+    std::string old_name(t.text(name));
     plan.edits.push_back({t.span(name), new_name});
     for (int call : nodes_of(t, "call_expression")) {
       if (call_name(t, call) != old_name || !plan.blocker.empty()) continue;
       follow_use(ctx, call, new_name + std::string(t.text(t.child_by_field(call, "arguments"))), plan, depth + 1);
     }
-    return plan.blocker;
   }
 
   static int function_name(const SyntaxTree& t, int fn) {
@@ -419,18 +433,12 @@ class FloatWorldPosition : public Check {
     const SyntaxTree& t = ctx.tree;
     int name = function_name(t, fn);
     std::string old_name(t.text(name));
-    if (!whole_program(t)) return fmt::format("it is returned by `{}`, in a header other files may call", old_name);
-    if (names.taken(new_name, -1) || name_used(t, new_name)) return fmt::format("the name `{}` is already taken", new_name);
+    if (std::string why = movable(t, names, old_name, new_name); !why.empty()) return fmt::format("it is returned by `{}`: {}", old_name, why);
     std::vector<int> returns;
     collect_returns(t, t.child_by_field(fn, "body"), returns);
     if (returns.size() != 1) return fmt::format("`{}` returns from more than one place", old_name);
-    if (!has_caller(t, old_name)) return fmt::format("nothing in this file calls `{}` (an entry point's name is the engine's to call)", old_name);
     plan.moving_functions.push_back(fn);
-    plan.edits.push_back({t.span(name), new_name});
-    for (int call : nodes_of(t, "call_expression")) {
-      if (call_name(t, call) != old_name || !plan.blocker.empty()) continue;
-      follow_use(ctx, call, new_name + std::string(t.text(t.child_by_field(call, "arguments"))), plan, depth + 1);
-    }
+    rename_with_callers(ctx, name, new_name, plan, depth);
     return plan.blocker;
   }
 
