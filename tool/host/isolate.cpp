@@ -25,9 +25,12 @@ enum Status : char { kDone = 0, kThrew = 1 };
 constexpr size_t kHeader = 1 + sizeof(uint64_t);
 constexpr size_t kNoUnit = SIZE_MAX;
 
-bool write_all(int fd, const char* data, size_t size) {
+// Moves `size` bytes with `step(at)` (one read or write from offset `at`), again where a signal
+// interrupts it; false at the end of the pipe or on an error.
+template <typename Step>
+bool all_bytes(size_t size, Step step) {
   for (size_t at = 0; at < size;) {
-    ssize_t n = ::write(fd, data + at, size - at);
+    ssize_t n = step(at);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) return false;
     at += static_cast<size_t>(n);
@@ -35,14 +38,12 @@ bool write_all(int fd, const char* data, size_t size) {
   return true;
 }
 
+bool write_all(int fd, const char* data, size_t size) {
+  return all_bytes(size, [&](size_t at) { return ::write(fd, data + at, size - at); });
+}
+
 bool read_all(int fd, char* data, size_t size) {
-  for (size_t at = 0; at < size;) {
-    ssize_t n = ::read(fd, data + at, size - at);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    at += static_cast<size_t>(n);
-  }
-  return true;
+  return all_bytes(size, [&](size_t at) { return ::read(fd, data + at, size - at); });
 }
 
 // A worker process: it takes unit numbers from `orders` and answers each on `answers`, one unit

@@ -134,7 +134,7 @@ class FloatWorldPosition : public Check {
     if (names.taken(new_name, v.function)) return withheld(fmt::format("the name `{}` is already taken", new_name));
     if (std::string why = translate_value(ctx, v.init, plan); !why.empty()) return withheld(why);
     plan.edits.push_back({t.span(v.decl), new_name});
-    follow_translated(ctx, var, new_name, plan, 0);
+    follow_translated(ctx, names, var, new_name, plan, 0);
     return plan;
   }
 
@@ -205,13 +205,13 @@ class FloatWorldPosition : public Check {
         if (local_name == v.name || names.taken(local_name, v.function)) return fmt::format("the name `{}` is already taken", local_name);
         if (std::string why = translate_value(ctx, v.init, plan); !why.empty()) return why;
         plan.edits.push_back({t.span(v.decl), local_name});
-        follow_translated(ctx, local, local_name, plan, depth + 1);
+        follow_translated(ctx, names, local, local_name, plan, depth + 1);
         if (!plan.blocker.empty()) return plan.blocker;
         continue;
       }
       if (std::string why = translate_value(ctx, value, plan); !why.empty()) return why;
     }
-    rename_with_callers(ctx, name, new_name, plan, depth);
+    rename_with_callers(ctx, names, name, new_name, plan, depth);
     return plan.blocker;
   }
 
@@ -226,20 +226,14 @@ class FloatWorldPosition : public Check {
 
   // The function's name (node `name`) becomes `new_name`, and every call of it follows as a
   // translated value.
-  void rename_with_callers(const CheckContext& ctx, int name, const std::string& new_name, RewritePlan& plan, int depth) const {
+  void rename_with_callers(const CheckContext& ctx, const DeclaredNames& names, int name, const std::string& new_name, RewritePlan& plan, int depth) const {
     const SyntaxTree& t = ctx.tree;
     std::string old_name(t.text(name));
     plan.edits.push_back({t.span(name), new_name});
     for (int call : nodes_of(t, "call_expression")) {
       if (call_name(t, call) != old_name || !plan.blocker.empty()) continue;
-      follow_use(ctx, call, new_name + std::string(t.text(t.child_by_field(call, "arguments"))), plan, depth + 1);
+      follow_use(ctx, names, call, new_name + std::string(t.text(t.child_by_field(call, "arguments"))), plan, depth + 1);
     }
-  }
-
-  static int function_name(const SyntaxTree& t, int fn) {
-    int declarator = t.child_by_field(fn, "declarator");
-    int name = declarator >= 0 ? t.child_by_field(declarator, "declarator") : -1;
-    return name >= 0 && t.is(name, "identifier") ? name : -1;
   }
 
   static bool has_caller(const SyntaxTree& t, std::string_view name) {
@@ -274,16 +268,16 @@ class FloatWorldPosition : public Check {
   // transform by a from-world matrix with a twin, the value of a local or the return of a function
   // of this file that follow in turn, or the argument of a helper in this file whose parameter can
   // follow (it is renamed and becomes translated).
-  void follow_translated(const CheckContext& ctx, int var, const std::string& new_name, RewritePlan& plan, int depth) const {
+  void follow_translated(const CheckContext& ctx, const DeclaredNames& names, int var, const std::string& new_name, RewritePlan& plan, int depth) const {
     for (int use : ctx.world.uses(var)) {
       if (!plan.blocker.empty()) return;
-      follow_use(ctx, use, new_name, plan, depth);
+      follow_use(ctx, names, use, new_name, plan, depth);
     }
   }
 
   // One use of a value that becomes translated (a variable, or a call of a function that now
   // returns translated), written `text` there: the variable's new name, or the renamed call.
-  void follow_use(const CheckContext& ctx, int use, const std::string& text, RewritePlan& plan, int depth) const {
+  void follow_use(const CheckContext& ctx, const DeclaredNames& names, int use, const std::string& text, RewritePlan& plan, int depth) const {
     const SyntaxTree& t = ctx.tree;
     auto renamed = [&] { plan.edits.push_back({t.span(use), text}); };
     // The homogeneous w of a point is the same in translated world (a translation leaves it be).
@@ -316,11 +310,11 @@ class FloatWorldPosition : public Check {
         return;
       }
     }
-    if (depth < 4 && expr == use && follow_into_helper(ctx, use, plan, depth)) {
+    if (depth < 4 && expr == use && follow_into_helper(ctx, names, use, plan, depth)) {
       renamed();
       return;
     }
-    if (depth < 4 && follow_into_local(ctx, expr, plan, depth)) {
+    if (depth < 4 && follow_into_local(ctx, names, expr, plan, depth)) {
       renamed();
       return;
     }
@@ -334,7 +328,7 @@ class FloatWorldPosition : public Check {
       }
       int name = fn >= 0 ? function_name(t, fn) : -1;
       if (name >= 0) {
-        std::string why = translate_function_of_use(ctx, fn, translated_name(std::string(t.text(name))), DeclaredNames(ctx.world), plan, depth);
+        std::string why = translate_function_of_use(ctx, fn, translated_name(std::string(t.text(name))), names, plan, depth);
         if (why.empty()) {
           renamed();
           return;
@@ -344,12 +338,6 @@ class FloatWorldPosition : public Check {
       }
     }
     if (plan.blocker.empty()) plan.blocker = escape(t, use);
-  }
-
-  static bool is_field_of(const SyntaxTree& t, int node, int base, std::string_view name) {
-    if (!t.is(node, "field_expression") || t.child_by_field(node, "argument") != base) return false;
-    int field = t.child_by_field(node, "field");
-    return field >= 0 && t.text(field) == name;
   }
 
   // The largest expression around a use that is still the same point, moved by the same
@@ -411,7 +399,7 @@ class FloatWorldPosition : public Check {
 
   // A local whose value is the use (`float3 P = use;`): it becomes translated under a translated
   // name, and its own uses follow.
-  bool follow_into_local(const CheckContext& ctx, int expr, RewritePlan& plan, int depth) const {
+  bool follow_into_local(const CheckContext& ctx, const DeclaredNames& names, int expr, RewritePlan& plan, int depth) const {
     const SyntaxTree& t = ctx.tree;
     int declarator = t.at(expr).parent;
     if (!t.is(declarator, "init_declarator") || t.child_by_field(declarator, "value") != expr) return false;
@@ -420,9 +408,9 @@ class FloatWorldPosition : public Check {
     if (local < 0) return false;
     const Variable& v = ctx.world.variables()[local];
     std::string new_name = translated_name(v.name);
-    if (new_name == v.name || DeclaredNames(ctx.world).taken(new_name, v.function)) return false;
+    if (new_name == v.name || names.taken(new_name, v.function)) return false;
     plan.edits.push_back({t.span(v.decl), new_name});
-    follow_translated(ctx, local, new_name, plan, depth + 1);
+    follow_translated(ctx, names, local, new_name, plan, depth + 1);
     return plan.blocker.empty();
   }
 
@@ -438,13 +426,13 @@ class FloatWorldPosition : public Check {
     collect_returns(t, t.child_by_field(fn, "body"), returns);
     if (returns.size() != 1) return fmt::format("`{}` returns from more than one place", old_name);
     plan.moving_functions.push_back(fn);
-    rename_with_callers(ctx, name, new_name, plan, depth);
+    rename_with_callers(ctx, names, name, new_name, plan, depth);
     return plan.blocker;
   }
 
   // A use passed whole to a function defined in this file, called only with values being made
   // translated: its parameter follows. The parameter's own finding is then fixed by this one.
-  bool follow_into_helper(const CheckContext& ctx, int use, RewritePlan& plan, int depth) const {
+  bool follow_into_helper(const CheckContext& ctx, const DeclaredNames& names, int use, RewritePlan& plan, int depth) const {
     const SyntaxTree& t = ctx.tree;
     int list = t.at(use).parent;
     if (!t.is(list, "argument_list")) return false;
@@ -458,8 +446,7 @@ class FloatWorldPosition : public Check {
     for (size_t i = 0; i < vars.size() && param < 0; ++i) {
       const Variable& p = vars[i];
       if (p.role != Variable::Role::parameter || p.function < 0) continue;
-      int declarator = t.child_by_field(p.function, "declarator");
-      int name = declarator >= 0 ? t.child_by_field(declarator, "declarator") : -1;
+      int name = function_name(t, p.function);
       if (name < 0 || t.text(name) != callee) continue;
       if (seen++ == index) param = static_cast<int>(i);
     }
@@ -470,7 +457,7 @@ class FloatWorldPosition : public Check {
     if (calls != 1) return false;
     std::string param_name = translated_name(vars[param].name);
     plan.edits.push_back({t.span(vars[param].decl), param_name});
-    follow_translated(ctx, param, param_name, plan, depth + 1);
+    follow_translated(ctx, names, param, param_name, plan, depth + 1);
     if (plan.blocker.empty() && unreal_code(t) && !t.source->path().ends_with(".usf"))
       plan.helpers.push_back(std::string(callee));
     return plan.blocker.empty();

@@ -82,8 +82,7 @@ class LargeWorldMember : public Check {
     int p = t.at(node).parent;
     while (t.is(p, "parenthesized_expression")) node = p, p = t.at(p).parent;
     // `.xyz` of a 3-vector is the vector itself: its use is the swizzle's.
-    if (vector3 && t.is(p, "field_expression") && t.child_by_field(p, "argument") == node &&
-        t.child_by_field(p, "field") >= 0 && t.text(t.child_by_field(p, "field")) == "xyz") {
+    if (vector3 && is_field_of(t, p, node, "xyz")) {
       Use outer = float_use(ctx, p, false);
       if (outer.what.empty()) outer = {"swizzled (`.xyz`)", p};  // a large-world value has no swizzles
       outer.node = p;
@@ -160,8 +159,7 @@ class LargeWorldMember : public Check {
     size_t seen = 0;
     for (const Variable& v : ctx.world.variables()) {
       if (v.role != Variable::Role::parameter || v.function < 0) continue;
-      int declarator = t.child_by_field(v.function, "declarator");
-      int name = declarator >= 0 ? t.child_by_field(declarator, "declarator") : -1;
+      int name = function_name(t, v.function);
       if (name < 0 || t.text(name) != function) continue;
       if (defined >= 0 && v.function != defined) return {};
       defined = v.function;

@@ -3,14 +3,6 @@
 #include <fmt/format.h>
 
 namespace lwc::checks {
-namespace {
-
-bool is_field(const SyntaxTree& t, int node, std::string_view name) {
-  int field = t.is(node, "field_expression") ? t.child_by_field(node, "field") : -1;
-  return field >= 0 && t.text(field) == name;
-}
-
-}  // namespace
 
 LibraryRewrite library_rewrite(const SyntaxTree& t, const WorldData& data, const LargeWorldValue& value, bool df) {
   LibraryRewrite out;
@@ -66,7 +58,7 @@ LibraryRewrite library_rewrite(const SyntaxTree& t, const WorldData& data, const
     int index = t.subscript_index(p);
     std::string_view row = index >= 0 ? t.text(index) : "";
     int outer = t.at(p).parent;
-    if ((row == "0" || row == "1" || row == "2") && is_field(t, outer, "xyz")) {
+    if ((row == "0" || row == "1" || row == "2") && is_field_of(t, outer, p, "xyz")) {
       out.fix = "rotation";
       out.vars["call"] = to3x3;
       out.edits = {{t.span(outer), fmt::format("{}({})[{}]", to3x3, value.text, row)}};
@@ -82,7 +74,7 @@ LibraryRewrite library_rewrite(const SyntaxTree& t, const WorldData& data, const
   std::string point = args.size() == 2 && args[1] == node ? position_of_homogeneous(t, args[0]) : "";
   if (point.empty()) return out;
   // `mul(float4(P, 1), M).xyz` becomes the 3-vector itself; without the swizzle, w stays 1.
-  bool xyz = is_field(t, t.at(call).parent, "xyz");
+  bool xyz = is_field_of(t, t.at(call).parent, call, "xyz");
   Span span = t.span(xyz ? t.at(call).parent : call);
   auto homogeneous = [&](const std::string& p3) { return xyz ? p3 : fmt::format("float4({}, 1)", p3); };
   auto twin = data.twins.members.find(value.member);

@@ -48,6 +48,18 @@ bool matches_any(const std::vector<std::string>& globs, std::string_view text) {
   return false;
 }
 
+int function_name(const SyntaxTree& tree, int definition) {
+  int declarator = tree.child_by_field(definition, "declarator");
+  int name = declarator >= 0 ? tree.child_by_field(declarator, "declarator") : -1;
+  return name >= 0 && tree.is(name, "identifier") ? name : -1;
+}
+
+bool is_field_of(const SyntaxTree& tree, int node, int base, std::string_view name) {
+  if (!tree.is(node, "field_expression") || tree.child_by_field(node, "argument") != base) return false;
+  int field = tree.child_by_field(node, "field");
+  return field >= 0 && tree.text(field) == name;
+}
+
 bool is_definition_name(const SyntaxTree& tree, int identifier) {
   int parent = tree.at(identifier).parent;
   if (parent < 0) return false;

@@ -21,6 +21,10 @@ std::vector<int> call_arguments(const SyntaxTree& tree, int call);
 // A rule-data list of strings (globs allowed) and a match against it.
 std::vector<std::string> string_list(const nlohmann::json& data, const char* key);
 bool matches_any(const std::vector<std::string>& globs, std::string_view text);
+// The name of a function definition when it is a plain identifier, or -1.
+int function_name(const SyntaxTree& tree, int definition);
+// True when `node` is `base.name`: that member or swizzle of that expression.
+bool is_field_of(const SyntaxTree& tree, int node, int base, std::string_view name);
 // True when an identifier is the name being declared or defined (a macro, a function), not a use.
 bool is_definition_name(const SyntaxTree& tree, int identifier);
 
