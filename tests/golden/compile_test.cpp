@@ -26,7 +26,7 @@ bool unreal_era(const std::string& path) { return path.ends_with(".usf") || path
 // The engine version a corpus file was written for (LWCPORT_UE_VERSION of the stub).
 int engine_version(const std::string& path) {
   if (path.rfind("corpus/ue4/", 0) == 0) return 427;
-  if (path.rfind("corpus/ue5.0/", 0) == 0) return 500;
+  if (path.rfind("corpus/ue5.0/", 0) == 0 || path.rfind("corpus/ue5.3/", 0) == 0) return 500;
   return 504;
 }
 
@@ -80,6 +80,8 @@ FixOutcome fixed(const std::string& path, Strategy strategy) {
   AnalyzeOptions options;
   options.lang = *lang_from_path(path);
   options.strategy = strategy;
+  // corpus/ue5.3 is a project set to UE 5.3 (its .lwcport.json); the others take their era from the code.
+  if (path.rfind("corpus/ue5.3/", 0) == 0) options.unreal = UnrealEra::ue5_0;
   return fix_source(source, options, true);
 }
 
@@ -132,11 +134,12 @@ TEST(FixCorpusGolden, FixedOutputMatchesTheGoldensAndCompiles) {
       ASSERT_TRUE(fs::exists(file)) << golden << " is missing";
       EXPECT_EQ(expected[golden], test::read(file)) << golden;
     }
-    // Fixed Unreal-era code is UE 5.4 code. A fix never breaks the build: where the fixed file
-    // does not compile, the error is on a line lwcport still reports (a site it could not port).
+    // Fixed Unreal-era code is UE 5.4 code, or the era its project is set to. A fix never breaks
+    // the build: where the fixed file does not compile, the error is on a line lwcport still
+    // reports (a site it could not port).
     for (const FixOutcome* outcome : {&by_translated, &by_df}) {
       if (outcome->text == original) continue;
-      CompileResult r = compile_corpus_file(path, outcome->text, 504);
+      CompileResult r = compile_corpus_file(path, outcome->text, path.rfind("corpus/ue5.3/", 0) == 0 ? 500 : 504);
       std::set<int> reported = reported_lines(path, *outcome);
       for (const CompileMessage& m : r.messages)
         EXPECT_TRUE(m.source == path && reported.count(m.line))

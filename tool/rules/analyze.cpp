@@ -303,6 +303,25 @@ void report_unused(const std::vector<Suppression>& sups, const Source& src, cons
 bool overlaps(Span a, Span b) { return a.begin < b.end && b.begin < a.end; }
 bool inside(Span inner, Span outer) { return outer.begin <= inner.begin && inner.end <= outer.end; }
 
+// A finding with no rewrite of its own whose code another finding's translated-world port
+// rewrites (a marker on the matrix it takes whole, a local downstream of the value it moves, the
+// function returning it) gets that port too: applying either applies both.
+void share_ports(const Source& source, std::vector<Finding>& findings) {
+  for (Finding& f : findings) {
+    if (!f.fixes.empty() || f.rule == "lwc-input") continue;
+    for (const Finding& by : findings) {
+      if (by.fixes.empty() || by.fixes.front().strategy != "translated") continue;
+      const std::vector<Edit>& edits = by.fixes.front().edits;
+      if (!std::any_of(edits.begin(), edits.end(), [&](const Edit& e) { return inside(f.span, e.span); })) continue;
+      Fix shared = by.fixes.front();
+      shared.reason += fmt::format("; it is the rewrite of line {}, which moves this code too", source.position(by.span.begin).line);
+      f.fixes.push_back(std::move(shared));
+      f.withheld.clear();
+      break;
+    }
+  }
+}
+
 // What a syntax error leaves untrustworthy: a finding inside a part the parser could not read
 // is dropped, and no rewrite is offered in a top-level declaration that holds an error.
 void drop_what_errors_touch(const SyntaxTree& tree, std::vector<Finding>& findings) {
@@ -510,6 +529,7 @@ void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, co
     for (const auto& [rule, check] : checks()) {
       if (rule->applies_to(lang) && options.enabled(rule->id)) check->run(CheckContext{tree, world, *rule, found, unreal});
     }
+    share_ports(code, found);
     ProvenanceTracer tracer(world);
     for (Finding& f : found)
       for (ProvenanceStep& step : tracer.trace(value_node_for(world, f.span)))

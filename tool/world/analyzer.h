@@ -195,6 +195,8 @@ class Analyzer {
 
   // An operand whose type is a matrix (`float4x4`, `mat4`, a matrix-typed variable or field).
   bool matrix_typed(int n) const;
+  // Declared as a large-world type (FDF*, FLWC*): a variable, or a field whose type is known.
+  bool large_world_typed(int n) const;
 
   // A vector that a matrix transforms as a point (w = 1) rather than a direction (w = 0 or no w).
   bool is_point(int v) const;

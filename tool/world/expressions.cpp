@@ -362,6 +362,19 @@ Kind Analyzer::apply_role(FunctionRole role, const std::vector<int>& args, const
   return Kind::unknown;
 }
 
+bool Analyzer::large_world_typed(int n) const {
+  while (n >= 0 && t_.is(n, "parenthesized_expression")) n = t_.named_child(n);
+  std::string type;
+  if (n >= 0 && t_.is(n, "identifier")) {
+    int var = lookup(t_.text(n));
+    if (var >= 0) type = m_.variables_[var].type;
+  } else if (n >= 0 && t_.is(n, "field_expression")) {
+    int field = t_.child_by_field(n, "field");
+    if (field >= 0) type = field_type(owner_of(t_.child_by_field(n, "argument")), std::string(t_.text(field)));
+  }
+  return type.starts_with("FDF") || type.starts_with("FLWC");
+}
+
 Kind Analyzer::call_user(const std::vector<int>& overloads, const std::vector<int>& args, const std::vector<Kind>& kinds) {
   int fn = overloads.front();
   bool arity = false;  // a definition takes as many arguments as the call passes
@@ -371,8 +384,16 @@ Kind Analyzer::call_user(const std::vector<int>& overloads, const std::vector<in
     int list = d >= 0 ? t_.child_by_field(d, "parameters") : -1;
     std::vector<int> params = list >= 0 ? t_.named_children(list) : std::vector<int>{};
     std::erase_if(params, [&](int p) { return t_.is(p, "comment"); });
-    if (list >= 0 && params.size() == args.size()) fn = candidate, arity = true;
     if (run_) run_->functions.push_back(candidate);
+    if (list < 0 || params.size() != args.size()) continue;
+    // A large-world argument never binds to a float parameter: that is another overload's call
+    // (`F(float3, FDFMatrix)` beside `F(float3, float4x4)`).
+    bool fits = true;
+    for (size_t i = 0; i < params.size() && fits; ++i) {
+      int type = t_.child_by_field(params[i], "type");
+      fits = !(type >= 0 && d_.is_float_type(t_.text(type)) && large_world_typed(args[i]));
+    }
+    if (fits || !arity) fn = candidate, arity = fits;
   }
   // Without one (its other arm of an `#if` is the definition this variant does not see), the
   // arguments cannot be matched to parameters: none is given what the call passes.
@@ -499,10 +520,13 @@ void Analyzer::assign(int lhs, Kind k) {
   by_owner = join(by_owner, k);
   Kind& by_name = field_kinds_["." + name];
   by_name = join(by_name, k);
-  // Report at the struct's field declaration when it is in this file, else at the assignment.
+  // Report at the struct's field declaration when it is in this file, else at the assignment. A
+  // field of a struct reached through another (`Result.Particle.X`) whose type is not known is
+  // not taken for this file's field of the same name: that struct is most likely the engine's.
   int var = -1;
   if (auto it = fields_.find(owner + "." + name); it != fields_.end()) var = it->second;
-  else if (auto f = fields_by_name_.find(name); f != fields_by_name_.end() && f->second.size() == 1) var = f->second[0];
+  else if (auto f = fields_by_name_.find(name); f != fields_by_name_.end() && f->second.size() == 1 && t_.is(base, "identifier"))
+    var = f->second[0];
   if (var >= 0) {
     hold(var, k, -1);
     return;
@@ -510,7 +534,7 @@ void Analyzer::assign(int lhs, Kind k) {
   // A field declared elsewhere: reported at the assignment, only when its declared type is
   // known to be a float (a header's struct the summaries read); an unknown type is not guessed.
   k = d_.named_kind(name, k);
-  std::string type = field_type(owner, name);
+  std::string type = owner.empty() && !t_.is(base, "identifier") ? std::string() : field_type(owner, name);
   if (holds_absolute(k) && lookup(name) < 0 && !type.empty() && d_.is_float_type(type))
     report({AbsoluteHolder::What::field, lhs, std::string(t_.text(lhs)), type, k});
 }

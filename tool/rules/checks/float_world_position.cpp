@@ -26,7 +26,6 @@ class FloatWorldPosition : public Check {
 
   void run(const CheckContext& ctx) const override {
     std::optional<DeclaredNames> names;  // for the rewrites' new names, made at the first one
-    std::vector<size_t> reported;        // this check's findings, by index in ctx.out
     for (const AbsoluteHolder& h : ctx.world.absolute_holders()) {
       std::string what = h.what == AbsoluteHolder::What::variable    ? "variable"
                          : h.what == AbsoluteHolder::What::field     ? "field"
@@ -37,13 +36,11 @@ class FloatWorldPosition : public Check {
                                                       {"name", h.name},
                                                       {"type", h.type.empty() ? "float" : h.type},
                                                       {"holds", descriptions_.value(kind, kind)}});
-      reported.push_back(ctx.out.size() - 1);
       if (h.kind != Kind::absolute) continue;
       if (!names) names.emplace(ctx.world);
       if (h.what == AbsoluteHolder::What::variable) offer_rewrites(ctx, f, h, *names);
       if (h.what == AbsoluteHolder::What::return_value) offer_function_rewrite(ctx, f, h, *names);
     }
-    say_where_ported(ctx, reported);
   }
 
  private:
@@ -74,25 +71,6 @@ class FloatWorldPosition : public Check {
       f.withheld.push_back("DoubleFloat: " + df.blocker);
   }
 
-  // A holder with no rewrite of its own that another finding's translated-world port renames or
-  // rewrites (a local downstream of the value it moves, the function returning it) says so.
-  static void say_where_ported(const CheckContext& ctx, const std::vector<size_t>& reported) {
-    for (size_t i : reported) {
-      Finding& f = ctx.out[i];
-      if (!f.fixes.empty()) continue;
-      for (size_t j : reported) {
-        const Finding& by = ctx.out[j];
-        if (by.fixes.empty() || by.fixes.front().strategy != "translated") continue;
-        bool covers = std::any_of(by.fixes.front().edits.begin(), by.fixes.front().edits.end(),
-                                  [&](const Edit& e) { return e.span.begin <= f.span.begin && f.span.end <= e.span.end; });
-        if (!covers) continue;
-        Position at = ctx.tree.source->position(by.span.begin);
-        f.withheld.insert(f.withheld.begin(), fmt::format("the translated-world rewrite of line {} moves this too (no rewrite of its own)", at.line));
-        break;
-      }
-    }
-  }
-
   // Code without Unreal's library: a local from a world-matrix uniform gets the High/Low design,
   // a stage input the translated position its previous stage now writes.
   void offer_plain_rewrite(const CheckContext& ctx, Finding& f, int var) const {
@@ -121,9 +99,13 @@ class FloatWorldPosition : public Check {
     f.withheld.push_back("DoubleFloat: this code has no DoubleFloat matrices to start from (the translated rewrite keeps its translations as High/Low pairs instead)");
   }
 
-  bool primitive_to_world(const SyntaxTree& t, int node) const {
+  // A primitive's local-to-world transform (this frame's or the previous one's), or "".
+  std::string primitive_to_world(const SyntaxTree& t, int node) const {
     Member m = member_of(t, node);
-    return !m.empty() && m.member == "LocalToWorld" && matches_any(primitive_objects_, m.object);
+    if (m.empty() || !matches_any(primitive_objects_, m.object)) return {};
+    if (m.member == "LocalToWorld") return "PreViewTranslation";
+    if (m.member == "PreviousLocalToWorld" || m.member == "PrevLocalToWorld") return "PrevPreViewTranslation";
+    return {};
   }
 
   RewritePlan plan_translated(const CheckContext& ctx, int var, const DeclaredNames& names) const {
@@ -154,11 +136,15 @@ class FloatWorldPosition : public Check {
     int mul = mul_call(t, value);
     if (mul < 0) return fmt::format("its value (`{}`) has no translated form lwcport knows", shortened(t.text(value)));
     auto args = call_arguments(t, mul);
-    if (std::string m = translated_twin(ctx, args[1]); !m.empty()) {
+    int matrix = undemoted(t, args[1]);
+    std::string translation = primitive_to_world(t, matrix);
+    if (mul != value && !is_field_of(t, value, mul, "xyz")) return fmt::format("it takes part of a transformed point (`{}`)", shortened(t.text(value)));
+    if (std::string m = translated_twin(ctx, matrix); !m.empty()) {
       plan.edits.push_back({t.span(args[1]), m});
-    } else if (std::string p = position_of_homogeneous(t, args[0]); !p.empty() && primitive_to_world(t, args[1])) {
-      plan.edits.push_back({t.span(value), fmt::format("DFTransformLocalToTranslatedWorld({}, {}, PrimaryView.PreViewTranslation)",
-                                                       p, t.text(args[1]))});
+    } else if (std::string p = position_of_homogeneous(t, args[0]); !p.empty() && !translation.empty()) {
+      // The library call gives the 3-vector; a 4-vector value keeps its w of 1.
+      std::string call = fmt::format("DFTransformLocalToTranslatedWorld({}, {}, PrimaryView.{})", p, t.text(matrix), translation);
+      plan.edits.push_back({t.span(value), mul == value ? fmt::format("float4({}, 1)", call) : call});
     } else {
       return fmt::format("its matrix `{}` has no translated twin", shortened(t.text(args[1])));
     }
@@ -268,11 +254,36 @@ class FloatWorldPosition : public Check {
   // transform by a from-world matrix with a twin, the value of a local or the return of a function
   // of this file that follow in turn, or the argument of a helper in this file whose parameter can
   // follow (it is renamed and becomes translated).
+  // A statement that moves the variable to translated world itself (`V += PreViewTranslation`, run
+  // whenever the code reaches it) goes: the value is translated from the start, and every use after
+  // it already took it so, and is only renamed.
   void follow_translated(const CheckContext& ctx, const DeclaredNames& names, int var, const std::string& new_name, RewritePlan& plan, int depth) const {
+    const SyntaxTree& t = ctx.tree;
+    uint32_t translated_from = UINT32_MAX;
     for (int use : ctx.world.uses(var)) {
       if (!plan.blocker.empty()) return;
-      follow_use(ctx, names, use, new_name, plan, depth);
+      if (t.at(use).begin >= translated_from) {
+        plan.edits.push_back({t.span(use), new_name});
+      } else if (int statement = rebase_statement(ctx, use); statement >= 0) {
+        plan.edits.push_back({whole_lines(t, statement), ""});
+        translated_from = t.at(statement).end;
+      } else {
+        follow_use(ctx, names, use, new_name, plan, depth);
+      }
     }
+  }
+
+  // `V += PreViewTranslation;` (or `V.xyz += ...`) as a statement of the function's own body, not
+  // under a branch or a loop: the statement, or -1.
+  static int rebase_statement(const CheckContext& ctx, int use) {
+    const SyntaxTree& t = ctx.tree;
+    int target = use, assignment = t.at(use).parent;
+    if (is_field_of(t, assignment, use, "xyz")) target = assignment, assignment = t.at(assignment).parent;
+    if (!t.is(assignment, "assignment_expression") || t.child_by_field(assignment, "left") != target ||
+        t.text(t.child_by_field(assignment, "operator")) != "+=" || ctx.world.kind(t.child_by_field(assignment, "right")) != Kind::camera_offset)
+      return -1;
+    int statement = t.at(assignment).parent;
+    return unconditional_statement(t, statement) ? statement : -1;
   }
 
   // One use of a value that becomes translated (a variable, or a call of a function that now

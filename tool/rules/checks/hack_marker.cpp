@@ -54,7 +54,12 @@ class HackMarker : public Check {
     std::string twin = translated_twin(ctx, value);
     std::string op = t.is(parent, "binary_expression") ? std::string(t.text(t.child_by_field(parent, "operator"))) : "";
     if (twin.empty()) {
-      if (!offer_library(ctx, f, marker, call, value))
+      if (offer_library(ctx, f, marker, call, value)) return;
+      if (ctx.world.kind(value) == Kind::camera_offset)
+        f.withheld.push_back(fmt::format("translated world: `{}` is the translation into translated world itself, so it has no twin: the "
+                                         "code it is handed to must add it in the large-world library, or be ported to translated world",
+                                         t.text(value)));
+      else
         f.withheld.push_back(fmt::format("translated world: `{}` has no translated twin lwcport knows, so the demotion stays until the code "
                                          "around it is ported (to translated world or DoubleFloat)",
                                          t.text(value)));
@@ -95,19 +100,15 @@ class HackMarker : public Check {
     if (name != "DFHackToFloat" && name != "LWCHackToFloat") return false;
     // Beside another float32 absolute value the two roundings often cancel; one exact operand
     // only moves the error, so the pair must move to translated world together.
-    int use = call, parent = t.at(call).parent;
-    while (t.is(parent, "parenthesized_expression")) use = parent, parent = t.at(use).parent;
-    if (t.is(parent, "binary_expression") || t.is(parent, "assignment_expression")) {
-      int other = t.child_by_field(parent, "left") == use ? t.child_by_field(parent, "right") : t.child_by_field(parent, "left");
-      if (other >= 0 && holds_absolute(ctx.world.kind(other)) && is_position(ctx.world.kind(other))) {
-        f.withheld.push_back(fmt::format("DoubleFloat: `{}` is itself a float32 absolute position (line {}): taking `{}` exactly beside it "
-                                         "gains nothing, so both must move to translated world together",
-                                         shortened(t.text(other)), line_of(t, other), t.text(value)));
-        return true;
-      }
+    Kind kind = large_world_kind(ctx, value);
+    if (int other = absolute_partner(ctx, call, kind); other >= 0) {
+      f.withheld.push_back(fmt::format("DoubleFloat: `{}` is itself a float32 absolute position (line {}): taking `{}` exactly beside it "
+                                       "gains nothing, so both must move to translated world together (where `{}` is produced, it must become translated or large-world first)",
+                                       shortened(t.text(other)), line_of(t, other), t.text(value), shortened(t.text(other))));
+      return true;
     }
     Member m = member_of(t, value);
-    LargeWorldValue v{call, std::string(t.text(value)), large_world_kind(ctx, value), m.object, m.member};
+    LargeWorldValue v{call, std::string(t.text(value)), kind, m.object, m.member};
     LibraryRewrite r = library_rewrite(t, ctx.world.data(), v, name == "DFHackToFloat");
     if (r.fix.empty() && !r.blocker.empty()) f.withheld.push_back(r.blocker);
     if (r.fix.empty()) return !r.blocker.empty();
@@ -115,8 +116,6 @@ class HackMarker : public Check {
     ctx.fix(f, r.fix, r.vars, r.edits);
     return true;
   }
-
-  static bool is_position(Kind kind) { return kind == Kind::absolute || kind == Kind::camera_offset; }
 
   // What a demoted value is: its kind, else what its declared large-world type says.
   static Kind large_world_kind(const CheckContext& ctx, int value) {

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "rules/checks/library_rewrite.h"
+#include "rules/checks/translation_row.h"
 #include "rules/checks/util.h"
 
 namespace lwc::checks {
@@ -45,6 +46,8 @@ class LargeWorldMember : public Check {
                 {"type", type},
                 {"era", std::string(era_name(era))},
                 {"use", use.what},
+                {"library", era == UnrealEra::ue5_0 ? "`LWCToFloat(LWCSubtract(..))`, `LWCToFloat3x3`, `LWCMultiply`"
+                                                    : "`DFSubtractDemote`, `DFToFloat3x3`, `DFMultiply`"},
                 {"when", ctx.unreal->era == UnrealEra::ue4 ? "when this code moves to UE5" : "in " + std::string(era_name(era))}};
       Finding& f = ctx.report(t.span(id), vars);
       offer_fix(ctx, f, id, use, e->kind, era, vars);
@@ -176,6 +179,19 @@ class LargeWorldMember : public Check {
     std::string object(t.text(base));
     if (t.is(base, "identifier") && object == uniform_buffer_ && ctx.world.variable_at(base) < 0) object = uniform_buffer_call_;
     LargeWorldValue value{use.node, object + "." + vars["member"], kind, object, vars["member"]};
+    vars["marker"] = era == UnrealEra::ue5_0 ? "LWCHackToFloat" : "DFHackToFloat";
+    if (auto row = translation_row_at(ctx, id)) {
+      offer_row_fix(ctx, f, id, *row, era, value.text, vars);
+      return;
+    }
+    // Beside another float32 absolute position the library gains nothing (library_rewrite.h): the
+    // line compiles with the value UE4 read, marked for the ledger, until both move together.
+    int other = kind == Kind::absolute || kind == Kind::camera_offset ? absolute_partner(ctx, use.node, kind) : -1;
+    if (other >= 0 && !large_world_value(ctx, other, era)) {
+      vars["partner"] = shortened(t.text(other));
+      ctx.fix(f, "marker-beside", vars, {{t.span(id), vars["marker"] + "(" + value.text + ")"}});
+      return;
+    }
     LibraryRewrite r = library_rewrite(t, ctx.world.data(), value, era != UnrealEra::ue5_0);
     if (!r.fix.empty()) {
       for (const auto& [key, text] : r.vars) vars[key] = text;
@@ -188,13 +204,70 @@ class LargeWorldMember : public Check {
     int field = t.is(parent, "field_expression") ? t.child_by_field(parent, "field") : -1;
     bool coordinate = field >= 0 && is_swizzle(t.text(field)) && t.text(field) != "xyz" && t.text(field).size() <= 2;
     if (coordinate && (kind == Kind::absolute || kind == Kind::camera_offset)) {
-      vars["marker"] = era == UnrealEra::ue5_0 ? "LWCHackToFloat" : "DFHackToFloat";
       ctx.fix(f, "marker", vars, {{t.span(id), vars["marker"] + "(" + value.text + ")"}});
       return;
     }
     f.withheld.push_back(!r.blocker.empty() ? r.blocker
                                             : fmt::format("`{}` is an `{}` and is {} here: the computation around it must move to translated world "
                                                           "or to the large-world library first", t.text(id), vars["type"], vars["use"]));
+  }
+
+  // A translation row rebased one coordinate at a time (translation_row.h): UE5 builds the
+  // translated transform in one call from the large-world one. A float matrix from elsewhere (the
+  // host's) has no large-world value to start from: the marker keeps UE4's value, and the note says
+  // what the host must hand over instead.
+  void offer_row_fix(const CheckContext& ctx, Finding& f, int id, const TranslationRow& row, UnrealEra era, const std::string& value,
+                     Vars vars) const {
+    const SyntaxTree& t = ctx.tree;
+    const Variable& local = ctx.world.variables()[static_cast<size_t>(row.local)];
+    vars["local"] = local.name;
+    vars["call"] = era == UnrealEra::ue5_0 ? "LWCMultiplyTranslation" : "DFFastToTranslatedWorld";
+    vars["matrix"] = shortened(t.text(row.matrix));
+    if (large_world_matrix(ctx, row.matrix, era)) {
+      std::string translation = engine_text(ctx, undemoted(t, row.translation));
+      if (translation.starts_with("View.")) translation = "Primary" + translation;
+      std::vector<Edit> edits{{t.span(local.init), fmt::format("{}({}, {})", vars["call"], engine_text(ctx, row.matrix), translation)}};
+      for (int s : row.statements) edits.push_back({whole_lines(t, s), ""});
+      ctx.fix(f, "translated-row", vars, std::move(edits));
+      return;
+    }
+    bool in_row = false;
+    for (int s : row.statements) in_row |= t.at(s).begin <= t.at(id).begin && t.at(id).end <= t.at(s).end;
+    if (!in_row) return;
+    if (Fix* fix = ctx.fix(f, "marker-row", vars, {{t.span(id), vars["marker"] + "(" + value + ")"}}))
+      fix->notes.push_back(fmt::format("`{}` holds the absolute transform in float32 (the host fills it): hand it over as a large-world matrix, "
+                                       "then `{}` builds `{}` in one step, or already translated",
+                                       vars["matrix"], vars["call"], local.name));
+  }
+
+  // A value the era holds as a large-world type: an engine member (through `.xyz` and
+  // parentheses), or a variable so declared.
+  bool large_world_value(const CheckContext& ctx, int node, UnrealEra era) const {
+    const SyntaxTree& t = ctx.tree;
+    while (t.is(node, "parenthesized_expression")) node = t.named_child(node);
+    if (t.is(node, "field_expression") && t.text(t.child_by_field(node, "field")) == "xyz") node = t.child_by_field(node, "argument");
+    if (t.is(node, "identifier")) {
+      int var = ctx.world.variable_at(node);
+      return var >= 0 && large_world_type(ctx.world.variables()[static_cast<size_t>(var)].type);
+    }
+    Member m = member_of(t, node);
+    std::string owner = m.empty() ? "" : owner_of(ctx, node);
+    const WorldData::EngineMember* e = owner.empty() ? nullptr : ctx.world.data().engine_member(owner, m.member);
+    return e && large_world_type(e->types[era == UnrealEra::ue5_0 ? 1 : 2]);
+  }
+
+  bool large_world_matrix(const CheckContext& ctx, int node, UnrealEra era) const {
+    Kind kind = ctx.world.kind(node);
+    return (is_matrix(kind) || kind == Kind::unknown) && large_world_value(ctx, node, era);
+  }
+
+  // An engine member as UE5 reads it: UE4's primitive uniform buffer through its call.
+  std::string engine_text(const CheckContext& ctx, int node) const {
+    const SyntaxTree& t = ctx.tree;
+    int base = t.is(node, "field_expression") ? t.child_by_field(node, "argument") : -1;
+    if (base >= 0 && t.is(base, "identifier") && t.text(base) == uniform_buffer_ && ctx.world.variable_at(base) < 0)
+      return uniform_buffer_call_ + std::string(t.text(node)).substr(uniform_buffer_.size());
+    return std::string(t.text(node));
   }
 
   std::map<std::string, std::string> objects_;  // engine global or call -> its struct

@@ -4,6 +4,24 @@
 
 namespace lwc::checks {
 
+int absolute_partner(const CheckContext& ctx, int use, Kind kind) {
+  const SyntaxTree& t = ctx.tree;
+  int parent = t.at(use).parent;
+  while (t.is(parent, "parenthesized_expression") || is_field_of(t, parent, use, "xyz")) use = parent, parent = t.at(use).parent;
+  if (!t.is(parent, "binary_expression") && !t.is(parent, "assignment_expression")) return -1;
+  int op = t.child_by_field(parent, "operator");
+  std::string_view o = op >= 0 ? t.text(op) : "";
+  int left = t.child_by_field(parent, "left"), right = t.child_by_field(parent, "right");
+  int other = left == use ? right : left;
+  if (other < 0) return -1;
+  Kind partner = ctx.world.kind(other);
+  if ((partner == Kind::absolute || partner == Kind::camera_offset) && holds_absolute(partner)) return other;
+  bool add = o == "+" || o == "+=", subtract = o == "-" || o == "-=";
+  if (kind == Kind::camera_offset && add) return other;
+  if (kind == Kind::absolute && subtract) return other;
+  return -1;
+}
+
 LibraryRewrite library_rewrite(const SyntaxTree& t, const WorldData& data, const LargeWorldValue& value, bool df) {
   LibraryRewrite out;
   int node = value.node, p = t.at(node).parent;

@@ -26,6 +26,13 @@ struct LibraryRewrite {
   std::vector<Edit> edits;
   std::string blocker;
 };
+// In a sum or difference with a large-world position (`use` stands for it, of kind `kind`), the
+// float operand when it is itself an absolute position: by its kind, or by the arithmetic (what
+// the pre-view translation is added to; what an absolute position is subtracted from, or takes
+// away). Beside such an operand one exact term gains nothing, as the two float32 roundings of the
+// original often cancel: both must move to translated world together. -1 when there is none.
+int absolute_partner(const CheckContext& ctx, int use, Kind kind);
+
 LibraryRewrite library_rewrite(const SyntaxTree& t, const WorldData& data, const LargeWorldValue& value, bool double_float);
 
 }  // namespace lwc::checks

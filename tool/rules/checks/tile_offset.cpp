@@ -30,6 +30,9 @@ class TileOffset : public Check {
   }
 
   void run(const CheckContext& ctx) const override {
+    // A project set to build against UE 5.0-5.3 has no DoubleFloat to move to: there tile/offset is
+    // the engine's own large-world API, and every use of it would be a finding the user cannot act on.
+    if (ctx.unreal && !ctx.unreal->inferred && ctx.unreal->era == UnrealEra::ue5_0) return;
     const SyntaxTree& t = ctx.tree;
     std::vector<Site> sites;
     // Types, names and member reads, in source order (the first site without a counterpart is the
@@ -91,7 +94,7 @@ class TileOffset : public Check {
         ctx.fix(f, "construct", vars, {{t.span(call), text}});
         continue;
       }
-      ctx.fix(f, blocker.empty() ? "rename" : "rename-partial", vars, {{t.span(s.id), replacement}});
+      ctx.fix(f, blocker.empty() ? "rename" : "rename-partial", vars, {rename_edit(t, s.id, replacement)});
     }
   }
 
@@ -154,6 +157,18 @@ class TileOffset : public Check {
                                 a.written.substr(0, a.written.find('(')), line_of(t, a.fn), line_of(t, b->second));
     }
     return out;
+  }
+
+  // The rename of one site; a call converted to DoubleFloat at once (`DFFromTileOffset(LWCPromote(M))`)
+  // loses the conversion, which would take the renamed DoubleFloat value as a tile/offset one.
+  static Edit rename_edit(const SyntaxTree& t, int id, const std::string& replacement) {
+    int call = t.at(id).parent;
+    int list = t.is(call, "call_expression") ? t.at(call).parent : -1;
+    int wrapper = t.is(list, "argument_list") ? t.at(list).parent : -1;
+    std::string_view outer = wrapper >= 0 ? call_name(t, wrapper) : "";
+    if ((outer == "DFFromTileOffset" || outer == "DFFromTileOffset_Hack") && call_arguments(t, wrapper).size() == 1)
+      return {t.span(wrapper), replacement + std::string(t.text(t.child_by_field(call, "arguments")))};
+    return {t.span(id), replacement};
   }
 
   std::vector<std::string> types_, functions_, excluded_;

@@ -112,6 +112,34 @@ std::string translated_name(const std::string& name) {
 
 int line_of(const SyntaxTree& tree, int node) { return tree.source->position(tree.at(node).begin).line; }
 
+int undemoted(const SyntaxTree& tree, int node) {
+  while (tree.is(node, "parenthesized_expression")) node = tree.named_child(node);
+  if (!tree.is(node, "call_expression")) return node;
+  std::string_view name = call_name(tree, node);
+  auto args = call_arguments(tree, node);
+  bool demotion = name == "DFDemote" || name == "DFFastDemote" || name == "DFHackToFloat" || name == "LWCHackToFloat" || name == "LWCToFloat";
+  return demotion && args.size() == 1 ? args[0] : node;
+}
+
+bool unconditional_statement(const SyntaxTree& tree, int statement) {
+  if (!tree.is(statement, "expression_statement")) return false;
+  for (int block = tree.at(statement).parent; !tree.is(block, "function_definition"); block = tree.at(block).parent)
+    if (block < 0 || !tree.is(block, "compound_statement")) return false;
+  return true;
+}
+
+Span whole_lines(const SyntaxTree& tree, int node) {
+  const std::string& text = tree.source->text();
+  uint32_t begin = tree.at(node).begin, end = tree.at(node).end;
+  uint32_t b = begin, e = end;
+  while (b > 0 && (text[b - 1] == ' ' || text[b - 1] == '\t')) --b;
+  while (e < text.size() && (text[e] == ' ' || text[e] == '\t')) ++e;
+  if (e < text.size() && text[e] == '\r') ++e;
+  bool line_start = b == 0 || text[b - 1] == '\n', line_end = e == text.size() || text[e] == '\n';
+  if (!line_start || !line_end) return {begin, end};
+  return {b, e < text.size() ? e + 1 : e};
+}
+
 int mul_call(const SyntaxTree& tree, int node) {
   if (tree.is(node, "field_expression")) node = tree.child_by_field(node, "argument");
   if (!tree.is(node, "call_expression") || call_name(tree, node) != "mul" || call_arguments(tree, node).size() != 2) return -1;

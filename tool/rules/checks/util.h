@@ -77,6 +77,15 @@ int subtraction_partner(const SyntaxTree& tree, int use);
 // Why a use of a world position cannot be followed, for the withheld message.
 std::string escape(const SyntaxTree& tree, int use);
 int line_of(const SyntaxTree& tree, int node);
+// The value under a demotion to float (`DFDemote(M)`, `DFHackToFloat(M)`, `LWCToFloat(M)`, through
+// parentheses), or the node itself.
+int undemoted(const SyntaxTree& tree, int node);
+// True for an expression statement of a function's own body, run whenever the function runs (not
+// under a branch or a loop).
+bool unconditional_statement(const SyntaxTree& tree, int statement);
+// A node's span, widened to its whole lines (indentation and line end) when nothing else shares
+// them: the span that deletes a statement without leaving a blank line.
+Span whole_lines(const SyntaxTree& tree, int node);
 // The `#version` directive of a GLSL file, or -1.
 int version_directive(const SyntaxTree& tree);
 // The GLSL version written (e.g. "300 es"; "110" when there is no #version) when it has no
