@@ -260,6 +260,35 @@ TEST(FixCli, DiffPrintsTheChangeAndWritesNothing) {
   EXPECT_EQ(test::read(dir + "/a.usf"), code);
 }
 
+// glslang's error recovery crashes on some invalid HLSL: a missing member of a uniform struct
+// that holds a texture, read into a local followed by another declaration (glslang 12 as Debian
+// packages it). The build check runs the compiler in a child process, so the run goes on, the
+// file is reported unchecked, and the other file is still fixed.
+const char* const kCrashesGlslang =
+    "struct FMaterial { float3 Tint; Texture2D Albedo; SamplerState AlbedoSampler; };\n"
+    "FMaterial Material;\nfloat4x4 World;\nfloat3 CameraPosition;\n"
+    "float3 Tint()\n{\n\tfloat3 T = Material.Missing;\n\tfloat3 U = 1;\n\treturn U;\n}\n"
+    "float3 ToCamera(float3 P)\n{\n\tfloat3 WorldPos = mul(float4(P, 1), World).xyz;\n\treturn WorldPos - CameraPosition;\n}\n";
+
+TEST(FixCli, ACompilerCrashInTheBuildCheckCostsThatCheckOnly) {
+  std::string dir = ue54_project("fix-compiler-crash");
+  test::write(dir + "/a.hlsl", kCrashesGlslang);
+  test::write(dir + "/b.usf", "float3 F(float3 P)\n{\n\treturn P - View.WorldCameraOrigin;\n}\n");
+  auto r = test::run("cd " + dir + " && " + test::binary() + " fix --unsafe-fixes --check-build --format json a.hlsl b.usf");
+  ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 1) << r.exit_code << r.out;
+  std::string notes = nlohmann::json::parse(r.out).dump();
+  EXPECT_NE(notes.find("build not checked"), std::string::npos) << notes;
+  EXPECT_NE(test::read(dir + "/b.usf").find("DFSubtractDemote"), std::string::npos);
+}
+
+TEST(FixCli, ACompilerCrashCostsVerifyThatFileOnly) {
+  std::string dir = test::scratch("verify-compiler-crash");
+  test::write(dir + "/a.hlsl", kCrashesGlslang);
+  auto r = test::run("cd " + dir + " && " + test::binary() + " verify --format json --fail-on none a.hlsl");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("ToCamera"), std::string::npos) << r.out;
+}
+
 TEST(FixCli, UnsafeFixesWaitForTheFlag) {
   std::string dir = test::scratch("fix-unsafe");
   std::string code = "float3 TileOf(FLWCVector3 P)\n{\n\treturn P.Tile;\n}\n";

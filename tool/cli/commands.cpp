@@ -744,6 +744,7 @@ std::string verify_fix(Verifier& verifier, const InputFile& file, const LoadedFi
 struct BuildCheck {
   enum class Outcome { compiles, incomplete, breaks, unchecked } outcome;
   std::string detail;  // where it was compiled, or the first error
+  bool compiler_failed = false;  // unchecked because glslang crashed or hung, not because of the code
 };
 
 BuildCheck check_build(const InputFile& file, const LoadedFile& f, Lang lang, const std::string& original,
@@ -772,9 +773,11 @@ BuildCheck check_build(const InputFile& file, const LoadedFile& f, Lang lang, co
     own.unreal_version = static_cast<int>(*written);
     if (compile_file(own, original).ok) was.ok = true;
   }
+  if (!was.crashed.empty()) return {BuildCheck::Outcome::unchecked, was.crashed + " on the original", true};
   if (!was.ok) return {BuildCheck::Outcome::unchecked, first_error(was)};
   if (lang == Lang::glsl) where += target.vulkan ? ", for Vulkan" : ", for OpenGL";
   CompileResult now = compile_file(target, fixed.text);
+  if (!now.crashed.empty()) return {BuildCheck::Outcome::unchecked, now.crashed + " on the fixed file", true};
   if (now.ok) return {BuildCheck::Outcome::compiles, where};
   std::map<int, std::string> by_hand = fixed_variant("fixed", fixed, lang).hand_fixes;
   for (const CompileMessage& m : now.messages)
@@ -866,6 +869,7 @@ FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& in
     }
     std::string note = check.outcome == BuildCheck::Outcome::compiles     ? "build checked: the fixed file compiles as the original did (" + check.detail + ")"
                        : check.outcome == BuildCheck::Outcome::incomplete ? "build checked: the fixed file compiles except where lwcport could not port the code (" + check.detail + "); port that by hand"
+                       : check.compiler_failed ? "build not checked: " + check.detail
                                                                           : "build not checked: the original does not compile on its own with glslang (" + check.detail + ")";
     out.report.findings.push_back(locate(result, input_finding(Severity::note, 0, note, "")));
   }

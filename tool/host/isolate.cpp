@@ -16,6 +16,8 @@
 
 #include <fmt/format.h>
 
+#include "core/fd_io.h"
+
 namespace lwc::host {
 
 namespace {
@@ -24,27 +26,6 @@ namespace {
 enum Status : char { kDone = 0, kThrew = 1 };
 constexpr size_t kHeader = 1 + sizeof(uint64_t);
 constexpr size_t kNoUnit = SIZE_MAX;
-
-// Moves `size` bytes with `step(at)` (one read or write from offset `at`), again where a signal
-// interrupts it; false at the end of the pipe or on an error.
-template <typename Step>
-bool all_bytes(size_t size, Step step) {
-  for (size_t at = 0; at < size;) {
-    ssize_t n = step(at);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    at += static_cast<size_t>(n);
-  }
-  return true;
-}
-
-bool write_all(int fd, const char* data, size_t size) {
-  return all_bytes(size, [&](size_t at) { return ::write(fd, data + at, size - at); });
-}
-
-bool read_all(int fd, char* data, size_t size) {
-  return all_bytes(size, [&](size_t at) { return ::read(fd, data + at, size - at); });
-}
 
 // A worker process: it takes unit numbers from `orders` and answers each on `answers`, one unit
 // after another (its warm heap serves the next unit: a fresh process per unit paid ~10% more CPU
@@ -71,7 +52,7 @@ bool read_all(int fd, char* data, size_t size) {
     header[0] = status;
     uint64_t size = bytes.size();
     std::memcpy(header + 1, &size, sizeof size);
-    if (!write_all(answers, header, kHeader) || !write_all(answers, bytes.data(), bytes.size())) ::_exit(1);
+    if (!write_all(answers, std::string_view(header, kHeader)) || !write_all(answers, bytes)) ::_exit(1);
   }
   ::_exit(0);  // no more orders; not this program's exit handlers (they belong to the process it was copied from)
 }
@@ -138,7 +119,7 @@ void run_isolated(size_t count, unsigned jobs, unsigned cpu_seconds, const std::
       return;
     }
     uint64_t unit = next;
-    if (!write_all(w.orders, reinterpret_cast<const char*>(&unit), sizeof unit)) return;  // it died: another takes the unit
+    if (!write_all(w.orders, std::string_view(reinterpret_cast<const char*>(&unit), sizeof unit))) return;  // it died: another takes the unit
     w.unit = next++;
   };
 

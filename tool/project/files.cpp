@@ -9,6 +9,8 @@
 
 #include <fmt/format.h>
 
+#include "core/fd_io.h"
+
 #include <algorithm>
 #include <cctype>
 #include <atomic>
@@ -140,17 +142,6 @@ ReadResult read_file(const fs::path& path, size_t max_bytes) {
 namespace lwc {
 
 namespace {
-
-bool write_all(int fd, std::string_view text) {
-  size_t done = 0;
-  while (done < text.size()) {
-    ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    done += static_cast<size_t>(n);
-  }
-  return true;
-}
 
 
 // Temporary files being written, removed if the run is interrupted (SIGINT, SIGTERM, SIGHUP):

@@ -6,14 +6,23 @@
 
 #include <fmt/format.h>
 
+#include <poll.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
+#include <chrono>
+#include <csignal>
+#include <cstring>
 #include <deque>
 #include <map>
 #include <mutex>
 #include <set>
 #include <sstream>
 
+#include "core/fd_io.h"
 #include "lang/tokens.h"
 #include "shaderlib/shaderlib.h"
 
@@ -187,7 +196,9 @@ int default_version(const CompileInput& input) {
 
 }  // namespace
 
-CompileResult compile_shader(const CompileInput& input) {
+namespace {
+
+CompileResult compile_shader_here(const CompileInput& input) {
   initialize_glslang();
   CompileResult result;
   EShLanguage stage = to_glslang(input.stage);
@@ -220,6 +231,8 @@ CompileResult compile_shader(const CompileInput& input) {
   result.ok = true;
   return result;
 }
+
+}  // namespace
 
 PreprocessResult preprocess_shader(const CompileInput& input) {
   initialize_glslang();
@@ -283,7 +296,8 @@ CompileResult compile_file(const FileBuild& build, const std::string& text) {
     in.entry = "lwcport_compile_check";
     in.text += "\nvoid lwcport_compile_check() {}\n";
     if (build.unreal_version)
-      in.preamble += "#define LWCPORT_UE_VERSION " + std::to_string(*build.unreal_version) + "\n" + unreal_environment_text(text);
+      in.preamble += "#define LWCPORT_UE_VERSION " + std::to_string(*build.unreal_version) + "\n#define LWCPORT_VIEW_STORAGE static\n" +
+                     unreal_environment_text(text);
   } else {
     std::optional<Stage> stage = stage_from_extension(build.name);
     in.stage = stage.value_or(Stage::fragment);
@@ -293,7 +307,110 @@ CompileResult compile_file(const FileBuild& build, const std::string& text) {
     for (size_t i = 0; i < t.size() && !has_main; ++i) has_main = t.spells(i, {"void", "main", "("});
     if (!stage && !has_main) in.text += "\nvoid main() {}\n";
   }
-  return compile_shader(in);
+  return compile_shader_isolated(in);
+}
+
+namespace {
+
+// A result through a pipe: ok, the messages, the SPIR-V words.
+void put(std::string& out, std::string_view bytes) {
+  uint32_t size = static_cast<uint32_t>(bytes.size());
+  out.append(reinterpret_cast<const char*>(&size), sizeof size).append(bytes);
+}
+bool take(std::string_view& in, std::string& bytes) {
+  uint32_t size = 0;
+  if (in.size() < sizeof size) return false;
+  std::memcpy(&size, in.data(), sizeof size);
+  in.remove_prefix(sizeof size);
+  if (in.size() < size) return false;
+  bytes.assign(in.substr(0, size));
+  in.remove_prefix(size);
+  return true;
+}
+std::string serialise(const CompileResult& r) {
+  std::string out(1, r.ok ? '1' : '0');
+  put(out, std::to_string(r.messages.size()));
+  for (const CompileMessage& m : r.messages) {
+    put(out, m.source);
+    put(out, std::to_string(m.line));
+    put(out, m.text);
+  }
+  put(out, std::string_view(reinterpret_cast<const char*>(r.spirv.data()), r.spirv.size() * sizeof(uint32_t)));
+  return out;
+}
+std::optional<CompileResult> deserialise(std::string_view in) {
+  CompileResult r;
+  if (in.empty()) return std::nullopt;
+  r.ok = in.front() == '1';
+  in.remove_prefix(1);
+  std::string field;
+  if (!take(in, field)) return std::nullopt;
+  size_t count = std::stoul(field);
+  for (size_t i = 0; i < count; ++i) {
+    CompileMessage m;
+    std::string line;
+    if (!take(in, m.source) || !take(in, line) || !take(in, m.text)) return std::nullopt;
+    m.line = std::stoi(line);
+    r.messages.push_back(std::move(m));
+  }
+  if (!take(in, field)) return std::nullopt;
+  r.spirv.resize(field.size() / sizeof(uint32_t));
+  std::memcpy(r.spirv.data(), field.data(), r.spirv.size() * sizeof(uint32_t));
+  return r;
+}
+
+}  // namespace
+
+// glslang's error recovery crashes on some invalid HLSL (a missing member of a uniform struct that
+// holds textures, used as an initializer), and what is compiled here is a user's code: each
+// compile runs in a child process, so a crash or a hang costs that compile only.
+CompileResult compile_shader(const CompileInput& input) { return compile_shader_here(input); }
+
+CompileResult compile_shader_isolated(const CompileInput& input) {
+  constexpr int kSeconds = 120;
+  int fds[2];
+  if (::pipe(fds) != 0) return compile_shader_here(input);
+  pid_t pid = ::fork();
+  if (pid < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    return compile_shader_here(input);
+  }
+  if (pid == 0) {
+    ::close(fds[0]);
+    write_all(fds[1], serialise(compile_shader_here(input)));
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  std::string bytes;
+  bool timed_out = false;
+  auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(kSeconds);
+  for (char buffer[65536];;) {
+    auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()).count();
+    pollfd p{fds[0], POLLIN, 0};
+    int ready = left > 0 ? ::poll(&p, 1, static_cast<int>(left)) : 0;
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready <= 0) {
+      timed_out = true;
+      break;
+    }
+    ssize_t n = ::read(fds[0], buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    bytes.append(buffer, static_cast<size_t>(n));
+  }
+  ::close(fds[0]);
+  if (timed_out) ::kill(pid, SIGKILL);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (std::optional<CompileResult> r = deserialise(bytes); r && !timed_out) return *r;
+  CompileResult failed;
+  failed.crashed = timed_out ? fmt::format("glslang did not finish in {} s", kSeconds)
+                   : WIFSIGNALED(status) ? fmt::format("glslang crashed (signal {})", WTERMSIG(status))
+                                         : "glslang's process ended without an answer";
+  failed.messages.push_back({input.name, 0, failed.crashed});
+  return failed;
 }
 
 }  // namespace lwc

@@ -43,6 +43,7 @@ struct CompileInput {
 
 struct CompileResult {
   bool ok = false;
+  std::string crashed;  // compile_shader_isolated: why glslang gave no answer (a crash, a hang)
   std::vector<CompileMessage> messages;
   std::vector<uint32_t> spirv;
 };
@@ -51,7 +52,11 @@ struct CompileResult {
 std::string format_messages(const CompileResult& result);
 
 // Parses, checks and links one shader with glslang (the library, no process), optionally to SPIR-V.
+// glslang's error recovery can crash on invalid code: code that has not compiled before (a user's
+// file) goes through compile_shader_isolated first.
 CompileResult compile_shader(const CompileInput& input);
+// The same in a child process: a crash or a hang comes back as `crashed`, not as this process's end.
+CompileResult compile_shader_isolated(const CompileInput& input);
 
 // Runs only glslang's preprocessor: the text with includes inlined, macros expanded and inactive
 // #if branches gone (what the compiler itself sees). `spirv` and `entry` are ignored.
@@ -87,6 +92,7 @@ struct FileBuild {
 std::string define_lines(const std::vector<std::pair<std::string, std::string>>& defines);
 // An HLSL text with `force_includes` included ahead of it, its own lines still its own (`#line`).
 std::string with_forced_includes(const std::vector<std::string>& force_includes, const std::string& name, std::string_view text);
+// Through compile_shader_isolated.
 CompileResult compile_file(const FileBuild& build, const std::string& text);
 
 }  // namespace lwc

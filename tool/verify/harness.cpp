@@ -900,26 +900,36 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
       in.preamble = "#line 1 \"lwcport environment\"\n" + in.preamble;
       in.text = with_forced_includes(setup.force_includes, setup.display, v.text);
     }
-    std::string key = fmt::format("{}{}\n{}", float64 ? 'd' : 'f', v.ue_version, v.text);
-    std::shared_ptr<const PreparedVariant> prepared = setup.cache->get(key, [&] {
-      PreparedVariant p;
-      p.pre = preprocess_shader(in);
-      if (p.pre.text.empty()) return p;
-      p.text = float64 ? promote_to_double(setup.lang, p.pre.text) : p.pre.text;
-      // The variant must compile as a shader of its own before it is cut down (errors on its own
-      // lines). A file that does not compile as a whole may still hold this function compiling on
-      // its own (the error is in another function): the harness kernel, cut down to what the
-      // function needs, decides; if it fails too, the file's own error is the reason.
-      if (!float64) {
-        CompileInput check = in;
-        if (setup.lang == Lang::hlsl) {
-          check.entry = "lwcport_compile_check";
-          check.text += "\nvoid lwcport_compile_check() {}\n";
+    auto prepare = [&](bool as_float64) {
+      std::string key = fmt::format("{}{}\n{}", as_float64 ? 'd' : 'f', v.ue_version, v.text);
+      return setup.cache->get(key, [&] {
+        PreparedVariant p;
+        p.pre = preprocess_shader(in);
+        if (p.pre.text.empty()) return p;
+        p.text = as_float64 ? promote_to_double(setup.lang, p.pre.text) : p.pre.text;
+        // The variant must compile as a shader of its own before it is cut down (errors on its own
+        // lines). A file that does not compile as a whole may still hold this function compiling on
+        // its own (the error is in another function): the harness kernel, cut down to what the
+        // function needs, decides; if it fails too, the file's own error is the reason. In a child
+        // process: this is the user's code, and glslang's error recovery can crash on it.
+        if (!as_float64) {
+          CompileInput check = in;
+          if (setup.lang == Lang::hlsl) {
+            check.entry = "lwcport_compile_check";
+            check.text += "\nvoid lwcport_compile_check() {}\n";
+          }
+          if (CompileResult whole = compile_shader_isolated(check); !whole.ok) p.whole_failed = std::move(whole);
         }
-        if (CompileResult whole = compile_shader(check); !whole.ok) p.whole_failed = std::move(whole);
-      }
-      return p;
-    });
+        return p;
+      });
+    };
+    std::shared_ptr<const PreparedVariant> prepared = prepare(float64);
+    // Where glslang crashed on the code as written, no kernel of it is compiled in this process.
+    if (std::shared_ptr<const PreparedVariant> written = float64 ? prepare(false) : prepared;
+        written->whole_failed && !written->whole_failed->crashed.empty()) {
+      k.problem = "not verifiable: " + written->whole_failed->crashed + " compiling the file";
+      return k;
+    }
     if (prepared->pre.text.empty()) {
       CompileResult r;
       r.messages = prepared->pre.messages;
