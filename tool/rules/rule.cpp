@@ -174,6 +174,17 @@ Fix* CheckContext::fix(Finding& finding, std::string_view kind, const Vars& vars
   size_t bytes = 0;
   for (const Edit& e : edits) bytes += e.text.size();
   if (too_long(finding, kind, bytes)) return nullptr;
+  // A rewrite whose edits overlap cannot be applied as one: it is withheld, never half applied.
+  std::vector<Span> spans;
+  for (const Edit& e : edits) spans.push_back(e.span);
+  std::sort(spans.begin(), spans.end(), [](Span a, Span b) { return a.begin != b.begin ? a.begin < b.begin : a.end < b.end; });
+  for (size_t i = 1; i < spans.size(); ++i)
+    if (spans[i].begin < spans[i - 1].end || (spans[i].begin == spans[i - 1].begin && spans[i].end == spans[i - 1].end)) {
+      Fix f = make_fix(rule, kind, {}, {});
+      finding.withheld.push_back(fmt::format("{}{}lwcport's rewrite edits one place twice here; it is withheld (please report this file)",
+                                             f.strategy, f.strategy.empty() ? "" : ": "));
+      return nullptr;
+    }
   return &finding.fixes.emplace_back(make_fix(rule, kind, vars, std::move(edits)));
 }
 

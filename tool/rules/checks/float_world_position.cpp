@@ -22,6 +22,8 @@ class FloatWorldPosition : public Check {
   explicit FloatWorldPosition(const RuleInfo& rule)
       : descriptions_(rule.data.at("kinds")),
         primitive_objects_(string_list(rule.data, "primitive-objects")),
+        uniform_buffer_(rule.data.at("uniform-buffer").get<std::string>()),
+        uniform_buffer_call_(rule.data.at("uniform-buffer-call").get<std::string>()),
         camera_{string_list(rule.data, "camera-words")} {}
 
   void run(const CheckContext& ctx) const override {
@@ -112,26 +114,65 @@ class FloatWorldPosition : public Check {
     const SyntaxTree& t = ctx.tree;
     const Variable& v = ctx.world.variables()[var];
     RewritePlan plan;
-    std::string new_name = translated_name(v.name);
-    if (names.taken(new_name, v.function)) return withheld(fmt::format("the name `{}` is already taken", new_name));
-    if (std::string why = translate_value(ctx, v.init, plan); !why.empty()) return withheld(why);
-    plan.edits.push_back({t.span(v.decl), new_name});
-    follow_translated(ctx, names, var, new_name, plan, 0);
+    if (std::string why = move_local(ctx, names, var, true, plan, 0); !why.empty()) return withheld(why);
     return plan;
+  }
+
+  // A local becomes translated under a translated name: its value (when `with_value`; else the
+  // value is a use already being moved), its declaration and every use. Returns why not, or "".
+  std::string move_local(const CheckContext& ctx, const DeclaredNames& names, int var, bool with_value, RewritePlan& plan, int depth) const {
+    const SyntaxTree& t = ctx.tree;
+    const Variable& v = ctx.world.variables()[var];
+    std::string new_name = translated_name(v.name);
+    if (new_name == v.name || names.taken(new_name, v.function)) return fmt::format("the name `{}` is already taken", new_name);
+    plan.moving_variables.push_back(var);
+    if (with_value)
+      if (std::string why = translate_value(ctx, names, v.init, plan, depth); !why.empty()) return why;
+    plan.edits.push_back({t.span(v.decl), new_name});
+    follow_translated(ctx, names, var, new_name, plan, depth);
+    return plan.blocker;
   }
 
   // An absolute value's translated form, as edits: a transform whose matrix has a translated
   // twin or is a primitive's, or a translated value minus the pre-view translation (which goes).
   // Returns why not, or "".
-  std::string translate_value(const CheckContext& ctx, int value, RewritePlan& plan) const {
+  std::string translate_value(const CheckContext& ctx, const DeclaredNames& names, int value, RewritePlan& plan, int depth) const {
     const SyntaxTree& t = ctx.tree;
     while (t.is(value, "parenthesized_expression")) value = t.named_child(value);
-    if (t.is(value, "binary_expression") && t.text(t.child_by_field(value, "operator")) == "-") {
+    // A camera position or engine function with a translated twin.
+    if (std::string twin = translated_twin(ctx, value); !twin.empty() && ctx.world.kind(value) == Kind::absolute) {
+      plan.edits.push_back({t.span(value), twin});
+      return {};
+    }
+    if (t.is(value, "binary_expression")) {
+      std::string_view op = t.text(t.child_by_field(value, "operator"));
       int left = t.child_by_field(value, "left"), right = t.child_by_field(value, "right");
-      if (ctx.world.kind(right) == Kind::camera_offset && ctx.world.kind(left) == Kind::translated) {
+      if (op == "-" && ctx.world.kind(right) == Kind::camera_offset && ctx.world.kind(left) == Kind::translated) {
         plan.edits.push_back({t.span(value), std::string(t.text(left))});
         return {};
       }
+      // A point and a small offset (`P + Normal * Bias`, `P - Dir * T`): the point moves.
+      if ((op == "+" || op == "-") && small_vector(ctx, right)) return translate_value(ctx, names, left, plan, depth);
+      if (op == "+" && small_vector(ctx, left)) return translate_value(ctx, names, right, plan, depth);
+      // A homogeneous point divided by its own w (`H.xyz / H.w`): H moves, its w stays.
+      if (op == "/" && t.is(left, "field_expression") && is_field_of(t, left, t.child_by_field(left, "argument"), "xyz") &&
+          t.is(right, "field_expression") && is_field_of(t, right, t.child_by_field(right, "argument"), "w") &&
+          t.text(t.child_by_field(left, "argument")) == t.text(t.child_by_field(right, "argument")))
+        return translate_value(ctx, names, t.child_by_field(left, "argument"), plan, depth);
+    }
+    if (int base = t.child_by_field(value, "argument"); t.is(base, "identifier") && is_field_of(t, value, base, "xyz"))
+      return translate_value(ctx, names, base, plan, depth);
+    // Another local holding an absolute position, or a call of a function of this file returning
+    // one: it moves too, and this value follows it as one of its uses.
+    if (int var = t.is(value, "identifier") ? ctx.world.variable_at(value) : -1; var >= 0) {
+      const Variable& v = ctx.world.variables()[var];
+      if (std::find(plan.moving_variables.begin(), plan.moving_variables.end(), var) != plan.moving_variables.end()) return {};
+      if (v.role == Variable::Role::local && v.init >= 0 && depth < 4) return move_local(ctx, names, var, true, plan, depth + 1);
+    }
+    if (int fn = t.is(value, "call_expression") ? defined_function(t, call_name(t, value)) : -1; fn >= 0 && depth < 4) {
+      if (std::find(plan.moving_functions.begin(), plan.moving_functions.end(), fn) != plan.moving_functions.end()) return {};
+      int name = function_name(t, fn);
+      return translate_function(ctx, fn, translated_name(std::string(t.text(name))), names, plan, depth + 1);
     }
     int mul = mul_call(t, value);
     if (mul < 0) return fmt::format("its value (`{}`) has no translated form lwcport knows", shortened(t.text(value)));
@@ -143,7 +184,12 @@ class FloatWorldPosition : public Check {
       plan.edits.push_back({t.span(args[1]), m});
     } else if (std::string p = position_of_homogeneous(t, args[0]); !p.empty() && !translation.empty()) {
       // The library call gives the 3-vector; a 4-vector value keeps its w of 1.
-      std::string call = fmt::format("DFTransformLocalToTranslatedWorld({}, {}, PrimaryView.{})", p, t.text(matrix), translation);
+      // UE4's primitive uniform buffer is read through a call in UE5.
+      std::string m(t.text(matrix));
+      int base = t.child_by_field(matrix, "argument");
+      if (t.is(base, "identifier") && t.text(base) == uniform_buffer_ && ctx.world.variable_at(base) < 0)
+        m = uniform_buffer_call_ + m.substr(uniform_buffer_.size());
+      std::string call = fmt::format("DFTransformLocalToTranslatedWorld({}, {}, PrimaryView.{})", p, m, translation);
       plan.edits.push_back({t.span(value), mul == value ? fmt::format("float4({}, 1)", call) : call});
     } else {
       return fmt::format("its matrix `{}` has no translated twin", shortened(t.text(args[1])));
@@ -186,16 +232,10 @@ class FloatWorldPosition : public Check {
       // A local it returns moves with it: its value, its name and its other uses.
       int local = t.is(value, "identifier") ? ctx.world.variable_at(value) : -1;
       if (local >= 0 && ctx.world.variables()[local].role == Variable::Role::local && ctx.world.variables()[local].init >= 0) {
-        const Variable& v = ctx.world.variables()[local];
-        std::string local_name = translated_name(v.name);
-        if (local_name == v.name || names.taken(local_name, v.function)) return fmt::format("the name `{}` is already taken", local_name);
-        if (std::string why = translate_value(ctx, v.init, plan); !why.empty()) return why;
-        plan.edits.push_back({t.span(v.decl), local_name});
-        follow_translated(ctx, names, local, local_name, plan, depth + 1);
-        if (!plan.blocker.empty()) return plan.blocker;
+        if (std::string why = move_local(ctx, names, local, true, plan, depth + 1); !why.empty()) return why;
         continue;
       }
-      if (std::string why = translate_value(ctx, value, plan); !why.empty()) return why;
+      if (std::string why = translate_value(ctx, names, value, plan, depth); !why.empty()) return why;
     }
     rename_with_callers(ctx, names, name, new_name, plan, depth);
     return plan.blocker;
@@ -301,6 +341,10 @@ class FloatWorldPosition : public Check {
     if (std::string m = partner >= 0 ? translated_twin(ctx, partner) : ""; !m.empty()) {
       renamed();
       plan.edits.push_back({t.span(partner), m});
+      return;
+    }
+    if (partner >= 0 && follow_partner(ctx, names, partner, plan, depth)) {
+      renamed();
       return;
     }
     // A sum with the pre-view translation is the translated value itself: the term goes.
@@ -419,10 +463,26 @@ class FloatWorldPosition : public Check {
     if (local < 0) return false;
     const Variable& v = ctx.world.variables()[local];
     std::string new_name = translated_name(v.name);
+    if (std::find(plan.moving_variables.begin(), plan.moving_variables.end(), local) != plan.moving_variables.end()) return true;
     if (new_name == v.name || names.taken(new_name, v.function)) return false;
-    plan.edits.push_back({t.span(v.decl), new_name});
-    follow_translated(ctx, names, local, new_name, plan, depth + 1);
-    return plan.blocker.empty();
+    return move_local(ctx, names, local, false, plan, depth + 1).empty();
+  }
+
+  // The other point of a difference, when it is a local of this function holding an absolute
+  // position of its own: both move to translated world together (the difference is the same).
+  bool follow_partner(const CheckContext& ctx, const DeclaredNames& names, int partner, RewritePlan& plan, int depth) const {
+    const SyntaxTree& t = ctx.tree;
+    while (t.is(partner, "parenthesized_expression")) partner = t.named_child(partner);
+    if (is_field_of(t, partner, t.child_by_field(partner, "argument"), "xyz")) partner = t.child_by_field(partner, "argument");
+    int var = t.is(partner, "identifier") ? ctx.world.variable_at(partner) : -1;
+    if (var < 0) return false;
+    if (std::find(plan.moving_variables.begin(), plan.moving_variables.end(), var) != plan.moving_variables.end()) return true;
+    const Variable& v = ctx.world.variables()[var];
+    if (v.role != Variable::Role::local || v.init < 0 || v.kind != Kind::absolute || depth >= 4) return false;
+    RewritePlan trial = plan;
+    if (!move_local(ctx, names, var, true, trial, depth + 1).empty()) return false;
+    plan = std::move(trial);
+    return true;
   }
 
   // The function a returned use leaves through: its value is already translated (the use is), so
@@ -508,6 +568,7 @@ class FloatWorldPosition : public Check {
 
   nlohmann::json descriptions_;  // kind -> words for the message
   std::vector<std::string> primitive_objects_;
+  std::string uniform_buffer_, uniform_buffer_call_;  // UE4's primitive uniform buffer, and how UE5 reads it
   CameraNames camera_;  // plain code: which absolute uniforms are the camera
 };
 

@@ -112,6 +112,17 @@ std::string translated_name(const std::string& name) {
 
 int line_of(const SyntaxTree& tree, int node) { return tree.source->position(tree.at(node).begin).line; }
 
+int defined_function(const SyntaxTree& tree, std::string_view name) {
+  int found = -1;
+  for (int fn : nodes_of(tree, "function_definition")) {
+    int n = function_name(tree, fn);
+    if (n < 0 || tree.text(n) != name) continue;
+    if (found >= 0) return -1;
+    found = fn;
+  }
+  return found;
+}
+
 int undemoted(const SyntaxTree& tree, int node) {
   while (tree.is(node, "parenthesized_expression")) node = tree.named_child(node);
   if (!tree.is(node, "call_expression")) return node;

@@ -23,6 +23,8 @@ std::vector<std::string> string_list(const nlohmann::json& data, const char* key
 bool matches_any(const std::vector<std::string>& globs, std::string_view text);
 // The name of a function definition when it is a plain identifier, or -1.
 int function_name(const SyntaxTree& tree, int definition);
+// The one definition of a function of this file called `name` (-1 when none, or overloads).
+int defined_function(const SyntaxTree& tree, std::string_view name);
 // True when `node` is `base.name`: that member or swizzle of that expression.
 bool is_field_of(const SyntaxTree& tree, int node, int base, std::string_view name);
 // True when an identifier is the name being declared or defined (a macro, a function), not a use.
@@ -48,6 +50,7 @@ struct RewritePlan {
   std::vector<std::string> library;   // shader-library names the new code calls
   std::vector<std::string> interface; // stage inputs/outputs renamed: the other stage must follow
   std::vector<int> moving_functions;  // functions whose return becomes translated in this plan
+  std::vector<int> moving_variables;  // locals that become translated in this plan
 };
 RewritePlan withheld(std::string why);
 
