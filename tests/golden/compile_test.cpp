@@ -80,8 +80,10 @@ FixOutcome fixed(const std::string& path, Strategy strategy) {
   AnalyzeOptions options;
   options.lang = *lang_from_path(path);
   options.strategy = strategy;
-  // corpus/ue5.3 is a project set to UE 5.3 (its .lwcport.json); the others take their era from the code.
+  // corpus/ue5.3 is a project set to UE 5.3 (its .lwcport.json); UE4 code is ported as the
+  // corpus's own setting says (5.4); the rest take their era from the code.
   if (path.rfind("corpus/ue5.3/", 0) == 0) options.unreal = UnrealEra::ue5_0;
+  if (path.rfind("corpus/ue4/", 0) == 0) options.unreal = UnrealEra::ue5_4;
   return fix_source(source, options, true);
 }
 

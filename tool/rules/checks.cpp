@@ -10,6 +10,7 @@ std::unique_ptr<Check> make_large_world_member(const RuleInfo&);
 std::unique_ptr<Check> make_missing_precise(const RuleInfo&);
 std::unique_ptr<Check> make_primary_view(const RuleInfo&);
 std::unique_ptr<Check> make_tile_offset(const RuleInfo&);
+std::unique_ptr<Check> make_translated_member(const RuleInfo&);
 std::unique_ptr<Check> make_translated_world(const RuleInfo&);
 std::unique_ptr<Check> make_uniform_world_float(const RuleInfo&);
 }  // namespace checks
@@ -24,6 +25,7 @@ const std::map<std::string_view, CheckFactory>& check_factories() {
       {"lwc-missing-precise", checks::make_missing_precise},
       {"lwc-primary-view", checks::make_primary_view},
       {"lwc-tile-offset", checks::make_tile_offset},
+      {"lwc-translated-member", checks::make_translated_member},
       {"lwc-translated-world", checks::make_translated_world},
       {"lwc-uniform-world-float", checks::make_uniform_world_float},
   };

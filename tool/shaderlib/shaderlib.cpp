@@ -202,13 +202,18 @@ std::string unreal_engine_header_text(bool engine_headers_read) {
 }
 
 std::string unreal_environment_text(std::string_view code, const std::string& library) {
+  // A struct the file declares itself (a copy of an engine header's) is left out of the stub.
   TokenText tokens(code);
-  bool declares_material_parameters = false;
-  for (size_t i = 0; i + 1 < tokens.size() && !declares_material_parameters; ++i)
-    declares_material_parameters = tokens[i] == "struct" && tokens[i + 1] == "FMaterialPixelParameters";
+  bool material_parameters = false, light_data = false;
+  for (size_t i = 0; i + 1 < tokens.size(); ++i) {
+    light_data |= tokens[i] == "float4x4" && tokens[i + 1] == "LightFunctionWorldToLight";
+    if (tokens[i] != "struct") continue;
+    material_parameters |= tokens[i + 1] == "FMaterialPixelParameters";
+    light_data |= tokens[i + 1] == "FDeferredLightData" || tokens[i + 1] == "FSimpleDeferredLightData";
+  }
   return (library.empty() ? full_library_text(Lang::hlsl) : library) + "\n" +
-         (declares_material_parameters ? "#define LWCPORT_FILE_DECLARES_MATERIAL_PARAMETERS 1\n" : "") +
-         std::string(embedded("unreal_stub.ush"));
+         (material_parameters ? "#define LWCPORT_FILE_DECLARES_MATERIAL_PARAMETERS 1\n" : "") +
+         (light_data ? "#define LWCPORT_FILE_DECLARES_LIGHT_DATA 1\n" : "") + std::string(embedded("unreal_stub.ush"));
 }
 
 }  // namespace lwc

@@ -65,6 +65,9 @@ struct WorldData {
   struct Twins {
     std::vector<std::string> objects;  // the view objects whose members have twins
     std::map<std::string, std::string> members, functions;
+    // From UE 5.0: engine global or struct type -> member -> its translated twin; engine globals.
+    std::map<std::string, std::map<std::string, std::string>> engine_members;
+    std::map<std::string, std::string> engine_globals;
   };
   std::vector<std::string> float_types;
   std::vector<Source> sources;

@@ -85,10 +85,38 @@ std::string translated_twin(const CheckContext& ctx, int node) {
     if (it == twins.functions.end()) return {};
     return it->second + std::string(t.text(t.child_by_field(node, "arguments")));
   }
+  if (ctx.unreal && ctx.unreal->era != UnrealEra::ue4)
+    if (std::string twin = engine_translated_twin(ctx, node); !twin.empty()) return twin;
   Member m = member_of(t, node);
   if (m.empty() || !matches_any(twins.objects, m.object) || !twins.members.count(m.member)) return {};
   // UE5 keeps the view's world members on PrimaryView; the translated ones stay where they were.
   return (m.object == "View" ? "PrimaryView" : m.object) + "." + twins.members.at(m.member);
+}
+
+std::string engine_translated_twin(const CheckContext& ctx, int node) {
+  const SyntaxTree& t = ctx.tree;
+  const WorldData::Twins& twins = ctx.world.data().twins;
+  if (t.is(node, "identifier")) {
+    auto it = twins.engine_globals.find(std::string(t.text(node)));
+    if (it == twins.engine_globals.end()) return {};
+    // A global the file declares itself (the engine's UE4 header) keeps its name.
+    for (const Variable& v : ctx.world.variables())
+      if (v.role == Variable::Role::global && v.name == it->first) return {};
+    return it->second;
+  }
+  Member m = member_of(t, node);
+  int base = t.is(node, "field_expression") ? t.child_by_field(node, "argument") : -1;
+  if (m.empty() || !t.is(base, "identifier")) return {};
+  // A variable by its struct type; an engine global (undeclared here) by its name.
+  int var = ctx.world.variable_at(base);
+  std::string owner = var >= 0 ? ctx.world.variables()[static_cast<size_t>(var)].type : m.object;
+  auto object = twins.engine_members.find(owner);
+  if (object == twins.engine_members.end()) return {};
+  // A struct the file declares itself (a copy of the engine's UE4 header) keeps its members.
+  for (const Variable& v : ctx.world.variables())
+    if (v.role == Variable::Role::field && v.owner == owner) return {};
+  auto member = object->second.find(m.member);
+  return member != object->second.end() ? m.object + "." + member->second : std::string();
 }
 
 RewritePlan withheld(std::string why) {

@@ -40,6 +40,11 @@ Member member_of(const SyntaxTree& tree, int node);
 // (`View.WorldCameraOrigin` -> `PrimaryView.TranslatedWorldCameraOrigin`,
 // `GetWorldPosition(P)` -> `GetTranslatedWorldPosition(P)`), or "" when it has none.
 std::string translated_twin(const CheckContext& ctx, int node);
+// An engine member or global that UE 5.0 replaced by its translated-world twin (a light's
+// position, a shadow matrix), read under its UE4 name: the twin as text
+// (`DeferredLightUniforms.TranslatedWorldPosition`), or "". translated_twin() offers these only in
+// code built against UE 5.0 or later, where the twins exist.
+std::string engine_translated_twin(const CheckContext& ctx, int node);
 
 // A world-position rewrite of one variable: its edits, or why it is withheld.
 struct RewritePlan {

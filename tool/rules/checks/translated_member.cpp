@@ -1,0 +1,79 @@
+// lwc-translated-member: an engine member or global that UE 5.0 replaced by its translated-world
+// twin (a light's position, a directional light's shadow matrices, a light function's matrix),
+// read under its UE4 name. The line stops compiling in UE5; the rewrite reads the twin.
+#include <fmt/format.h>
+
+#include "rules/checks/util.h"
+
+namespace lwc::checks {
+namespace {
+
+class TranslatedMember : public Check {
+ public:
+  explicit TranslatedMember(const RuleInfo&) {}
+
+  void run(const CheckContext& ctx) const override {
+    if (!ctx.unreal) return;
+    const SyntaxTree& t = ctx.tree;
+    for (int id : nodes_of(t, {"field_expression", "identifier"})) {
+      if (t.is(id, "identifier") && (t.is(t.at(id).parent, "field_expression") || is_definition_name(t, id))) continue;
+      std::string twin = engine_translated_twin(ctx, id);
+      if (twin.empty()) continue;
+      bool ue4 = ctx.unreal->era == UnrealEra::ue4;
+      Vars vars{{"name", std::string(t.text(id))},
+                {"twin", twin},
+                {"when", ue4 ? "when this code moves to UE5" : "in " + std::string(era_name(ctx.unreal->era))},
+                {"marker", ctx.unreal->era == UnrealEra::ue5_0 ? "LWCHackToFloat" : "DFHackToFloat"}};
+      Finding& f = ctx.report(t.span(id), vars);
+      if (ue4) {
+        f.withheld.push_back(fmt::format("`{}` exists from UE 5.0: set \"unreal\" in .lwcport.json to the engine this code moves to",
+                                         twin));
+        continue;
+      }
+      offer_fix(ctx, f, id, vars);
+    }
+  }
+
+ private:
+  static void offer_fix(const CheckContext& ctx, Finding& f, int id, Vars vars) {
+    const SyntaxTree& t = ctx.tree;
+    int use = id, parent = t.at(id).parent;
+    while (t.is(parent, "parenthesized_expression") || is_field_of(t, parent, use, "xyz")) use = parent, parent = t.at(use).parent;
+    const std::string& twin = vars["twin"];
+    std::string pre_view = vars["marker"] + "(PrimaryView.PreViewTranslation)";
+    bool position = twin.ends_with("Position");
+    // A difference with a translated point: both sides in translated world.
+    if (position && t.is(parent, "binary_expression") && t.text(t.child_by_field(parent, "operator")) == "-") {
+      int other = t.child_by_field(parent, "left") == use ? t.child_by_field(parent, "right") : t.child_by_field(parent, "left");
+      Kind kind = ctx.world.kind(other);
+      if (kind == Kind::unknown && t.is(other, "identifier")) kind = ctx.world.data().named_kind(t.text(other), Kind::absolute) == Kind::translated ? Kind::translated : kind;
+      if (kind == Kind::translated) {
+        ctx.fix(f, "twin", vars, {{t.span(id), twin}});
+        return;
+      }
+    }
+    // A position anywhere else: the absolute one UE4 read, rebuilt from the twin and marked.
+    if (position) {
+      ctx.fix(f, "absolute", vars, {{t.span(id), fmt::format("({} - {})", twin, pre_view)}});
+      return;
+    }
+    // A matrix transforming an absolute point: the point moves to translated world, marked.
+    int list = t.is(parent, "argument_list") ? parent : -1;
+    int call = list >= 0 ? t.at(list).parent : -1;
+    auto args = call >= 0 && mul_call(t, call) == call ? call_arguments(t, call) : std::vector<int>{};
+    std::string point = args.size() == 2 && args[1] == use ? position_of_homogeneous(t, args[0]) : "";
+    if (!point.empty()) {
+      ctx.fix(f, "matrix", vars,
+              {{t.span(args[0]), fmt::format("float4({} + {}, 1)", point, pre_view)}, {t.span(id), twin}});
+      return;
+    }
+    f.withheld.push_back(fmt::format("`{}` is used as `{}` (line {}): the code around it must move to translated world by hand",
+                                     t.text(id), shortened(t.text(parent)), line_of(t, parent)));
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Check> make_translated_member(const RuleInfo& rule) { return std::make_unique<TranslatedMember>(rule); }
+
+}  // namespace lwc::checks
