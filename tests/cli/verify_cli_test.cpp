@@ -183,7 +183,8 @@ TEST(VerifyCli, AMaterialIncludeIsVerifiedWithItsIncludersContext) {
 
 // Inputs take their roles from the world-space model where it has a kind for them: UE4's
 // `LightPositionAndInvRadius` is an absolute position by the model (by its name alone, a local
-// one), so the float32 original is caught at large coordinates. `--explain` says what decided each
+// one), a light's, a second point near the object's, so the float32 original is caught at large
+// coordinates. `--explain` says what decided each
 // role. A unitless result (a colour) is judged within 2^-12, not in float32 ULPs: SunAndFog's
 // original, 5.6e-6 off in a colour with the camera at the origin, is float32 itself, not a failure.
 TEST(VerifyCli, InputRolesComeFromTheModelAndExplainSaysSo) {
@@ -191,8 +192,8 @@ TEST(VerifyCli, InputRolesComeFromTheModelAndExplainSaysSo) {
   test::Run r = test::run(test::binary() + " verify " + corpus + "ue4/DeferredLightPixelShaders.usf " + corpus +
                           "glsl/SunAndFog.frag --explain --fail-on none 2>&1");
   EXPECT_EQ(r.exit_code, 0) << r.out;
-  EXPECT_NE(r.out.find("  input `LightPositionAndInvRadius` (float4): an absolute world position (the object's point); by the "
-                       "world-space model (kind absolute-position)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  input `LightPositionAndInvRadius` (float4): a light's absolute position (0.5 to 50 m from the object's "
+                       "point); by the world-space model (kind absolute-position)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("  input `ScreenPosition` (parameter 1, float4): a local position (within 100 cm of its origin); by its name"),
             std::string::npos) << r.out;
   EXPECT_NE(r.out.find("SetupLightDataForStandardDeferred: original (float32) input-limited"), std::string::npos) << r.out;

@@ -85,6 +85,7 @@ constexpr double kTile = 2097152.0;  // LWC_DF_TILE_SIZE
 // a unit direction N and the view rotation V. Everything else derives from these, in double.
 struct State {
   Vec camera{}, origin{}, local{}, direction{};
+  Vec light{};  // a light near the object's point: a second absolute point (light code has two)
   std::array<double, 9> rotation_scale{};  // column-major 3x3
   std::array<double, 9> view{};
   bool edge = false;              // +-0, denormals, Inf, NaN: judged against what the original does
@@ -332,6 +333,7 @@ State make_state(size_t invocation) {
   all[invocation % all.size()].make(r, s);
   s.camera = pair_exact(s.camera);
   s.origin = pair_exact(s.origin);
+  s.light = pair_exact(near(r, s.world(), 50, 5000));
   return s;
 }
 
@@ -348,6 +350,7 @@ bool camera_word(const std::string& n) {
 
 // What a value is (LWC-BRIEF terms), from its name: positions, matrices, directions.
 enum class Role { camera, translated_camera, pre_view_translation, world_position, translated_position, object_origin,
+                  light, translated_light,
                   local_position, direction, model, translated_model, world_to_local, model_normal, rotation_scale,
                   view, translated_view, view_projection, translated_view_projection, world_view_projection, projection,
                   other };
@@ -371,6 +374,7 @@ Role role_of(const std::string& raw, int components) {
   }
   if (has(n, "previewtranslation")) return Role::pre_view_translation;
   if (camera_word(n)) return has(n, "translated") ? Role::translated_camera : Role::camera;
+  if (has(n, "light") && (has(n, "pos") || has(n, "location"))) return has(n, "translated") ? Role::translated_light : Role::light;
   if (has(n, "translation")) return Role::object_origin;
   if (has(n, "normal") || has(n, "tangent") || has(n, "direction") || has(n, "dir")) return Role::direction;
   if (has(n, "relative") || has(n, "offset")) return Role::local_position;  // small by name: relative to something
@@ -429,8 +433,9 @@ Role role_for(const std::string& name, int components, std::optional<Kind> kind)
   };
   bool matrix = components >= 9;
   switch (*kind) {
-    case Kind::absolute: return matrix ? by_name : keep({Role::camera, Role::world_position, Role::object_origin}, Role::world_position);
-    case Kind::translated: return matrix ? by_name : keep({Role::translated_camera, Role::translated_position}, Role::translated_position);
+    case Kind::absolute: return matrix ? by_name : keep({Role::camera, Role::world_position, Role::object_origin, Role::light}, Role::world_position);
+    case Kind::translated:
+      return matrix ? by_name : keep({Role::translated_camera, Role::translated_position, Role::translated_light}, Role::translated_position);
     case Kind::camera_offset: return matrix ? by_name : Role::pre_view_translation;
     case Kind::direction: return matrix ? by_name : Role::direction;
     case Kind::local: return matrix ? by_name : keep({Role::local_position, Role::direction, Role::other}, Role::local_position);
@@ -485,6 +490,8 @@ std::string_view role_text(Role role) {
     case Role::world_position: return "an absolute world position (the object's point)";
     case Role::translated_position: return "the object's point relative to the camera";
     case Role::object_origin: return "the object's origin";
+    case Role::light: return "a light's absolute position (0.5 to 50 m from the object's point)";
+    case Role::translated_light: return "that light relative to the camera";
     case Role::local_position: return "a local position (within 100 cm of its origin)";
     case Role::direction: return "a unit direction";
     case Role::model: return "the object's local-to-world matrix";
@@ -505,7 +512,13 @@ std::string_view role_text(Role role) {
 
 bool world_units(Role r) {
   return r == Role::camera || r == Role::translated_camera || r == Role::pre_view_translation || r == Role::world_position ||
-         r == Role::translated_position || r == Role::object_origin || r == Role::local_position;
+         r == Role::translated_position || r == Role::object_origin || r == Role::local_position || r == Role::light ||
+         r == Role::translated_light;
+}
+
+double light_inverse_radius(const State& s) {
+  Vec d = sub(s.light, s.world());
+  return 1.0 / (4.0 * std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) + 1e-30);
 }
 
 // The value of a role in `state`, as `components` doubles (matrices column-major, column-vector
@@ -535,6 +548,10 @@ std::vector<double> role_value(Role role, int components, const State& s, uint64
     case Role::world_position: return vec(s.world(), 1);
     case Role::translated_position: return vec(sub(s.world(), s.camera), 1);
     case Role::object_origin: return vec(s.origin, 1);
+    // A float4 light carries its inverse radius in w (`LightPositionAndInvRadius`): a radius four
+    // times the light's distance, so the attenuation it drives stays well inside (0, 1).
+    case Role::light: return vec(s.light, light_inverse_radius(s));
+    case Role::translated_light: return vec(sub(s.light, s.camera), light_inverse_radius(s));
     case Role::local_position: return vec(s.local, 1);
     case Role::direction: return vec(s.direction, 0);
     case Role::model: return mat(model());
@@ -997,6 +1014,10 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     Role role = role_for(base, leaf.components, kind);
     bool bare_half = half != Half::none && base.empty();
     if (bare_half) role = Role::world_position;  // a bare `high`/`low` pair
+    // A member of a light's struct or uniform buffer (`DeferredLightUniforms.Position`): the
+    // light's position, the second point of light code, not the object's.
+    if (has(lower(leaf.path), "light") && (role == Role::world_position || role == Role::translated_position))
+      role = role == Role::world_position ? Role::light : Role::translated_light;
     if (source)
       *source = bare_half ? "by its name (a bare high/low half)"
                 : kind && *kind != Kind::unknown ? fmt::format("by the world-space model (kind {})", kind_name(*kind))
