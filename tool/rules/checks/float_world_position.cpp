@@ -111,8 +111,6 @@ class FloatWorldPosition : public Check {
   }
 
   RewritePlan plan_translated(const CheckContext& ctx, int var, const DeclaredNames& names) const {
-    const SyntaxTree& t = ctx.tree;
-    const Variable& v = ctx.world.variables()[var];
     RewritePlan plan;
     if (std::string why = move_local(ctx, names, var, true, plan, 0); !why.empty()) return withheld(why);
     return plan;
