@@ -1014,10 +1014,13 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     Role role = role_for(base, leaf.components, kind);
     bool bare_half = half != Half::none && base.empty();
     if (bare_half) role = Role::world_position;  // a bare `high`/`low` pair
-    // A member of a light's struct or uniform buffer (`DeferredLightUniforms.Position`): the
-    // light's position, the second point of light code, not the object's.
-    if (has(lower(leaf.path), "light") && (role == Role::world_position || role == Role::translated_position))
-      role = role == Role::world_position ? Role::light : Role::translated_light;
+    // A member of a light's struct or uniform buffer (`DeferredLightUniforms.Position`, the
+    // `Position` of an FDeferredLightData parameter): the light's position, the second point of
+    // light code, not the object's.
+    bool of_light = has(lower(leaf.path + " " + leaf.owner), "light");
+    bool named_position = has(lower(leaf.name), "pos");
+    if (of_light && (role == Role::world_position || role == Role::translated_position || (role == Role::local_position && named_position)))
+      role = role == Role::translated_position || has(lower(leaf.name), "translated") ? Role::translated_light : Role::light;
     if (source)
       *source = bare_half ? "by its name (a bare high/low half)"
                 : kind && *kind != Kind::unknown ? fmt::format("by the world-space model (kind {})", kind_name(*kind))

@@ -214,8 +214,11 @@ bool collect_leaves(const Structs& structs, const std::string& type, const std::
     leaf.integer = true;
   } else if (auto s = structs.find(type); s != structs.end()) {
     bool ok = true;
+    size_t first = out.size();
     for (const Field& f : s->second)
       ok &= collect_leaves(structs, f.type, path + "." + f.name, f.name, f.semantic, out, offset, depth + 1);
+    for (size_t i = first; i < out.size(); ++i)
+      if (out[i].owner.empty()) out[i].owner = type;
     return ok;
   } else {
     return false;

@@ -23,6 +23,7 @@ struct Leaf {
   std::string name;      // the last name in the path, for its role (`WorldCameraOrigin`)
   std::string type;      // the declared type (`float3`, `FDFVector3`, `mat4`)
   std::string semantic;  // HLSL semantic, if any (`SV_POSITION`)
+  std::string owner;     // the struct it is a member of, if any (`FDeferredLightData`), for its role
   Encoding encoding = Encoding::plain;
   int components = 1;    // values it stands for: 3 for float3 and FDFVector3, 16 for a 4x4 matrix
   int width = 1;         // floats it takes in a record
