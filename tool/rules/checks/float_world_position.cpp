@@ -182,12 +182,8 @@ class FloatWorldPosition : public Check {
       plan.edits.push_back({t.span(args[1]), m});
     } else if (std::string p = position_of_homogeneous(t, args[0]); !p.empty() && !translation.empty()) {
       // The library call gives the 3-vector; a 4-vector value keeps its w of 1.
-      // UE4's primitive uniform buffer is read through a call in UE5.
-      std::string m(t.text(matrix));
-      int base = t.child_by_field(matrix, "argument");
-      if (t.is(base, "identifier") && t.text(base) == uniform_buffer_ && ctx.world.variable_at(base) < 0)
-        m = uniform_buffer_call_ + m.substr(uniform_buffer_.size());
-      std::string call = fmt::format("DFTransformLocalToTranslatedWorld({}, {}, PrimaryView.{})", p, m, translation);
+      std::string call = fmt::format("DFTransformLocalToTranslatedWorld({}, {}, PrimaryView.{})", p,
+                                     ue5_spelling(ctx, matrix, uniform_buffer_, uniform_buffer_call_), translation);
       plan.edits.push_back({t.span(value), mul == value ? fmt::format("float4({}, 1)", call) : call});
     } else {
       return fmt::format("its matrix `{}` has no translated twin", shortened(t.text(args[1])));

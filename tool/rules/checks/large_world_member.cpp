@@ -175,9 +175,8 @@ class LargeWorldMember : public Check {
   void offer_fix(const CheckContext& ctx, Finding& f, int id, const Use& use, Kind kind, UnrealEra era, Vars vars) const {
     const SyntaxTree& t = ctx.tree;
     // UE4's primitive uniform buffer: UE5 reads the same data through a call.
-    int base = t.child_by_field(id, "argument");
-    std::string object(t.text(base));
-    if (t.is(base, "identifier") && object == uniform_buffer_ && ctx.world.variable_at(base) < 0) object = uniform_buffer_call_;
+    bool respelled = ue5_spelling(ctx, id, uniform_buffer_, uniform_buffer_call_) != t.text(id);
+    std::string object = respelled ? uniform_buffer_call_ : std::string(t.text(t.child_by_field(id, "argument")));
     LargeWorldValue value{use.node, object + "." + vars["member"], kind, object, vars["member"]};
     vars["marker"] = era == UnrealEra::ue5_0 ? "LWCHackToFloat" : "DFHackToFloat";
     if (auto row = translation_row_at(ctx, id)) {
@@ -224,9 +223,9 @@ class LargeWorldMember : public Check {
     vars["call"] = era == UnrealEra::ue5_0 ? "LWCMultiplyTranslation" : "DFFastToTranslatedWorld";
     vars["matrix"] = shortened(t.text(row.matrix));
     if (large_world_matrix(ctx, row.matrix, era)) {
-      std::string translation = engine_text(ctx, undemoted(t, row.translation));
+      std::string translation = ue5_spelling(ctx, undemoted(t, row.translation), uniform_buffer_, uniform_buffer_call_);
       if (translation.starts_with("View.")) translation = "Primary" + translation;
-      std::vector<Edit> edits{{t.span(local.init), fmt::format("{}({}, {})", vars["call"], engine_text(ctx, row.matrix), translation)}};
+      std::vector<Edit> edits{{t.span(local.init), fmt::format("{}({}, {})", vars["call"], ue5_spelling(ctx, row.matrix, uniform_buffer_, uniform_buffer_call_), translation)}};
       for (int s : row.statements) edits.push_back({whole_lines(t, s), ""});
       ctx.fix(f, "translated-row", vars, std::move(edits));
       return;
@@ -259,15 +258,6 @@ class LargeWorldMember : public Check {
   bool large_world_matrix(const CheckContext& ctx, int node, UnrealEra era) const {
     Kind kind = ctx.world.kind(node);
     return (is_matrix(kind) || kind == Kind::unknown) && large_world_value(ctx, node, era);
-  }
-
-  // An engine member as UE5 reads it: UE4's primitive uniform buffer through its call.
-  std::string engine_text(const CheckContext& ctx, int node) const {
-    const SyntaxTree& t = ctx.tree;
-    int base = t.is(node, "field_expression") ? t.child_by_field(node, "argument") : -1;
-    if (base >= 0 && t.is(base, "identifier") && t.text(base) == uniform_buffer_ && ctx.world.variable_at(base) < 0)
-      return uniform_buffer_call_ + std::string(t.text(node)).substr(uniform_buffer_.size());
-    return std::string(t.text(node));
   }
 
   std::map<std::string, std::string> objects_;  // engine global or call -> its struct

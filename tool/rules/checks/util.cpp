@@ -140,6 +140,15 @@ std::string translated_name(const std::string& name) {
 
 int line_of(const SyntaxTree& tree, int node) { return tree.source->position(tree.at(node).begin).line; }
 
+std::string ue5_spelling(const CheckContext& ctx, int node, const std::string& buffer, const std::string& call) {
+  const SyntaxTree& t = ctx.tree;
+  std::string text(t.text(node));
+  int base = t.is(node, "field_expression") ? t.child_by_field(node, "argument") : -1;
+  if (base >= 0 && t.is(base, "identifier") && t.text(base) == buffer && ctx.world.variable_at(base) < 0)
+    return call + text.substr(buffer.size());
+  return text;
+}
+
 int defined_function(const SyntaxTree& tree, std::string_view name) {
   int found = -1;
   for (int fn : nodes_of(tree, "function_definition")) {

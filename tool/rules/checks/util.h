@@ -23,6 +23,10 @@ std::vector<std::string> string_list(const nlohmann::json& data, const char* key
 bool matches_any(const std::vector<std::string>& globs, std::string_view text);
 // The name of a function definition when it is a plain identifier, or -1.
 int function_name(const SyntaxTree& tree, int definition);
+// An engine member as UE5 spells it: UE4's primitive uniform buffer (`buffer`, `Primitive.X`,
+// when the file does not declare that name itself) is read through a call in UE5 (`call`,
+// `GetPrimitiveDataFromUniformBuffer().X`); anything else as written.
+std::string ue5_spelling(const CheckContext& ctx, int node, const std::string& buffer, const std::string& call);
 // The one definition of a function of this file called `name` (-1 when none, or overloads).
 int defined_function(const SyntaxTree& tree, std::string_view name);
 // True when `node` is `base.name`: that member or swizzle of that expression.
