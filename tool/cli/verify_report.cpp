@@ -77,8 +77,18 @@ void print_library_text(std::ostream& out, const std::string& device, const Driv
   std::string header = fmt::format("{:<33} {:<17}", "operation", "inputs");
   for (Lang lang : langs) header += fmt::format(" {:>9} {:>9}", fmt::format("{} max", lang_label(lang)), "median");
   out << header << fmt::format("  {:<40} {}\n", "published bound", "result");
-  std::vector<std::string> details, outside;
-  std::string outside_example;
+  // Inputs outside the library's domain that miss the bound, by reason: "op (misses of inputs)".
+  struct OutsideList {
+    std::vector<std::string> entries;
+    std::string example;
+  } beyond_split_limit, denormal_range;
+  auto note_outside = [](OutsideList& list, const std::string& op, const OpMeasurement::Outside& o) {
+    if (!o.misses) return;
+    std::string entry = fmt::format("{} ({} of {})", op, o.misses, o.inputs);
+    if (std::find(list.entries.begin(), list.entries.end(), entry) == list.entries.end()) list.entries.push_back(entry);
+    if (list.example.empty()) list.example = o.example;
+  };
+  std::vector<std::string> details;
   for (const OpReport& r : accuracy.ops) {
     std::string row = fmt::format("{:<33} {:<17}", r.op->name(), family_name(r.op->inputs));
     std::string result;
@@ -88,11 +98,8 @@ void print_library_text(std::ostream& out, const std::string& device, const Driv
       std::string s = short_status(m.status);
       if (result.empty()) result = s;
       else if (result != s) result += "/" + s;
-      if (m.outside_domain_misses) {
-        std::string entry = fmt::format("{} ({} of {})", r.op->name(), m.outside_domain_misses, m.outside_domain_inputs);
-        if (std::find(outside.begin(), outside.end(), entry) == outside.end()) outside.push_back(entry);
-        if (outside_example.empty()) outside_example = m.outside_domain_example;
-      }
+      note_outside(beyond_split_limit, r.op->name(), m.beyond_split_limit);
+      note_outside(denormal_range, r.op->name(), m.denormal_range);
       if (m.status != "pass") {
         std::string why = m.status;
         if (m.non_canonical) why += fmt::format(" ({} results not canonical)", m.non_canonical);
@@ -105,13 +112,23 @@ void print_library_text(std::ostream& out, const std::string& device, const Driv
     out << '\n';
     for (const std::string& d : details) out << d << '\n';
   }
-  if (!outside.empty())
+  if (!beyond_split_limit.entries.empty())
     out << fmt::format("\nOutside the domain: beyond Dekker's split limit (|operand| above 8.3e34, where 4097 * A overflows) these "
                        "miss the bound, their inputs counted apart (world values stay below 2^43 cm, their products below 2^86): {}\n"
-                       "  e.g. {}\n", fmt::join(outside, ", "), outside_example);
+                       "  e.g. {}\n", fmt::join(beyond_split_limit.entries, ", "), beyond_split_limit.example);
+  if (!denormal_range.entries.empty())
+    out << fmt::format("\nOutside the domain: this driver flushes denormals (Vulkan allows it), so with low parts below 2^-126 "
+                       "these miss the bound, their inputs counted apart (world values, and their error terms, stay far above "
+                       "2^-100 cm): {}\n  e.g. {}\n", fmt::join(denormal_range.entries, ", "), denormal_range.example);
   out << fmt::format("\n{}: pipelines {:.2f} s, dispatches {:.2f} s.\n",
                      accuracy.failed() ? "FAILED" : "All bounds hold", accuracy.pipeline_seconds, accuracy.dispatch_seconds);
 }
+
+namespace {
+nlohmann::json outside_json(const OpMeasurement::Outside& o) {
+  return {{"inputs", o.inputs}, {"missingTheBound", o.misses}, {"example", o.example}};
+}
+}  // namespace
 
 void print_library_json(std::ostream& out, const std::string& device, const DriverProbes& probes,
                         const LibraryAccuracy& accuracy, size_t inputs) {
@@ -140,8 +157,8 @@ void print_library_json(std::ostream& out, const std::string& device, const Driv
                                   {"medianRelativeError", m.median_relative},
                                   {"maxErrorOverBound", std::isfinite(m.max_bound_ratio) ? json(m.max_bound_ratio) : json(nullptr)},
                                   {"nonCanonicalResults", m.non_canonical},
-                                  {"outsideDomain", {{"inputs", m.outside_domain_inputs}, {"missingTheBound", m.outside_domain_misses},
-                                                     {"example", m.outside_domain_example}}},
+                                  {"outsideDomain", {{"beyondSplitLimit", outside_json(m.beyond_split_limit)},
+                                                     {"denormalRange", outside_json(m.denormal_range)}}},
                                   {"inputs", m.inputs},
                                   {"worst", m.worst}};
     ops.push_back({{"operation", r.op->name()}, {"inputs", family_name(r.op->inputs)}, {"bound", r.op->bound.text},

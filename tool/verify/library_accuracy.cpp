@@ -75,7 +75,8 @@ using CaseMaker = std::function<Operands(Random&)>;
 struct NamedCase {
   std::string name;
   CaseMaker make;
-  bool beyond_split_limit = false;  // outside the domain of Dekker's product (see measure)
+  // Outside the library's domain on some drivers (see measure).
+  enum class Domain { inside, beyond_split_limit, denormal_range } domain = Domain::inside;
 };
 
 // B relative to A by a factor (1 + t): t small makes them cancel (negative factor) or close.
@@ -150,6 +151,7 @@ std::vector<NamedCase> adversarial_cases(InputFamily family) {
     float hi = r.magnitude(-125, -100), lo = std::ldexp(static_cast<float>(r.integer(1, 1000)), -149);
     return Operands{to_pair(dd::from(hi, lo)), to_pair(dd::from(r.magnitude(-125, -100), -lo))};
   });
+  if (!cases.empty() && cases.back().name == "denormal low parts") cases.back().domain = NamedCase::Domain::denormal_range;
   add(family == F::close, "object 12.34 cm from a camera 2^42 cm away", [](Random& r) {
     Value camera = dd::from(std::ldexp(1.0, 42), r.uniform() * 1000);
     Value object = dd::add(camera, dd::from(12.34 * r.sign()));
@@ -185,7 +187,7 @@ std::vector<NamedCase> adversarial_cases(InputFamily family) {
     bool divides = family == F::quotient;
     return Operands{r.pair(117, 126), divides ? r.pair(10, 40) : r.pair(-40, -12)};
   });
-  if (!cases.empty() && cases.back().name.starts_with("beyond Dekker")) cases.back().beyond_split_limit = true;
+  if (!cases.empty() && cases.back().name.starts_with("beyond Dekker")) cases.back().domain = NamedCase::Domain::beyond_split_limit;
   add(family == F::quotient, "A = B", [](Random& r) {
     Pair a = r.pair(-40, 40);
     return Operands{a, a};
@@ -330,8 +332,10 @@ std::string kernel_body(const LibraryOp& op, Lang lang) {
 }
 
 // `dekker`: the operation multiplies with Dekker's split here, so inputs beyond its limit are
-// outside the library's domain: counted apart, not judged against the bound.
-OpMeasurement measure(const LibraryOp& op, const std::vector<Operands>& inputs, const std::vector<float>& out, bool dekker) {
+// outside the library's domain; `flushes`: the driver flushes denormals, so denormal low parts
+// are. Both are counted apart, not judged against the bound.
+OpMeasurement measure(const LibraryOp& op, const std::vector<Operands>& inputs, const std::vector<float>& out, bool dekker,
+                      bool flushes) {
   OpMeasurement m;
   m.inputs = inputs.size();
   std::vector<NamedCase> cases = adversarial_cases(op.inputs);
@@ -350,9 +354,15 @@ OpMeasurement measure(const LibraryOp& op, const std::vector<Operands>& inputs, 
     double rel = error == 0 ? 0 : magnitude == 0 ? std::numeric_limits<double>::infinity() : error / magnitude;
     double allowed = allowed_error(op.bound, exact, in);
     double ratio = error == 0 ? 0 : allowed == 0 ? std::numeric_limits<double>::infinity() : error / allowed;
-    if (dekker && in.case_id > 0 && cases[in.case_id - 1].beyond_split_limit) {
-      ++m.outside_domain_inputs;
-      if (!(ratio <= 1) && m.outside_domain_misses++ == 0) m.outside_domain_example = worst_case_text(op, in, exact, hi, lo);
+    using D = NamedCase::Domain;
+    D domain = in.case_id > 0 ? cases[in.case_id - 1].domain : D::inside;
+    OpMeasurement::Outside* outside = domain == D::beyond_split_limit && dekker ? &m.beyond_split_limit
+                                      : domain == D::denormal_range && flushes ? &m.denormal_range
+                                                                               : nullptr;
+    if (outside) {
+      ++outside->inputs;
+      bool canonical = !op.pair_result || !std::isfinite(hi) || hi + lo == hi;
+      if (!(ratio <= 1 && canonical) && outside->misses++ == 0) outside->example = worst_case_text(op, in, exact, hi, lo);
       continue;
     }
     if (op.pair_result && std::isfinite(hi) && hi + lo != hi) ++m.non_canonical;
@@ -500,7 +510,7 @@ std::vector<FloatOperands> float_operands(InputFamily family, size_t count) {
   std::vector<NamedCase> cases = adversarial_cases(family);
   std::vector<FloatOperands> out;
   for (size_t c = 0; c < cases.size() && out.size() < count; ++c)
-    for (int i = 0; i < 256 && !cases[c].beyond_split_limit; ++i) {
+    for (int i = 0; i < 256 && cases[c].domain != NamedCase::Domain::beyond_split_limit; ++i) {
       Operands o = cases[c].make(r);
       out.push_back({o.a.hi, o.b.hi, static_cast<int>(c)});
     }
@@ -573,7 +583,7 @@ LibraryAccuracy check_library(WorkerDevice& device, const DriverProbes& probes, 
       for (double s : timing.dispatch_seconds) result.dispatch_seconds += s;
       bool dekker = (op.inputs == InputFamily::product || op.inputs == InputFamily::quotient) &&
                     (op.call.find("Dekker") != std::string::npos || (!probes.fuses_fma() && !op.needs_fused_fma));
-      m = measure(op, inputs, from_bytes<float>(buffers[1]), dekker);
+      m = measure(op, inputs, from_bytes<float>(buffers[1]), dekker, !probes.keeps_denormals());
       if (op.needs_fused_fma && !probes.fuses_fma())
         m.status = "reported: needs a fused fma, and the probe shows this driver does not fuse it";
       else if (op.bound.kind == Bound::none)

@@ -68,10 +68,15 @@ struct OpMeasurement {
   double median_relative = 0;
   double max_bound_ratio = 0;  // max |error| / allowed error (> 1 fails)
   int non_canonical = 0;     // pair results with High + Low != High in float32
-  // Inputs beyond Dekker's split limit where the operation multiplies with it: outside the
-  // library's domain (world values stay below 2^43 cm), counted apart from the judged inputs.
-  size_t outside_domain_inputs = 0, outside_domain_misses = 0;
-  std::string outside_domain_example;  // the first input there outside the bound
+  // Inputs outside the library's domain, counted apart from the judged inputs: beyond Dekker's
+  // split limit where the operation multiplies with it (world values stay below 2^43 cm), and
+  // denormal low parts on a driver that flushes denormals (Vulkan allows it; world values stay
+  // far above 2^-100 cm).
+  struct Outside {
+    size_t inputs = 0, misses = 0;
+    std::string example;  // the first input there outside the bound
+  };
+  Outside beyond_split_limit, denormal_range;
   size_t inputs = 0;
   std::string worst;         // the worst input: its case, operands, expected and measured results
 };
