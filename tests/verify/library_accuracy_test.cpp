@@ -2,6 +2,7 @@
 // meets every published bound, and the known-bad variants are caught (LWC-BRIEF §4-§5).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <regex>
 
@@ -106,6 +107,19 @@ TEST_F(LibraryOnLavapipe, DenormalLowPartsAreOutsideTheDomainOnlyWhereTheDriverF
   EXPECT_EQ(flushed.denormal_range.misses, 0u);  // lavapipe keeps them: nothing missed, only not judged
   EXPECT_EQ(flushed.inputs, kept.inputs);
   EXPECT_EQ(flushed.worst.find("denormal"), std::string::npos) << flushed.worst;
+}
+
+// A shader's own TwoSum gets the same operands, the same way.
+TEST(FloatOperands, DenormalLowPartsAreLeftOutOnlyWhereTheDriverFlushes) {
+  std::vector<std::string> names = adversarial_case_names(InputFamily::sum);
+  int denormal = static_cast<int>(std::find(names.begin(), names.end(), "denormal low parts") - names.begin());
+  ASSERT_LT(denormal, static_cast<int>(names.size()));
+  auto count = [&](bool flushes) {
+    std::vector<FloatOperands> ops = float_operands(InputFamily::sum, 16384, flushes);
+    return std::count_if(ops.begin(), ops.end(), [&](const FloatOperands& o) { return o.case_index == denormal; });
+  };
+  EXPECT_EQ(count(false), 256);
+  EXPECT_EQ(count(true), 0);
 }
 
 TEST_F(LibraryOnLavapipe, LibraryWithoutPreciseIsCaughtByTheSpirvAndTheNumbers) {

@@ -1005,7 +1005,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
   // failure modes: the same values in float32 and in float64.
   std::vector<FloatOperands> operands;
   if (auto it = setup.facts.error_free.find(function); it != setup.facts.error_free.end())
-    operands = float_operands(operand_family(it->second), n);
+    operands = float_operands(operand_family(it->second), n, !probes.keeps_denormals());
 
   // An input's role (role_for), and `source` what decided it.
   auto input_role = [&](const Leaf& leaf, std::string* source = nullptr) {

@@ -505,12 +505,14 @@ std::map<std::string, std::string> library_faults(const LibraryAccuracy& accurac
   return faults;
 }
 
-std::vector<FloatOperands> float_operands(InputFamily family, size_t count) {
+std::vector<FloatOperands> float_operands(InputFamily family, size_t count, bool flushes_denormals) {
   Random r(0x6566742d6f7073ull);
   std::vector<NamedCase> cases = adversarial_cases(family);
   std::vector<FloatOperands> out;
   for (size_t c = 0; c < cases.size() && out.size() < count; ++c)
-    for (int i = 0; i < 256 && cases[c].domain != NamedCase::Domain::beyond_split_limit; ++i) {
+    for (int i = 0; i < 256 && cases[c].domain != NamedCase::Domain::beyond_split_limit &&
+                    !(flushes_denormals && cases[c].domain == NamedCase::Domain::denormal_range);
+         ++i) {
       Operands o = cases[c].make(r);
       out.push_back({o.a.hi, o.b.hi, static_cast<int>(c)});
     }

@@ -108,13 +108,14 @@ LibraryAccuracy check_library(WorkerDevice& device, const DriverProbes& probes, 
 std::map<std::string, std::string> library_faults(const LibraryAccuracy& accuracy, Lang lang);
 
 // Plain float operands for a shader's own error-free transformation (a TwoSum or Split helper):
-// the family's adversarial cases (inputs beyond Dekker's split limit left out), then random
+// the family's adversarial cases (inputs beyond Dekker's split limit left out, and denormal low
+// parts where the driver flushes them: outside the domain, as in check_library), then random
 // ones; the same every run.
 struct FloatOperands {
   float a = 0, b = 0;
   int case_index = -1;  // into adversarial_case_names(family); -1: random
 };
-std::vector<FloatOperands> float_operands(InputFamily family, size_t count);
+std::vector<FloatOperands> float_operands(InputFamily family, size_t count, bool flushes_denormals);
 
 // The named adversarial cases of a family (LWC-BRIEF §6), for docs and messages.
 std::vector<std::string> adversarial_case_names(InputFamily family);
