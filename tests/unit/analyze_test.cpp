@@ -210,6 +210,19 @@ TEST(UnrealEras, AnArmForAnOlderEngineIsThatEnginesCode) {
   EXPECT_EQ(major[2].era, UnrealEra::ue4);
 }
 
+// A CRLF file's '\r' and a comment after the condition are not part of it (a plugin saved on
+// Windows kept its UE4 tessellation arm in the findings); tessellation is UE4's alone.
+TEST(EraArms, CrlfCommentsAndTheTessellationSwitch) {
+  auto arms = era_guarded_arms("#if USING_TESSELLATION\r\nA\r\n#endif // USING_TESSELLATION\r\n"
+                               "#if UE4_COMPAT // the old path\r\nB\r\n#else\r\nC\r\n#endif\r\n"
+                               "#if ENGINE_MAJOR_VERSION >= 5 /* UE5 */\r\nD\r\n#endif\r\n");
+  ASSERT_EQ(arms.size(), 4u);
+  EXPECT_EQ(arms[0].era, UnrealEra::ue4);
+  EXPECT_EQ(arms[1].era, UnrealEra::ue4);
+  EXPECT_EQ(arms[2].era, UnrealEra::ue5_0);
+  EXPECT_EQ(arms[3].era, UnrealEra::ue5_0);
+}
+
 }  // namespace
 }  // namespace lwc
 

@@ -127,6 +127,16 @@ int SyntaxTree::subscript_index(int subscript) const {
   return list >= 0 ? named_child(list) : -1;
 }
 
+int SyntaxTree::cast_written_as_call(int call) const {
+  if (!is(call, "call_expression")) return -1;
+  int fn = child_by_field(call, "function");
+  int args = child_by_field(call, "arguments");
+  if (!is(fn, "parenthesized_expression") || args < 0 || named_children(fn).size() != 1 || named_children(args).size() != 1)
+    return -1;
+  int type = named_child(fn);
+  return is(type, "identifier") || is(type, "type_identifier") || is(type, "primitive_type") ? type : -1;
+}
+
 namespace {
 
 struct ParserDeleter {

@@ -81,6 +81,10 @@ class SyntaxTree {
   int declarator_name(int declarator) const;
   // The index expression of a subscript (`M[3]`: the `3`), in both grammars, or -1.
   int subscript_index(int subscript) const;
+  // `(float3x3)(X)`: a cast whose operand is parenthesised is parsed as a call of the parenthesised
+  // type name. That name's node when `call` is such a call with one argument, else -1 (the caller
+  // decides whether the name is a type).
+  int cast_written_as_call(int call) const;
 
  private:
   mutable std::vector<std::pair<const char*, std::vector<int>>> by_type_pointer_;  // every node, by its type's string

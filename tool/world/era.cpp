@@ -60,9 +60,11 @@ namespace {
 // The engine an #if condition selects when true: UE4, UE5 (as 5.0), or nothing it says.
 std::optional<UnrealEra> condition_era(std::string_view keyword, std::string_view condition) {
   bool negated = keyword == "ifndef";
+  // A comment after the condition is not part of it; nor is a CRLF file's '\r'.
+  condition = condition.substr(0, std::min(condition.find("//"), condition.find("/*")));
   std::string c;
   for (char ch : condition)
-    if (ch != ' ' && ch != '\t' && ch != '(' && ch != ')') c += ch;
+    if (!std::isspace(static_cast<unsigned char>(ch)) && ch != '(' && ch != ')') c += ch;
   if (c.rfind("!", 0) == 0) {
     negated = !negated;
     c.erase(0, 1);
@@ -73,7 +75,8 @@ std::optional<UnrealEra> condition_era(std::string_view keyword, std::string_vie
     if (rest == "==4" || rest == "<5" || rest == "<=4") era = UnrealEra::ue4;
     else if (rest == "==5" || rest == ">=5" || rest == ">4") era = UnrealEra::ue5_0;
   } else if (std::all_of(c.begin(), c.end(), [](char ch) { return ident_char(ch); })) {
-    if (c.find("UE4") != std::string::npos) era = UnrealEra::ue4;
+    // Hardware tessellation left the engine in UE 5.0: no UE5 build defines its switch.
+    if (c.find("UE4") != std::string::npos || c == "USING_TESSELLATION") era = UnrealEra::ue4;
     else if (c.find("UE5") != std::string::npos) era = UnrealEra::ue5_0;
   }
   if (era && negated) era = *era == UnrealEra::ue4 ? UnrealEra::ue5_0 : UnrealEra::ue4;

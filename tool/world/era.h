@@ -37,7 +37,8 @@ struct UnrealTarget {
 };
 
 // Preprocessor arms that say which engine they are for: `#if UE4_COMPAT` / `#else`,
-// `#if ENGINE_MAJOR_VERSION >= 5`, `#ifdef UE5_...`. Each arm guarded so, with its era (UE4, or
+// `#if ENGINE_MAJOR_VERSION >= 5`, `#ifdef UE5_...`, `#if USING_TESSELLATION` (UE4 only: UE 5.0
+// removed hardware tessellation). Each arm guarded so, with its era (UE4, or
 // ue5_0 standing for any UE5): a UE4 arm of code built against UE5 is UE4's, not debt.
 struct EraArm {
   uint32_t begin, end;

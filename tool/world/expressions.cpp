@@ -79,6 +79,10 @@ Kind Analyzer::eval_node(int id, int depth) {
   if (type == "number_literal" || type == "true" || type == "false") return Kind::local;
   if (type == "field_expression") return eval_field(id, depth);
   if (type == "subscript_expression") return eval_subscript(id, depth);
+  if (int cast = t_.cast_written_as_call(id); cast >= 0 && d_.is_float_type(t_.text(cast))) {
+    Kind k = eval(t_.named_child(t_.child_by_field(id, "arguments")), depth);
+    return is_3x3_type(t_.text(cast)) && is_matrix(k) ? Kind::rotation_matrix : k;
+  }
   if (type == "call_expression") return eval_call(id, depth);
   if (type == "binary_expression") return eval_binary(id, depth);
   if (type == "assignment_expression") return eval_assignment(id, depth);

@@ -29,6 +29,7 @@ class FloatWorldPosition : public Check {
   void run(const CheckContext& ctx) const override {
     std::optional<DeclaredNames> names;  // for the rewrites' new names, made at the first one
     for (const AbsoluteHolder& h : ctx.world.absolute_holders()) {
+      if (h.what == AbsoluteHolder::What::parameter && never_read(ctx, h)) continue;
       std::string what = h.what == AbsoluteHolder::What::variable    ? "variable"
                          : h.what == AbsoluteHolder::What::field     ? "field"
                          : h.what == AbsoluteHolder::What::parameter ? "parameter"
@@ -46,6 +47,13 @@ class FloatWorldPosition : public Check {
   }
 
  private:
+  // A parameter the function never reads: what its callers pass is rounded at the call (reported
+  // there, where it is a variable or a member), not here.
+  static bool never_read(const CheckContext& ctx, const AbsoluteHolder& h) {
+    int var = ctx.world.variable_declared_at(h.site);
+    return var >= 0 && ctx.world.uses(var).empty();
+  }
+
   void offer_rewrites(const CheckContext& ctx, Finding& f, const AbsoluteHolder& h, const DeclaredNames& names) const {
     const SyntaxTree& t = ctx.tree;
     int var = ctx.world.variable_declared_at(h.site);

@@ -127,6 +127,10 @@ class LargeWorldMember : public Check {
     if (type == "subscript_expression" && t.child_by_field(p, "argument") == node) return {"indexed by row as a float matrix", p};
     if (type == "argument_list") {
       int call = t.at(p).parent;
+      if (int cast = t.cast_written_as_call(call); cast >= 0) {
+        if (ctx.world.data().is_float_type(t.text(cast))) return {fmt::format("cast to `{}`", t.text(cast)), call};
+        return {};
+      }
       std::string_view callee = call_name(t, call);
       if (callee.empty() || matches_any(lwc_calls_, callee)) return {};
       if (matches_any(float_calls_, callee)) return {fmt::format("passed to `{}`", callee), p};

@@ -27,6 +27,10 @@ LibraryRewrite library_rewrite(const SyntaxTree& t, const WorldData& data, const
   int node = value.node, p = t.at(node).parent;
   while (t.is(p, "parenthesized_expression")) node = p, p = t.at(p).parent;
   if (p < 0) return out;
+  // `(float3x3)(X)` is parsed as a call: the cast is the call, its type the parenthesised name.
+  int cast_type = -1;
+  if (t.is(p, "argument_list") && (cast_type = t.cast_written_as_call(t.at(p).parent)) >= 0) p = t.at(p).parent;
+  else if (t.is(p, "cast_expression")) cast_type = t.child_by_field(p, "type");
   // The operand that stands for the value (through parentheses) is written as the value.
   auto text = [&](int n) {
     int inner = n;
@@ -62,8 +66,8 @@ LibraryRewrite library_rewrite(const SyntaxTree& t, const WorldData& data, const
   if (!is_matrix(value.kind)) return out;
   std::string to3x3 = df ? "DFToFloat3x3" : "LWCToFloat3x3";
   // The rotation of a transform: the era's 3x3 conversion.
-  if (ptype == "cast_expression") {
-    std::string cast(t.text(t.child_by_field(p, "type")));
+  if (cast_type >= 0) {
+    std::string cast(t.text(cast_type));
     if (!cast.ends_with("3x3")) return out;
     std::string call = fmt::format("{}({})", to3x3, value.text);
     out.fix = "rotation";
