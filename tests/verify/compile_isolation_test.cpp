@@ -7,6 +7,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/fork_gate.h"
 #include "verify/compile.h"
 
 namespace lwc {
@@ -48,6 +49,37 @@ TEST(CompileIsolation, ForksBesideThreadsInsideGlslangNeverHang) {
   EXPECT_EQ(isolated_ok, 120);
   EXPECT_EQ(isolated_failed, 0);
   EXPECT_GT(in_process, 0);  // the in-process compiles did run beside the forks
+}
+
+// The include resolver runs in the child too: a cache lock other threads take (the project's include
+// summaries) is taken with ForkSafeLock, so no fork happens while one of them holds it.
+TEST(CompileIsolation, IncludeResolverLocksTakenUnderTheGateNeverHangAChild) {
+  std::mutex cache;
+  int lookups = 0;
+  std::atomic<bool> stop{false};
+  std::vector<std::thread> users;
+  for (int t = 0; t < 3; ++t)
+    users.emplace_back([&] {
+      while (!stop) {
+        ForkSafeLock lock(cache);
+        ++lookups;
+      }
+    });
+  CompileInput in = small_shader(7);
+  in.text = "#version 450\n#extension GL_GOOGLE_include_directive : require\n#include \"scale.glsl\"\n"
+            "layout(local_size_x = 1) in;\nlayout(std430, binding = 0) buffer B { float v[]; };\nvoid main() { v[0] = kScale; }\n";
+  in.include = [&](const std::string& name, const std::string&) -> std::optional<IncludedFile> {
+    ForkSafeLock lock(cache);
+    return IncludedFile{name, "const float kScale = 2.0;\n"};
+  };
+  for (int i = 0; i < 60; ++i) {
+    CompileResult r = compile_shader_isolated(in);
+    EXPECT_TRUE(r.ok) << r.crashed << format_messages(r);
+    if (!r.ok) break;
+  }
+  stop = true;
+  for (std::thread& u : users) u.join();
+  EXPECT_GT(lookups, 0);
 }
 
 }  // namespace

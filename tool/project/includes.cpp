@@ -1,5 +1,7 @@
 #include "project/includes.h"
 
+#include "core/fork_gate.h"
+
 #include <algorithm>
 #include <set>
 
@@ -51,14 +53,14 @@ std::optional<fs::path> IncludeSummaries::resolve(const std::string& include, co
                                                   const ProjectConfig& config) {
   // Resolution depends on the including folder only: cached per folder.
   auto key = std::make_tuple(&config, from.parent_path(), include);
-  std::lock_guard lock(mutex_);
+  ForkSafeLock lock(mutex_);
   auto it = resolved_.find(key);
   if (it == resolved_.end()) it = resolved_.emplace(key, find_include(include, from, config)).first;
   return it->second;
 }
 
 fs::path IncludeSummaries::canonical(const fs::path& p) {
-  std::lock_guard lock(mutex_);
+  ForkSafeLock lock(mutex_);
   auto it = canonical_.find(p);
   if (it != canonical_.end()) return it->second;
   std::error_code ec;
@@ -76,7 +78,7 @@ std::vector<fs::path> IncludeSummaries::resolve_all(const std::vector<std::strin
 
 ReadResult IncludeSummaries::content(const fs::path& file, const ProjectConfig& config) {
   {
-    std::lock_guard lock(mutex_);
+    ForkSafeLock lock(mutex_);
     if (auto it = overlays_.find(file); it != overlays_.end()) return {it->second, "", it->second.size(), false};
   }
   return read_file(file, config.max_file_bytes);
@@ -98,20 +100,20 @@ void IncludeSummaries::scan(Entry& e, const ReadResult& r) {
 
 const IncludeSummaries::Entry& IncludeSummaries::scanned(const fs::path& file, const ProjectConfig& config) {
   {
-    std::lock_guard lock(mutex_);
+    ForkSafeLock lock(mutex_);
     if (auto it = entries_.find(file); it != entries_.end()) return *it->second;
   }
   // Read outside the lock; a file two workers scan together is kept once.
   auto made = std::make_unique<Entry>();
   made->file = file;
   scan(*made, content(file, config));
-  std::lock_guard lock(mutex_);
+  ForkSafeLock lock(mutex_);
   return *entries_.emplace(file, std::move(made)).first->second;
 }
 
 const FileSummary& IncludeSummaries::summarised(const Entry& e, const ProjectConfig& config) {
   {
-    std::lock_guard lock(mutex_);
+    ForkSafeLock lock(mutex_);
     if (e.own) return *e.own;
   }
   // Read with the macros it would be linted with (see offer): what its own includes define.
@@ -124,14 +126,14 @@ const FileSummary& IncludeSummaries::summarised(const Entry& e, const ProjectCon
     *summary = include_summary(src, parse(src, *e.lang, {&macros, 0, config.max_parse_seconds}), config.world_sources,
                                model_context(src, *e.lang, nullptr));
   }
-  std::lock_guard lock(mutex_);
+  ForkSafeLock lock(mutex_);
   if (!e.own) e.own = std::move(summary);
   return *e.own;
 }
 
 void IncludeSummaries::offer(const fs::path& path, Lang lang, const ProjectConfig& config, FileSummary summary) {
   const Entry& e = scanned(canonical(path), config);
-  std::lock_guard lock(mutex_);
+  ForkSafeLock lock(mutex_);
   if (!e.own && e.lang == lang) e.own = std::make_shared<FileSummary>(std::move(summary));
 }
 
@@ -143,7 +145,7 @@ std::vector<fs::path> IncludeSummaries::direct_includes(const fs::path& path, co
 std::vector<const IncludeSummaries::Entry*> IncludeSummaries::closure(const Entry& e, const ProjectConfig& config,
                                                                       std::set<const Entry*>& active) {
   {
-    std::lock_guard lock(mutex_);
+    ForkSafeLock lock(mutex_);
     if (auto it = closures_.find(&e); it != closures_.end()) return it->second;
   }
   if (active.size() > kMaxIncludeDepth || !active.insert(&e).second) return {};  // an include cycle stops here
@@ -158,7 +160,7 @@ std::vector<const IncludeSummaries::Entry*> IncludeSummaries::closure(const Entr
   active.erase(&e);
   // Inside a cycle the list is cut where the cycle closes: kept only when complete.
   if (active.empty() || std::none_of(out.begin(), out.end(), [&](const Entry* x) { return active.count(x); })) {
-    std::lock_guard lock(mutex_);
+    ForkSafeLock lock(mutex_);
     closures_.emplace(&e, out);
   }
   return out;
@@ -205,7 +207,7 @@ bool IncludeSummaries::set_text(const fs::path& path, std::optional<std::string>
   fs::path file = canonical(path);
   Entry* changed = nullptr;
   {
-    std::lock_guard lock(mutex_);
+    ForkSafeLock lock(mutex_);
     if (text) overlays_[file] = std::move(*text);
     else overlays_.erase(file);
     if (auto it = entries_.find(file); it != entries_.end()) changed = it->second.get();
@@ -217,19 +219,19 @@ bool IncludeSummaries::set_text(const fs::path& path, std::optional<std::string>
   std::vector<std::string> before = changed->includes;
   scan(*changed, content(file, config));
   if (changed->includes != before) {
-    std::lock_guard lock(mutex_);
+    ForkSafeLock lock(mutex_);
     closures_.clear();
   }
   std::vector<Entry*> all;
   {
-    std::lock_guard lock(mutex_);
+    ForkSafeLock lock(mutex_);
     for (auto& [f, e] : entries_) all.push_back(e.get());
   }
   for (Entry* e : all) {
     if (e == changed || e->own == nullptr || !e->lang) continue;
     std::vector<const Entry*> reach = closure_of(e->file, e->includes, config);
     if (std::find(reach.begin(), reach.end(), changed) == reach.end()) continue;
-    std::lock_guard lock(mutex_);
+    ForkSafeLock lock(mutex_);
     e->own.reset();
   }
   return true;

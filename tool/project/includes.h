@@ -76,7 +76,7 @@ class IncludeSummaries {
   std::vector<std::filesystem::path> resolve_all(const std::vector<std::string>& includes, const std::filesystem::path& from,
                                                  const ProjectConfig& config);
 
-  std::mutex mutex_;
+  std::mutex mutex_;  // taken with ForkSafeLock: a compile child resolves includes through it
   std::map<std::filesystem::path, std::unique_ptr<Entry>> entries_;
   std::map<const Entry*, std::vector<const Entry*>> closures_;
   std::map<std::tuple<const ProjectConfig*, std::filesystem::path, std::string>, std::optional<std::filesystem::path>> resolved_;

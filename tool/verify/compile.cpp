@@ -7,7 +7,6 @@
 #include <fmt/format.h>
 
 #include <poll.h>
-#include <pthread.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -21,41 +20,15 @@
 #include <map>
 #include <mutex>
 #include <set>
-#include <shared_mutex>
 #include <sstream>
 
 #include "core/fd_io.h"
+#include "core/fork_gate.h"
 #include "lang/tokens.h"
 #include "shaderlib/shaderlib.h"
 
 namespace lwc {
 namespace {
-
-// glslang keeps process-wide state behind its own mutex. A child forked while another thread holds
-// it waits for it forever (seen: `verify -j 8` on 2 cores, and the default -j on a 16-core machine,
-// lost 120 s per stuck compile). So no thread is inside glslang while one forks: in-process calls
-// share this gate, a fork takes it alone, and a waiting fork goes before new calls.
-class GlslangGate {
- public:
-  GlslangGate() {
-    pthread_rwlockattr_t attr;
-    pthread_rwlockattr_init(&attr);
-    pthread_rwlockattr_setkind_np(&attr, PTHREAD_RWLOCK_PREFER_WRITER_NONRECURSIVE_NP);
-    pthread_rwlock_init(&lock_, &attr);
-    pthread_rwlockattr_destroy(&attr);
-  }
-  void lock_shared() { pthread_rwlock_rdlock(&lock_); }
-  void unlock_shared() { pthread_rwlock_unlock(&lock_); }
-  void lock() { pthread_rwlock_wrlock(&lock_); }
-  void unlock() { pthread_rwlock_unlock(&lock_); }
-
- private:
-  pthread_rwlock_t lock_;
-};
-GlslangGate& glslang_gate() {
-  static GlslangGate gate;
-  return gate;
-}
 
 void initialize_glslang() {
   static std::once_flag once;
@@ -263,7 +236,7 @@ CompileResult compile_shader_here(const CompileInput& input) {
 }  // namespace
 
 PreprocessResult preprocess_shader(const CompileInput& input) {
-  std::shared_lock gate(glslang_gate());
+  ForkGateHold hold;
   initialize_glslang();
   PreprocessResult result;
   EShLanguage stage = to_glslang(input.stage);
@@ -393,8 +366,10 @@ std::optional<CompileResult> deserialise(std::string_view in) {
 // glslang's error recovery crashes on some invalid HLSL (a missing member of a uniform struct that
 // holds textures, used as an initializer), and what is compiled here is a user's code: each
 // compile runs in a child process, so a crash or a hang costs that compile only.
+// glslang's tables sit behind its own mutex, which a compile child also takes: held under the
+// fork gate (core/fork_gate.h).
 CompileResult compile_shader(const CompileInput& input) {
-  std::shared_lock gate(glslang_gate());
+  ForkGateHold hold;
   return compile_shader_here(input);
 }
 
@@ -402,17 +377,13 @@ CompileResult compile_shader_isolated(const CompileInput& input) {
   constexpr int kSeconds = 120;
   int fds[2];
   if (::pipe(fds) != 0) return compile_shader(input);
-  pid_t pid;
-  {
-    std::lock_guard gate(glslang_gate());
-    pid = ::fork();
-  }
+  pid_t pid = fork_alone();
   if (pid < 0) {
     ::close(fds[0]);
     ::close(fds[1]);
     return compile_shader(input);
   }
-  if (pid == 0) {  // one thread here, the gate's copy held by it: glslang directly
+  if (pid == 0) {
     // Other threads' pipes and driver sockets stay theirs: a copy held here would keep their
     // reader from seeing the end of its answer until this compile ends.
     if (fds[1] != 3 && ::dup2(fds[1], 3) == 3) fds[1] = 3;
