@@ -695,6 +695,9 @@ std::string frame_free(const std::string& path, bool& translated) {
   return out;
 }
 
+// A name that says its value is camera-relative (`TranslatedWorldPoint`).
+bool in_translated_frame(const std::string& name) { return name.find("Translated") != std::string::npos || name.find("translated") != std::string::npos; }
+
 bool is_clip(const Leaf& leaf) { return has(leaf.path, "gl_Position") || lower(leaf.semantic) == "sv_position"; }
 
 float ulp32(double x) {
@@ -1254,6 +1257,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     for (const Leaf& leaf : k.code.outputs) {
       bool translated;
       std::string key = frame_free(leaf.path, translated);
+      translated = translated || in_translated_frame(leaf.name);  // an `out` parameter renamed so (`lwc_p1`)
       auto match = ref_outputs.find(key);
       if (match == ref_outputs.end()) {
         cmp.unmatched += (cmp.unmatched.empty() ? "" : ", ") + leaf.path;
@@ -1262,6 +1266,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
       const Leaf& ref_leaf = *match->second;
       bool ref_translated;
       frame_free(ref_leaf.path, ref_translated);
+      ref_translated = ref_translated || in_translated_frame(ref_leaf.name);
       // What the result is: the model's kind of the function's return, of a global or an `out`
       // parameter, or of its path in the world-space data; else its name.
       Role role = ref_leaf.name == "return" ? role_of(function, ref_leaf.components)

@@ -60,7 +60,9 @@ class FloatWorldPosition : public Check {
     if (var < 0) return;
     const Variable& v = ctx.world.variables()[var];
     bool local = v.role == Variable::Role::local && v.init >= 0;
-    RewritePlan translated = local ? plan_translated(ctx, var, names) : withheld("not a local with a value");
+    // A local with no value of its own may be written by a helper's `out` parameter.
+    bool written = v.role == Variable::Role::local && v.init < 0;
+    RewritePlan translated = local || written ? plan_translated(ctx, var, names) : withheld("not a local with a value");
     if (translated.blocker.empty()) {
       std::string helpers;
       for (const std::string& name : translated.helpers) helpers += (helpers.empty() ? "`" : ", `") + name + "`";
@@ -120,7 +122,8 @@ class FloatWorldPosition : public Check {
 
   RewritePlan plan_translated(const CheckContext& ctx, int var, const DeclaredNames& names) const {
     RewritePlan plan;
-    if (std::string why = move_local(ctx, names, var, true, plan, 0); !why.empty()) return withheld(why);
+    std::string why = ctx.world.variables()[var].init >= 0 ? move_local(ctx, names, var, true, plan, 0) : move_out_local(ctx, names, var, plan, 0);
+    if (!why.empty()) return withheld(why);
     return plan;
   }
 
@@ -173,7 +176,8 @@ class FloatWorldPosition : public Check {
     if (int var = t.is(value, "identifier") ? ctx.world.variable_at(value) : -1; var >= 0) {
       const Variable& v = ctx.world.variables()[var];
       if (std::find(plan.moving_variables.begin(), plan.moving_variables.end(), var) != plan.moving_variables.end()) return {};
-      if (v.role == Variable::Role::local && v.init >= 0 && depth < 4) return move_local(ctx, names, var, true, plan, depth + 1);
+      if (v.role == Variable::Role::local && depth < 4)
+        return v.init >= 0 ? move_local(ctx, names, var, true, plan, depth + 1) : move_out_local(ctx, names, var, plan, depth + 1);
     }
     if (int fn = t.is(value, "call_expression") ? defined_function(t, call_name(t, value)) : -1; fn >= 0 && depth < 4) {
       if (std::find(plan.moving_functions.begin(), plan.moving_functions.end(), fn) != plan.moving_functions.end()) return {};
@@ -248,7 +252,7 @@ class FloatWorldPosition : public Check {
     // Another file may call a header's function with an absolute position in mind.
     if (!whole_program(t)) return fmt::format("`{}` is in a header other files may call", old_name);
     if (names.taken(new_name, -1) || name_used(t, new_name)) return fmt::format("the name `{}` is already taken", new_name);
-    if (!has_caller(t, old_name)) return fmt::format("nothing in this file calls `{}` (an entry point's name is the engine's to call)", old_name);
+    if (calls_of(t, old_name) == 0) return fmt::format("nothing in this file calls `{}` (an entry point's name is the engine's to call)", old_name);
     return {};
   }
 
@@ -262,12 +266,6 @@ class FloatWorldPosition : public Check {
       if (call_name(t, call) != old_name || !plan.blocker.empty()) continue;
       follow_use(ctx, names, call, new_name + std::string(t.text(t.child_by_field(call, "arguments"))), plan, depth + 1);
     }
-  }
-
-  static bool has_caller(const SyntaxTree& t, std::string_view name) {
-    for (int call : nodes_of(t, "call_expression"))
-      if (call_name(t, call) == name) return true;
-    return false;
   }
 
   static bool name_used(const SyntaxTree& t, std::string_view name) {
@@ -333,6 +331,11 @@ class FloatWorldPosition : public Check {
   void follow_use(const CheckContext& ctx, const DeclaredNames& names, int use, const std::string& text, RewritePlan& plan, int depth) const {
     const SyntaxTree& t = ctx.tree;
     auto renamed = [&] { plan.edits.push_back({t.span(use), text}); };
+    // Written through an `out` parameter that this plan moves: the helper writes it translated.
+    if (int p = out_parameter_of(ctx, use); p >= 0 && moving(plan, p)) {
+      renamed();
+      return;
+    }
     // The homogeneous w of a point is the same in translated world (a translation leaves it be).
     if (is_field_of(t, t.at(use).parent, use, "w")) {
       renamed();
@@ -480,9 +483,10 @@ class FloatWorldPosition : public Check {
     if (var < 0) return false;
     if (std::find(plan.moving_variables.begin(), plan.moving_variables.end(), var) != plan.moving_variables.end()) return true;
     const Variable& v = ctx.world.variables()[var];
-    if (v.role != Variable::Role::local || v.init < 0 || v.kind != Kind::absolute || depth >= 4) return false;
+    if (v.role != Variable::Role::local || v.kind != Kind::absolute || depth >= 4) return false;
     RewritePlan trial = plan;
-    if (!move_local(ctx, names, var, true, trial, depth + 1).empty()) return false;
+    std::string why = v.init >= 0 ? move_local(ctx, names, var, true, trial, depth + 1) : move_out_local(ctx, names, var, trial, depth + 1);
+    if (!why.empty()) return false;
     plan = std::move(trial);
     return true;
   }
@@ -507,33 +511,94 @@ class FloatWorldPosition : public Check {
   // translated: its parameter follows. The parameter's own finding is then fixed by this one.
   bool follow_into_helper(const CheckContext& ctx, const DeclaredNames& names, int use, RewritePlan& plan, int depth) const {
     const SyntaxTree& t = ctx.tree;
-    int list = t.at(use).parent;
-    if (!t.is(list, "argument_list")) return false;
-    int call = t.at(list).parent;
-    std::string_view callee = call_name(t, call);
-    auto args = call_arguments(t, call);
-    size_t index = std::find(args.begin(), args.end(), use) - args.begin();
-    const auto& vars = ctx.world.variables();
-    int param = -1;
-    size_t seen = 0;
-    for (size_t i = 0; i < vars.size() && param < 0; ++i) {
-      const Variable& p = vars[i];
-      if (p.role != Variable::Role::parameter || p.function < 0) continue;
-      int name = function_name(t, p.function);
-      if (name < 0 || t.text(name) != callee) continue;
-      if (seen++ == index) param = static_cast<int>(i);
-    }
+    int param = parameter_of(ctx, use);
     if (param < 0) return false;
+    std::string_view callee = call_name(t, t.at(t.at(use).parent).parent);
     // One caller only: another call might pass an absolute position.
-    int calls = 0;
-    for (int c : nodes_of(t, "call_expression")) calls += call_name(t, c) == callee;
-    if (calls != 1) return false;
+    if (calls_of(t, callee) != 1) return false;
+    const auto& vars = ctx.world.variables();
     std::string param_name = translated_name(vars[param].name);
     plan.edits.push_back({t.span(vars[param].decl), param_name});
     follow_translated(ctx, names, param, param_name, plan, depth + 1);
     if (plan.blocker.empty() && unreal_code(t) && !t.source->path().ends_with(".usf"))
       plan.helpers.push_back(std::string(callee));
     return plan.blocker.empty();
+  }
+
+  // A local declared without a value and written by one call of a helper of this file through an
+  // `out` parameter, before any read: the parameter moves with it (renamed, every value assigned to
+  // it made translated) and the local follows. Returns why not, or "".
+  std::string move_out_local(const CheckContext& ctx, const DeclaredNames& names, int var, RewritePlan& plan, int depth) const {
+    const SyntaxTree& t = ctx.tree;
+    const auto& vars = ctx.world.variables();
+    const Variable& v = vars[var];
+    std::string new_name = translated_name(v.name);
+    if (new_name == v.name || names.taken(new_name, v.function)) return fmt::format("the name `{}` is already taken", new_name);
+    std::vector<int> uses = ctx.world.uses(var);
+    int param = uses.empty() ? -1 : out_parameter_of(ctx, uses.front());
+    if (param < 0) return fmt::format("`{}` gets its value from nothing lwcport can follow", v.name);
+    for (size_t i = 1; i < uses.size(); ++i)
+      if (out_parameter_of(ctx, uses[i]) >= 0) return fmt::format("`{}` is written by more than one call", v.name);
+    std::string_view callee = call_name(t, t.at(t.at(uses.front()).parent).parent);
+    if (calls_of(t, callee) != 1) return fmt::format("`{}` is called from more than one place", callee);
+    const Variable& p = vars[param];
+    std::string param_name = translated_name(p.name);
+    if (param_name == p.name || names.taken(param_name, p.function)) return fmt::format("the name `{}` is already taken", param_name);
+    plan.moving_variables.push_back(var);
+    plan.moving_variables.push_back(param);
+    plan.edits.push_back({t.span(v.decl), new_name});
+    plan.edits.push_back({t.span(p.decl), param_name});
+    for (int use : ctx.world.uses(param)) {
+      int assignment = t.at(use).parent;
+      bool plain = t.is(assignment, "assignment_expression") && t.child_by_field(assignment, "left") == use &&
+                   t.text(t.child_by_field(assignment, "operator")) == "=" && t.is(t.at(assignment).parent, "expression_statement");
+      if (!plain) return fmt::format("`{}` in `{}` is read or written in part, not only assigned", p.name, callee);
+      plan.edits.push_back({t.span(use), param_name});
+      if (std::string why = translate_value(ctx, names, t.child_by_field(assignment, "right"), plan, depth); !why.empty())
+        return fmt::format("what `{}` writes to `{}`: {}", callee, p.name, why);
+    }
+    if (unreal_code(t) && !t.source->path().ends_with(".usf")) plan.helpers.push_back(std::string(callee));
+    follow_translated(ctx, names, var, new_name, plan, depth);
+    return plan.blocker;
+  }
+
+  // The parameter of a function of this file that an argument is passed to, or -1.
+  static int parameter_of(const CheckContext& ctx, int argument) {
+    const SyntaxTree& t = ctx.tree;
+    int list = t.at(argument).parent;
+    if (!t.is(list, "argument_list")) return -1;
+    int call = t.at(list).parent;
+    std::string_view callee = call_name(t, call);
+    auto args = call_arguments(t, call);
+    size_t index = std::find(args.begin(), args.end(), argument) - args.begin();
+    const auto& vars = ctx.world.variables();
+    size_t seen = 0;
+    for (size_t i = 0; i < vars.size(); ++i) {
+      const Variable& p = vars[i];
+      if (p.role != Variable::Role::parameter || p.function < 0) continue;
+      int name = function_name(t, p.function);
+      if (name < 0 || t.text(name) != callee) continue;
+      if (seen++ == index) return static_cast<int>(i);
+    }
+    return -1;
+  }
+
+  // The `out` parameter (not `inout`: that reads the value too) an argument is passed to, or -1.
+  static int out_parameter_of(const CheckContext& ctx, int argument) {
+    int param = parameter_of(ctx, argument);
+    if (param < 0 || !ctx.world.variables()[param].output) return -1;
+    auto words = leading_words(ctx.tree, ctx.world.variables()[param].declaration);
+    return std::find(words.begin(), words.end(), "out") != words.end() ? param : -1;
+  }
+
+  static int calls_of(const SyntaxTree& t, std::string_view name) {
+    int calls = 0;
+    for (int c : nodes_of(t, "call_expression")) calls += call_name(t, c) == name;
+    return calls;
+  }
+
+  static bool moving(const RewritePlan& plan, int var) {
+    return std::find(plan.moving_variables.begin(), plan.moving_variables.end(), var) != plan.moving_variables.end();
   }
 
   // FDFVector3 X = DFMultiply(P, M); differences become DF*Demote; anything else withholds.
