@@ -242,6 +242,8 @@ WorldData WorldData::load(const nlohmann::json& ws, const nlohmann::json& extra_
     }
   for (const auto& [name, e] : ws.at("engine").at("functions").items())
     d.engine_functions[name] = {kind_of(e.at(0)), kind_of(e.at(1)), kind_of(e.at(2))};
+  for (const auto& [name, e] : ws.at("engine").at("function-types").items())
+    d.engine_function_types[name] = {e.at(0).get<std::string>(), e.at(1).get<std::string>(), e.at(2).get<std::string>()};
   const auto& names = ws.at("holder-names");
   d.holder_names = {names.at("translated").get<std::vector<std::string>>(), names.at("local").get<std::vector<std::string>>()};
   return d;

@@ -41,8 +41,7 @@ class LargeWorldMember : public Check {
       if (use.what.empty()) continue;
       if (use.node < 0) use.node = id;
       std::string object(t.text(t.child_by_field(id, "argument")));
-      Vars vars{{"object", object},
-                {"member", m.member},
+      Vars vars{{"value", object + "." + m.member},
                 {"type", type},
                 {"era", std::string(era_name(era))},
                 {"use", use.what},
@@ -50,7 +49,29 @@ class LargeWorldMember : public Check {
                                                     : "`DFSubtractDemote`, `DFToFloat3x3`, `DFMultiply`"},
                 {"when", ctx.unreal->era == UnrealEra::ue4 ? "when this code moves to UE5" : "in " + std::string(era_name(era))}};
       Finding& f = ctx.report(t.span(id), vars);
-      offer_fix(ctx, f, id, use, e->kind, era, vars);
+      // UE4's primitive uniform buffer: UE5 reads the same data through a call.
+      bool respelled = ue5_spelling(ctx, id, uniform_buffer_, uniform_buffer_call_) != t.text(id);
+      std::string spelled = respelled ? uniform_buffer_call_ : object;
+      offer_fix(ctx, f, id, use, {use.node, spelled + "." + m.member, e->kind, spelled, m.member}, era, vars);
+    }
+    // A material function UE5 returns as a large-world value (`GetWorldPosition(Parameters)`), when
+    // the file does not define its own of that name.
+    for (int call : nodes_of(t, "call_expression")) {
+      std::string name(call_name(t, call));
+      auto types = ctx.world.data().engine_function_types.find(name);
+      if (types == ctx.world.data().engine_function_types.end() || defines_function(t, name)) continue;
+      const std::string& type = types->second[era == UnrealEra::ue5_0 ? 1 : 2];
+      if (!large_world_type(type)) continue;
+      Use use = float_use(ctx, call, true);
+      if (use.what.empty()) continue;
+      if (use.node < 0) use.node = call;
+      std::string text(t.text(call));
+      Vars vars{{"value", text}, {"type", type}, {"era", std::string(era_name(era))}, {"use", use.what},
+                {"library", era == UnrealEra::ue5_0 ? "`LWCToFloat(LWCSubtract(..))`, `LWCToFloat3x3`, `LWCMultiply`"
+                                                    : "`DFSubtractDemote`, `DFToFloat3x3`, `DFMultiply`"},
+                {"when", ctx.unreal->era == UnrealEra::ue4 ? "when this code moves to UE5" : "in " + std::string(era_name(era))}};
+      Finding& f = ctx.report(t.span(call), vars);
+      offer_fix(ctx, f, call, use, {use.node, text, Kind::absolute, "", ""}, era, vars);
     }
   }
 
@@ -176,12 +197,10 @@ class LargeWorldMember : public Check {
   }
 
   // The arithmetic done in the era's large-world library (library_rewrite.h).
-  void offer_fix(const CheckContext& ctx, Finding& f, int id, const Use& use, Kind kind, UnrealEra era, Vars vars) const {
+  // `id`: the member access or call that is the large-world value; `value`: it as the library takes it.
+  void offer_fix(const CheckContext& ctx, Finding& f, int id, const Use& use, const LargeWorldValue& value, UnrealEra era, Vars vars) const {
     const SyntaxTree& t = ctx.tree;
-    // UE4's primitive uniform buffer: UE5 reads the same data through a call.
-    bool respelled = ue5_spelling(ctx, id, uniform_buffer_, uniform_buffer_call_) != t.text(id);
-    std::string object = respelled ? uniform_buffer_call_ : std::string(t.text(t.child_by_field(id, "argument")));
-    LargeWorldValue value{use.node, object + "." + vars["member"], kind, object, vars["member"]};
+    Kind kind = value.kind;
     vars["marker"] = era == UnrealEra::ue5_0 ? "LWCHackToFloat" : "DFHackToFloat";
     if (auto row = translation_row_at(ctx, id)) {
       offer_row_fix(ctx, f, id, *row, era, value.text, vars);
@@ -243,6 +262,13 @@ class LargeWorldMember : public Check {
                                        vars["matrix"], vars["call"], local.name));
   }
 
+  // The file defines a function of that name itself (its own copy, as plugins carry): not the engine's.
+  static bool defines_function(const SyntaxTree& t, std::string_view name) {
+    for (int fn : nodes_of(t, "function_definition"))
+      if (int n = function_name(t, fn); n >= 0 && t.text(n) == name) return true;
+    return false;
+  }
+
   // A value the era holds as a large-world type: an engine member (through `.xyz` and
   // parentheses), or a variable so declared.
   bool large_world_value(const CheckContext& ctx, int node, UnrealEra era) const {
@@ -252,6 +278,11 @@ class LargeWorldMember : public Check {
     if (t.is(node, "identifier")) {
       int var = ctx.world.variable_at(node);
       return var >= 0 && large_world_type(ctx.world.variables()[static_cast<size_t>(var)].type);
+    }
+    if (t.is(node, "call_expression")) {
+      auto types = ctx.world.data().engine_function_types.find(std::string(call_name(t, node)));
+      return types != ctx.world.data().engine_function_types.end() && !defines_function(t, call_name(t, node)) &&
+             large_world_type(types->second[era == UnrealEra::ue5_0 ? 1 : 2]);
     }
     Member m = member_of(t, node);
     std::string owner = m.empty() ? "" : owner_of(ctx, node);
