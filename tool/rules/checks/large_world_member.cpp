@@ -262,13 +262,6 @@ class LargeWorldMember : public Check {
                                        vars["matrix"], vars["call"], local.name));
   }
 
-  // The file defines a function of that name itself (its own copy, as plugins carry): not the engine's.
-  static bool defines_function(const SyntaxTree& t, std::string_view name) {
-    for (int fn : nodes_of(t, "function_definition"))
-      if (int n = function_name(t, fn); n >= 0 && t.text(n) == name) return true;
-    return false;
-  }
-
   // A value the era holds as a large-world type: an engine member (through `.xyz` and
   // parentheses), or a variable so declared.
   bool large_world_value(const CheckContext& ctx, int node, UnrealEra era) const {

@@ -149,6 +149,12 @@ std::string ue5_spelling(const CheckContext& ctx, int node, const std::string& b
   return text;
 }
 
+bool defines_function(const SyntaxTree& tree, std::string_view name) {
+  for (int fn : nodes_of(tree, "function_definition"))
+    if (int n = function_name(tree, fn); n >= 0 && tree.text(n) == name) return true;
+  return false;
+}
+
 int defined_function(const SyntaxTree& tree, std::string_view name) {
   int found = -1;
   for (int fn : nodes_of(tree, "function_definition")) {

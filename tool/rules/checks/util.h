@@ -27,6 +27,8 @@ int function_name(const SyntaxTree& tree, int definition);
 // when the file does not declare that name itself) is read through a call in UE5 (`call`,
 // `GetPrimitiveDataFromUniformBuffer().X`); anything else as written.
 std::string ue5_spelling(const CheckContext& ctx, int node, const std::string& buffer, const std::string& call);
+// The file defines a function of that name itself (its own copy, as plugins carry): not the engine's.
+bool defines_function(const SyntaxTree& tree, std::string_view name);
 // The one definition of a function of this file called `name` (-1 when none, or overloads).
 int defined_function(const SyntaxTree& tree, std::string_view name);
 // True when `node` is `base.name`: that member or swizzle of that expression.
