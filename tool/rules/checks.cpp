@@ -9,7 +9,7 @@ std::unique_ptr<Check> make_hack_marker(const RuleInfo&);
 std::unique_ptr<Check> make_large_world_member(const RuleInfo&);
 std::unique_ptr<Check> make_missing_precise(const RuleInfo&);
 std::unique_ptr<Check> make_primary_view(const RuleInfo&);
-std::unique_ptr<Check> make_removed_overload(const RuleInfo&);
+std::unique_ptr<Check> make_removed_engine_api(const RuleInfo&);
 std::unique_ptr<Check> make_tile_offset(const RuleInfo&);
 std::unique_ptr<Check> make_translated_member(const RuleInfo&);
 std::unique_ptr<Check> make_translated_world(const RuleInfo&);
@@ -25,7 +25,7 @@ const std::map<std::string_view, CheckFactory>& check_factories() {
       {"lwc-large-world-member", checks::make_large_world_member},
       {"lwc-missing-precise", checks::make_missing_precise},
       {"lwc-primary-view", checks::make_primary_view},
-      {"lwc-removed-overload", checks::make_removed_overload},
+      {"lwc-removed-engine-api", checks::make_removed_engine_api},
       {"lwc-tile-offset", checks::make_tile_offset},
       {"lwc-translated-member", checks::make_translated_member},
       {"lwc-translated-world", checks::make_translated_world},

@@ -244,6 +244,8 @@ WorldData WorldData::load(const nlohmann::json& ws, const nlohmann::json& extra_
     d.engine_functions[name] = {kind_of(e.at(0)), kind_of(e.at(1)), kind_of(e.at(2))};
   for (const auto& [name, e] : ws.at("engine").at("function-types").items())
     d.engine_function_types[name] = {e.at(0).get<std::string>(), e.at(1).get<std::string>(), e.at(2).get<std::string>()};
+  d.engine_objects = ws.at("engine").at("objects").get<std::map<std::string, std::string>>();
+  d.uniform_buffer = ws.at("engine").at("uniform-buffer").get<std::array<std::string, 2>>();
   const auto& names = ws.at("holder-names");
   d.holder_names = {names.at("translated").get<std::vector<std::string>>(), names.at("local").get<std::vector<std::string>>()};
   return d;

@@ -87,6 +87,8 @@ struct WorldData {
   std::map<std::string, std::map<std::string, EngineMember>> engine_structs;
   std::map<std::string, std::array<Kind, 3>> engine_functions;  // return kind per era
   std::map<std::string, std::array<std::string, 3>> engine_function_types;  // return type per era (UE4, 5.0-5.3, 5.4+)
+  std::map<std::string, std::string> engine_objects;  // engine global or call (`Name(..)`) -> its struct
+  std::array<std::string, 2> uniform_buffer;  // UE4's primitive uniform buffer, and the call UE5 reads it through
   const EngineMember* engine_member(std::string_view owner, std::string_view member) const;
 
   // What a place's name says it holds (rules/world-space.json "holder-names").

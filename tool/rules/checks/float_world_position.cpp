@@ -22,8 +22,6 @@ class FloatWorldPosition : public Check {
   explicit FloatWorldPosition(const RuleInfo& rule)
       : descriptions_(rule.data.at("kinds")),
         primitive_objects_(string_list(rule.data, "primitive-objects")),
-        uniform_buffer_(rule.data.at("uniform-buffer").get<std::string>()),
-        uniform_buffer_call_(rule.data.at("uniform-buffer-call").get<std::string>()),
         camera_{string_list(rule.data, "camera-words")} {}
 
   void run(const CheckContext& ctx) const override {
@@ -195,7 +193,7 @@ class FloatWorldPosition : public Check {
     } else if (std::string p = position_of_homogeneous(t, args[0]); !p.empty() && !translation.empty()) {
       // The library call gives the 3-vector; a 4-vector value keeps its w of 1.
       std::string call = fmt::format("DFTransformLocalToTranslatedWorld({}, {}, PrimaryView.{})", p,
-                                     ue5_spelling(ctx, matrix, uniform_buffer_, uniform_buffer_call_), translation);
+                                     ue5_spelling(ctx, matrix), translation);
       plan.edits.push_back({t.span(value), mul == value ? fmt::format("float4({}, 1)", call) : call});
     } else {
       return fmt::format("its matrix `{}` has no translated twin", shortened(t.text(args[1])));
@@ -635,7 +633,6 @@ class FloatWorldPosition : public Check {
 
   nlohmann::json descriptions_;  // kind -> words for the message
   std::vector<std::string> primitive_objects_;
-  std::string uniform_buffer_, uniform_buffer_call_;  // UE4's primitive uniform buffer, and how UE5 reads it
   CameraNames camera_;  // plain code: which absolute uniforms are the camera
 };
 

@@ -17,11 +17,7 @@ class LargeWorldMember : public Check {
  public:
   explicit LargeWorldMember(const RuleInfo& rule)
       : lwc_calls_(string_list(rule.data, "lwc-calls")),
-        float_calls_(string_list(rule.data, "float-calls")),
-        uniform_buffer_(rule.data.at("uniform-buffer").get<std::string>()),
-        uniform_buffer_call_(rule.data.at("uniform-buffer-call").get<std::string>()) {
-    for (const auto& [name, owner] : rule.data.at("objects").items()) objects_[name] = owner.get<std::string>();
-  }
+        float_calls_(string_list(rule.data, "float-calls")) {}
 
   void run(const CheckContext& ctx) const override {
     if (!ctx.unreal) return;
@@ -31,7 +27,7 @@ class LargeWorldMember : public Check {
     for (int id : nodes_of(t, "field_expression")) {
       Member m = member_of(t, id);
       if (m.empty()) continue;
-      std::string owner = owner_of(ctx, id);
+      std::string owner = engine_struct_of(ctx, id);
       const WorldData::EngineMember* e = owner.empty() ? nullptr : ctx.world.data().engine_member(owner, m.member);
       if (!e) continue;
       const std::string& type = e->types[era == UnrealEra::ue5_0 ? 1 : 2];
@@ -50,8 +46,8 @@ class LargeWorldMember : public Check {
                 {"when", ctx.unreal->era == UnrealEra::ue4 ? "when this code moves to UE5" : "in " + std::string(era_name(era))}};
       Finding& f = ctx.report(t.span(id), vars);
       // UE4's primitive uniform buffer: UE5 reads the same data through a call.
-      bool respelled = ue5_spelling(ctx, id, uniform_buffer_, uniform_buffer_call_) != t.text(id);
-      std::string spelled = respelled ? uniform_buffer_call_ : object;
+      bool respelled = ue5_spelling(ctx, id) != t.text(id);
+      std::string spelled = respelled ? ctx.world.data().uniform_buffer[1] : object;
       offer_fix(ctx, f, id, use, {use.node, spelled + "." + m.member, e->kind, spelled, m.member}, era, vars);
     }
     // A material function UE5 returns as a large-world value (`GetWorldPosition(Parameters)`), when
@@ -82,24 +78,6 @@ class LargeWorldMember : public Check {
     int parent = -1;
     int node = -1;     // the expression that stands for the member there (`M`, `(M)`, `M.xyz`)
   };
-
-  // The engine struct a member access reads: a variable's declared type, or an engine global or
-  // call of the rule's table when the file does not declare the name.
-  std::string owner_of(const CheckContext& ctx, int field) const {
-    const SyntaxTree& t = ctx.tree;
-    int base = t.child_by_field(field, "argument");
-    if (t.is(base, "identifier")) {
-      int var = ctx.world.variable_at(base);
-      if (var >= 0) return ctx.world.variables()[var].type;
-      auto it = objects_.find(std::string(t.text(base)));
-      return it != objects_.end() ? it->second : std::string();
-    }
-    if (t.is(base, "call_expression")) {
-      auto it = objects_.find(std::string(call_name(t, base)) + "(..)");
-      return it != objects_.end() ? it->second : std::string();
-    }
-    return {};
-  }
 
   Use float_use(const CheckContext& ctx, int node, bool vector3) const {
     const SyntaxTree& t = ctx.tree;
@@ -246,9 +224,9 @@ class LargeWorldMember : public Check {
     vars["call"] = era == UnrealEra::ue5_0 ? "LWCMultiplyTranslation" : "DFFastToTranslatedWorld";
     vars["matrix"] = shortened(t.text(row.matrix));
     if (large_world_matrix(ctx, row.matrix, era)) {
-      std::string translation = ue5_spelling(ctx, undemoted(t, row.translation), uniform_buffer_, uniform_buffer_call_);
+      std::string translation = ue5_spelling(ctx, undemoted(t, row.translation));
       if (translation.starts_with("View.")) translation = "Primary" + translation;
-      std::vector<Edit> edits{{t.span(local.init), fmt::format("{}({}, {})", vars["call"], ue5_spelling(ctx, row.matrix, uniform_buffer_, uniform_buffer_call_), translation)}};
+      std::vector<Edit> edits{{t.span(local.init), fmt::format("{}({}, {})", vars["call"], ue5_spelling(ctx, row.matrix), translation)}};
       for (int s : row.statements) edits.push_back({whole_lines(t, s), ""});
       ctx.fix(f, "translated-row", vars, std::move(edits));
       return;
@@ -278,7 +256,7 @@ class LargeWorldMember : public Check {
              large_world_type(types->second[era == UnrealEra::ue5_0 ? 1 : 2]);
     }
     Member m = member_of(t, node);
-    std::string owner = m.empty() ? "" : owner_of(ctx, node);
+    std::string owner = m.empty() ? "" : engine_struct_of(ctx, node);
     const WorldData::EngineMember* e = owner.empty() ? nullptr : ctx.world.data().engine_member(owner, m.member);
     return e && large_world_type(e->types[era == UnrealEra::ue5_0 ? 1 : 2]);
   }
@@ -288,9 +266,7 @@ class LargeWorldMember : public Check {
     return (is_matrix(kind) || kind == Kind::unknown) && large_world_value(ctx, node, era);
   }
 
-  std::map<std::string, std::string> objects_;  // engine global or call -> its struct
   std::vector<std::string> lwc_calls_, float_calls_;
-  std::string uniform_buffer_, uniform_buffer_call_;
 };
 
 }  // namespace

@@ -140,13 +140,31 @@ std::string translated_name(const std::string& name) {
 
 int line_of(const SyntaxTree& tree, int node) { return tree.source->position(tree.at(node).begin).line; }
 
-std::string ue5_spelling(const CheckContext& ctx, int node, const std::string& buffer, const std::string& call) {
+std::string ue5_spelling(const CheckContext& ctx, int node) {
   const SyntaxTree& t = ctx.tree;
+  const auto& [buffer, call] = ctx.world.data().uniform_buffer;
   std::string text(t.text(node));
   int base = t.is(node, "field_expression") ? t.child_by_field(node, "argument") : -1;
   if (base >= 0 && t.is(base, "identifier") && t.text(base) == buffer && ctx.world.variable_at(base) < 0)
     return call + text.substr(buffer.size());
   return text;
+}
+
+std::string engine_struct_of(const CheckContext& ctx, int field) {
+  const SyntaxTree& t = ctx.tree;
+  const auto& objects = ctx.world.data().engine_objects;
+  int base = t.child_by_field(field, "argument");
+  if (t.is(base, "identifier")) {
+    int var = ctx.world.variable_at(base);
+    if (var >= 0) return ctx.world.variables()[static_cast<size_t>(var)].type;
+    auto it = objects.find(std::string(t.text(base)));
+    return it != objects.end() ? it->second : std::string();
+  }
+  if (t.is(base, "call_expression")) {
+    auto it = objects.find(std::string(call_name(t, base)) + "(..)");
+    return it != objects.end() ? it->second : std::string();
+  }
+  return {};
 }
 
 bool defines_function(const SyntaxTree& tree, std::string_view name) {

@@ -23,10 +23,11 @@ std::vector<std::string> string_list(const nlohmann::json& data, const char* key
 bool matches_any(const std::vector<std::string>& globs, std::string_view text);
 // The name of a function definition when it is a plain identifier, or -1.
 int function_name(const SyntaxTree& tree, int definition);
-// An engine member as UE5 spells it: UE4's primitive uniform buffer (`buffer`, `Primitive.X`,
-// when the file does not declare that name itself) is read through a call in UE5 (`call`,
-// `GetPrimitiveDataFromUniformBuffer().X`); anything else as written.
-std::string ue5_spelling(const CheckContext& ctx, int node, const std::string& buffer, const std::string& call);
+// An engine member as UE5 spells it: UE4's primitive uniform buffer (`Primitive.X`, when the file
+// does not declare that name itself) is read through a call in UE5
+// (`GetPrimitiveDataFromUniformBuffer().X`, rules/world-space.json engine "uniform-buffer");
+// anything else as written.
+std::string ue5_spelling(const CheckContext& ctx, int node);
 // The file defines a function of that name itself (its own copy, as plugins carry): not the engine's.
 bool defines_function(const SyntaxTree& tree, std::string_view name);
 // The one definition of a function of this file called `name` (-1 when none, or overloads).
@@ -42,6 +43,9 @@ struct Member {
   bool empty() const { return member.empty(); }
 };
 Member member_of(const SyntaxTree& tree, int node);
+// The engine struct a member access (`X.M`) reads: a variable's declared type, or the struct of an
+// engine global or call (rules/world-space.json engine "objects") the file does not declare; "".
+std::string engine_struct_of(const CheckContext& ctx, int field);
 // The translated-world twin of an absolute view member or function call, as text
 // (`View.WorldCameraOrigin` -> `PrimaryView.TranslatedWorldCameraOrigin`,
 // `GetWorldPosition(P)` -> `GetTranslatedWorldPosition(P)`), or "" when it has none.
