@@ -142,6 +142,7 @@ struct AbsoluteHolder {
 struct ParameterUse {
   bool matters = false;  // some use lets its float32 rounding reach a result
   bool harmless = false;  // every use keeps only a direction or a rotation
+  std::string type;       // its declared type where every overload of that arity agrees, else ""
 };
 
 // What an included file teaches: its globals' kinds and its functions' return kinds.
@@ -238,6 +239,8 @@ class WorldModel {
   std::string function_return_type(const std::string& name) const;
   const SyntaxTree& tree() const { return tree_; }
   const FileSummary* includes() const { return includes_; }
+  // How an included function uses the parameter a call passes `argument` to, if known.
+  std::optional<ParameterUse> included_parameter_use(int call, int argument) const;
   // How the model read naming conventions in this file (ModelContext).
   bool names_as_evidence() const { return names_as_evidence_; }
   bool plain_names() const { return plain_names_; }
@@ -282,8 +285,6 @@ class WorldModel {
   // The other operand a matrix meets in `M * x`, `x * M` or `mul(x, M)`, or -1.
   int transformed_operand(int matrix_use) const;
   std::vector<int> parameters_receiving(int call, int argument) const;
-  // How an included function uses the parameter a call passes `argument` to, if known.
-  std::optional<ParameterUse> included_parameter_use(int call, int argument) const;
 };
 
 // Where a file defines the LWC libraries themselves (rules/world-space.json "library-definitions"):

@@ -363,8 +363,9 @@ FileSummary WorldModel::summary() const {
     bool first = seen.insert(key).second;
     entry.resize(params.size());
     for (size_t k = 0; k < params.size(); ++k) {
-      // Only a float vector or matrix can carry a world position or transform.
       const std::string& type = variables_[params[k]].type;
+      entry[k].type = first || entry[k].type == type ? type : "";
+      // Only a float vector or matrix can carry a world position or transform.
       bool shaped = !type.empty() && (type.back() == '3' || type.back() == '4' || type.rfind("mat", 0) == 0);
       if (!shaped || !data_.is_float_type(type)) continue;
       bool used = !uses(params[k]).empty();

@@ -77,6 +77,7 @@ class LargeWorldMember : public Check {
     std::string what;  // "" when the use takes the large-world value (or lwcport cannot tell)
     int parent = -1;
     int node = -1;     // the expression that stands for the member there (`M`, `(M)`, `M.xyz`)
+    std::string callee;  // a function of the project whose float parameter takes it, else ""
   };
 
   Use float_use(const CheckContext& ctx, int node, bool vector3) const {
@@ -136,8 +137,10 @@ class LargeWorldMember : public Check {
       auto args = call_arguments(t, call);
       size_t index = std::find(args.begin(), args.end(), node) - args.begin();
       std::string param = parameter_type(ctx, callee, index);
+      if (param.empty() && !defines_function(t, callee))
+        if (auto included = ctx.world.included_parameter_use(call, node)) param = included->type;
       if (!param.empty() && ctx.world.data().is_float_type(param))
-        return {fmt::format("passed to `{}`, whose parameter is a `{}`", callee, param), p};
+        return {fmt::format("passed to `{}`, whose parameter is a `{}`", callee, param), p, -1, std::string(callee)};
       return {};
     }
     if (type == "init_declarator") {
@@ -158,6 +161,7 @@ class LargeWorldMember : public Check {
 
   // The declared type of a function's parameter when this file defines the function once, or ""
   // (an overload may take the large-world type: `RotateLocalToWorld(float3, FDFMatrix, float3)`).
+  // A function of an included file: its type where every overload of that arity agrees.
   static std::string parameter_type(const CheckContext& ctx, std::string_view function, size_t index) {
     const SyntaxTree& t = ctx.tree;
     std::string type;
@@ -196,6 +200,13 @@ class LargeWorldMember : public Check {
     if (!r.fix.empty()) {
       for (const auto& [key, text] : r.vars) vars[key] = text;
       ctx.fix(f, r.fix, vars, r.edits);
+      return;
+    }
+    // Handed to a float parameter of the project's own function: that function is not rewritten
+    // here, so the era's marker passes it exactly the float32 value UE4 passed, and marks the place.
+    if (!use.callee.empty()) {
+      vars["callee"] = use.callee;
+      ctx.fix(f, "marker-argument", vars, {{t.span(id), vars["marker"] + "(" + value.text + ")"}});
       return;
     }
     // One coordinate of a position (a height, a clamp): the absolute value is what the code
