@@ -202,16 +202,25 @@ std::string unreal_engine_header_text(bool engine_headers_read) {
 }
 
 std::string unreal_environment_text(std::string_view code, const std::string& library) {
-  // A struct the file declares itself (a copy of an engine header's) is left out of the stub.
+  // A struct or engine function the file declares itself (a copy of an engine header's) is left
+  // out of the stub.
+  static const std::set<std::string, std::less<>> copied_functions = {"TransformLocalToWorld", "TransformLocalToTranslatedWorld",
+                                                                      "SvPositionToWorld", "SvPositionToTranslatedWorld"};
   TokenText tokens(code);
   bool material_parameters = false, light_data = false;
+  std::set<std::string, std::less<>> defined;
   for (size_t i = 0; i + 1 < tokens.size(); ++i) {
+    if (i + 2 < tokens.size() && tokens[i + 2] == "(" && copied_functions.count(tokens[i + 1]) &&
+        (tokens[i].starts_with("float") || tokens[i].starts_with("F")))
+      defined.insert(std::string(tokens[i + 1]));
     light_data |= tokens[i] == "float4x4" && tokens[i + 1] == "LightFunctionWorldToLight";
     if (tokens[i] != "struct") continue;
     material_parameters |= tokens[i + 1] == "FMaterialPixelParameters";
     light_data |= tokens[i + 1] == "FDeferredLightData" || tokens[i + 1] == "FSimpleDeferredLightData";
   }
-  return (library.empty() ? full_library_text(Lang::hlsl) : library) + "\n" +
+  std::string own;
+  for (const std::string& name : defined) own += "#define LWCPORT_FILE_DEFINES_" + name + " 1\n";
+  return (library.empty() ? full_library_text(Lang::hlsl) : library) + "\n" + own +
          (material_parameters ? "#define LWCPORT_FILE_DECLARES_MATERIAL_PARAMETERS 1\n" : "") +
          (light_data ? "#define LWCPORT_FILE_DECLARES_LIGHT_DATA 1\n" : "") + std::string(embedded("unreal_stub.ush"));
 }

@@ -22,6 +22,7 @@ class FloatWorldPosition : public Check {
   explicit FloatWorldPosition(const RuleInfo& rule)
       : descriptions_(rule.data.at("kinds")),
         primitive_objects_(string_list(rule.data, "primitive-objects")),
+        wrappers_(string_list(rule.data, "wrappers")),
         camera_{string_list(rule.data, "camera-words")} {}
 
   void run(const CheckContext& ctx) const override {
@@ -169,6 +170,9 @@ class FloatWorldPosition : public Check {
     }
     if (int base = t.child_by_field(value, "argument"); t.is(base, "identifier") && is_field_of(t, value, base, "xyz"))
       return translate_value(ctx, names, base, plan, depth);
+    // A wrapper that only changes how the value is computed (`INVARIANT(P)`): its operand moves.
+    if (t.is(value, "call_expression") && matches_any(wrappers_, call_name(t, value)))
+      if (auto args = call_arguments(t, value); args.size() == 1) return translate_value(ctx, names, args[0], plan, depth);
     // Another local holding an absolute position, or a call of a function of this file returning
     // one: it moves too, and this value follows it as one of its uses.
     if (int var = t.is(value, "identifier") ? ctx.world.variable_at(value) : -1; var >= 0) {
@@ -633,6 +637,7 @@ class FloatWorldPosition : public Check {
 
   nlohmann::json descriptions_;  // kind -> words for the message
   std::vector<std::string> primitive_objects_;
+  std::vector<std::string> wrappers_;  // calls that return their operand, computed differently (`INVARIANT`)
   CameraNames camera_;  // plain code: which absolute uniforms are the camera
 };
 

@@ -75,6 +75,17 @@ LibraryRewrite library_rewrite(const SyntaxTree& t, const WorldData& data, const
     out.edits = {{t.span(p), cast.starts_with("float") ? call : "(" + cast + ")" + call}};
     return out;
   }
+  // Stored into a 3x3 declaration (`float3x3 R = M;`, HLSL keeps the upper-left block): the same
+  // rotation, taken by the era's 3x3 conversion.
+  if (ptype == "init_declarator" && t.child_by_field(p, "value") == node) {
+    int declaration = t.at(p).parent;
+    int type = t.is(declaration, "declaration") ? t.child_by_field(declaration, "type") : -1;
+    if (type < 0 || !t.text(type).ends_with("3x3")) return out;
+    out.fix = "rotation";
+    out.vars["call"] = to3x3;
+    out.edits = {{t.span(node), fmt::format("{}({})", to3x3, value.text)}};
+    return out;
+  }
   // A row of the rotation (`M[0].xyz`): the same row of the 3x3 conversion.
   if (ptype == "subscript_expression") {
     int index = t.subscript_index(p);

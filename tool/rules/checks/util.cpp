@@ -81,7 +81,10 @@ std::string translated_twin(const CheckContext& ctx, int node) {
   const SyntaxTree& t = ctx.tree;
   const WorldData::Twins& twins = ctx.world.data().twins;
   if (t.is(node, "call_expression")) {
-    auto it = twins.functions.find(std::string(call_name(t, node)));
+    // A twin for one arity only is keyed `Name/N` (UE4's overload with a primitive id has none).
+    std::string name(call_name(t, node));
+    auto it = twins.functions.find(name + "/" + std::to_string(call_arguments(t, node).size()));
+    if (it == twins.functions.end()) it = twins.functions.find(name);
     if (it == twins.functions.end()) return {};
     return it->second + std::string(t.text(t.child_by_field(node, "arguments")));
   }
