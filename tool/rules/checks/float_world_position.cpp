@@ -181,8 +181,15 @@ class FloatWorldPosition : public Check {
       if (v.role == Variable::Role::local && depth < 4)
         return v.init >= 0 ? move_local(ctx, names, var, true, plan, depth + 1) : move_out_local(ctx, names, var, plan, depth + 1);
     }
-    if (int fn = t.is(value, "call_expression") ? defined_function(t, call_name(t, value)) : -1; fn >= 0 && depth < 4) {
-      if (std::find(plan.moving_functions.begin(), plan.moving_functions.end(), fn) != plan.moving_functions.end()) return {};
+    if (int fn = t.is(value, "call_expression") ? defined_function(t, call_name(t, value), call_arguments(t, value).size()) : -1;
+        fn >= 0 && depth < 4) {
+      // A function this plan moves already: the call takes its translated name here (a split
+      // keeps the old one for the callers that stay absolute).
+      if (std::find(plan.moving_functions.begin(), plan.moving_functions.end(), fn) != plan.moving_functions.end()) {
+        Span callee = t.span(t.child_by_field(value, "function"));
+        if (!covered(plan, callee)) plan.edits.push_back({callee, translated_name(std::string(t.text(function_name(t, fn))))});
+        return {};
+      }
       int name = function_name(t, fn);
       return translate_function(ctx, fn, translated_name(std::string(t.text(name))), names, plan, depth + 1);
     }
@@ -229,11 +236,12 @@ class FloatWorldPosition : public Check {
     int name = function_name(t, fn);
     if (name < 0) return "its definition has no plain name";
     std::string old_name(t.text(name));
-    if (std::string why = movable(t, names, old_name, new_name); !why.empty()) return why;
+    if (std::string why = movable(t, names, fn, new_name); !why.empty()) return why;
     std::vector<int> returns;
     collect_returns(t, t.child_by_field(fn, "body"), returns);
     if (returns.empty()) return "it has no return value to move";
     plan.moving_functions.push_back(fn);
+    size_t body_edits = plan.edits.size();
     for (int r : returns) {
       int value = t.named_child(r);
       if (value < 0) return "it returns nothing somewhere";
@@ -245,29 +253,131 @@ class FloatWorldPosition : public Check {
       }
       if (std::string why = translate_value(ctx, names, value, plan, depth); !why.empty()) return why;
     }
-    rename_with_callers(ctx, names, name, new_name, plan, depth);
-    return plan.blocker;
+    RewritePlan whole = plan;
+    rename_with_callers(ctx, names, fn, new_name, whole, depth);
+    if (whole.blocker.empty()) {
+      plan = std::move(whole);
+      return {};
+    }
+    // A caller needs the absolute value (a height, a light it meets): Epic's split.
+    if (split_function(ctx, fn, new_name, names, body_edits, plan, depth)) return {};
+    return whole.blocker;
   }
 
   // Why a function of this file cannot take `new_name` with its callers following, or "".
-  static std::string movable(const SyntaxTree& t, const DeclaredNames& names, const std::string& old_name, const std::string& new_name) {
+  static std::string movable(const SyntaxTree& t, const DeclaredNames& names, int fn, const std::string& new_name) {
+    std::string old_name(t.text(function_name(t, fn)));
     // Another file may call a header's function with an absolute position in mind.
     if (!whole_program(t)) return fmt::format("`{}` is in a header other files may call", old_name);
     if (names.taken(new_name, -1) || name_used(t, new_name)) return fmt::format("the name `{}` is already taken", new_name);
-    if (calls_of(t, old_name) == 0) return fmt::format("nothing in this file calls `{}` (an entry point's name is the engine's to call)", old_name);
+    if (calls_of(t, old_name, function_arity(t, fn)) == 0)
+      return fmt::format("nothing in this file calls `{}` (an entry point's name is the engine's to call)", old_name);
     return {};
   }
 
-  // The function's name (node `name`) becomes `new_name`, and every call of it follows as a
-  // translated value.
-  void rename_with_callers(const CheckContext& ctx, const DeclaredNames& names, int name, const std::string& new_name, RewritePlan& plan, int depth) const {
+  // The function `fn` is renamed `new_name`, and every call of it follows as a translated value.
+  void rename_with_callers(const CheckContext& ctx, const DeclaredNames& names, int fn, const std::string& new_name, RewritePlan& plan, int depth) const {
     const SyntaxTree& t = ctx.tree;
-    std::string old_name(t.text(name));
+    int name = function_name(t, fn);
     plan.edits.push_back({t.span(name), new_name});
-    for (int call : nodes_of(t, "call_expression")) {
-      if (call_name(t, call) != old_name || !plan.blocker.empty()) continue;
+    for (int call : calls_to(t, fn)) {
+      if (!plan.blocker.empty()) return;
+      if (covered(plan, t.span(t.child_by_field(call, "function")))) continue;  // renamed as another call's partner
       follow_use(ctx, names, call, new_name + std::string(t.text(t.child_by_field(call, "arguments"))), plan, depth + 1);
     }
+  }
+
+  // Where some callers need the absolute value, the function splits as Epic's own port splits
+  // them (VolumetricFog's ComputeCellWorldPosition): a translated copy under `new_name` (its body
+  // with the return values moved, edits from `body_edits` on), and the original returning the
+  // copy's value minus the pre-view translation, demoted with the era's marker. Every caller that
+  // can follow calls the copy; the others keep the absolute function, which computes the same
+  // float32 value as before. Unreal code only (the marker), float3 returns.
+  bool split_function(const CheckContext& ctx, int fn, const std::string& new_name, const DeclaredNames& names, size_t body_edits,
+                      RewritePlan& plan, int depth) const {
+    const SyntaxTree& t = ctx.tree;
+    int body = t.child_by_field(fn, "body");
+    int type = t.child_by_field(fn, "type");
+    if (!ctx.unreal || body < 0 || type < 0 || t.text(type) != "float3") return false;
+    Span whole = t.span(fn);
+    // The return values' edits inside the function go to the copy; those outside it (a function
+    // it calls, moved on the way) stay.
+    RewritePlan split = plan;
+    split.edits.resize(body_edits);
+    std::vector<Edit> inside;
+    for (size_t i = body_edits; i < plan.edits.size(); ++i) {
+      const Edit& e = plan.edits[i];
+      bool in = e.span.begin >= whole.begin && e.span.end <= whole.end;
+      (in ? inside : split.edits).push_back(e);
+    }
+    // The copy: the function's text with its name and return values translated.
+    inside.push_back({t.span(function_name(t, fn)), new_name});
+    std::string copy = spliced(std::string(t.text(fn)), whole.begin, inside);
+    std::string marker = ctx.unreal->era == UnrealEra::ue5_0 ? "LWCHackToFloat" : "DFHackToFloat";
+    std::string args;
+    for (const Variable& v : ctx.world.variables())
+      if (v.role == Variable::Role::parameter && v.function == fn) args += (args.empty() ? "" : ", ") + v.name;
+    split.edits.push_back({Span{whole.begin, whole.begin}, copy + "\n\n"});
+    split.edits.push_back({t.span(body), fmt::format("{{\n\treturn {}({}) - {}(PrimaryView.PreViewTranslation);\n}}", new_name, args, marker)});
+    Span kept = t.span(body);
+    int moved = 0;
+    for (int call : calls_to(t, fn)) {
+      if (t.at(call).begin >= kept.begin && t.at(call).end <= kept.end) continue;
+      if (covered(split, t.span(t.child_by_field(call, "function")))) continue;  // renamed as another call's partner
+      RewritePlan trial = split;
+      follow_use(ctx, names, call, new_name + std::string(t.text(t.child_by_field(call, "arguments"))), trial, depth + 1);
+      // A caller's rewrite may not reach into the body the split replaces.
+      bool clear = trial.blocker.empty() && std::none_of(trial.edits.begin() + static_cast<long>(split.edits.size()), trial.edits.end(),
+                                                         [&](const Edit& e) { return e.span.end > kept.begin && e.span.begin < kept.end; });
+      if (!clear) continue;
+      split = std::move(trial);
+      ++moved;
+    }
+    if (moved == 0) return false;
+    plan = std::move(split);
+    return true;
+  }
+
+  // `text` (which starts at `offset` in the file) with edits inside it applied.
+  static std::string spliced(std::string text, uint32_t offset, std::vector<Edit> edits) {
+    std::sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) { return a.span.begin > b.span.begin; });
+    for (const Edit& e : edits) text.replace(e.span.begin - offset, e.span.end - e.span.begin, e.text);
+    return text;
+  }
+
+  // A call of a function of this file as the other point of a difference: it calls the
+  // function's translated form, moving the function if this plan does not yet (in a trial).
+  bool follow_partner_call(const CheckContext& ctx, const DeclaredNames& names, int partner, RewritePlan& plan, int depth) const {
+    const SyntaxTree& t = ctx.tree;
+    while (t.is(partner, "parenthesized_expression")) partner = t.named_child(partner);
+    if (!t.is(partner, "call_expression")) return false;
+    int fn = defined_function(t, call_name(t, partner), call_arguments(t, partner).size());
+    if (fn < 0) return false;
+    Span callee = t.span(t.child_by_field(partner, "function"));
+    if (std::find(plan.moving_functions.begin(), plan.moving_functions.end(), fn) != plan.moving_functions.end()) {
+      if (!covered(plan, callee)) plan.edits.push_back({callee, translated_name(std::string(t.text(function_name(t, fn))))});
+      return true;
+    }
+    RewritePlan trial = plan;
+    // A sibling of the use, not a step deeper: each function moves once per plan, which bounds it.
+    if (!translate_value(ctx, names, partner, trial, depth).empty() || !trial.blocker.empty() || !covered(trial, callee)) return false;
+    plan = std::move(trial);
+    return true;
+  }
+
+  // Some edit of the plan rewrites `span` (or text around it).
+  static bool covered(const RewritePlan& plan, Span span) {
+    return std::any_of(plan.edits.begin(), plan.edits.end(), [&](const Edit& e) { return e.span.begin <= span.begin && span.end <= e.span.end; });
+  }
+
+  // The calls of function `fn` in this file: its name, with as many arguments as it takes.
+  static std::vector<int> calls_to(const SyntaxTree& t, int fn) {
+    std::string_view name = t.text(function_name(t, fn));
+    size_t arity = function_arity(t, fn);
+    std::vector<int> out;
+    for (int c : nodes_of(t, "call_expression"))
+      if (call_name(t, c) == name && call_arguments(t, c).size() == arity) out.push_back(c);
+    return out;
   }
 
   static bool name_used(const SyntaxTree& t, std::string_view name) {
@@ -351,6 +461,12 @@ class FloatWorldPosition : public Check {
       return;
     }
     if (partner >= 0 && follow_partner(ctx, names, partner, plan, depth)) {
+      renamed();
+      return;
+    }
+    // The other point is a call of a function of this file returning an absolute position (a
+    // neighbouring cell's): it takes the translated one too.
+    if (partner >= 0 && depth < 4 && follow_partner_call(ctx, names, partner, plan, depth)) {
       renamed();
       return;
     }
@@ -500,12 +616,12 @@ class FloatWorldPosition : public Check {
     const SyntaxTree& t = ctx.tree;
     int name = function_name(t, fn);
     std::string old_name(t.text(name));
-    if (std::string why = movable(t, names, old_name, new_name); !why.empty()) return fmt::format("it is returned by `{}`: {}", old_name, why);
+    if (std::string why = movable(t, names, fn, new_name); !why.empty()) return fmt::format("it is returned by `{}`: {}", old_name, why);
     std::vector<int> returns;
     collect_returns(t, t.child_by_field(fn, "body"), returns);
     if (returns.size() != 1) return fmt::format("`{}` returns from more than one place", old_name);
     plan.moving_functions.push_back(fn);
-    rename_with_callers(ctx, names, name, new_name, plan, depth);
+    rename_with_callers(ctx, names, fn, new_name, plan, depth);
     return plan.blocker;
   }
 
@@ -593,9 +709,9 @@ class FloatWorldPosition : public Check {
     return std::find(words.begin(), words.end(), "out") != words.end() ? param : -1;
   }
 
-  static int calls_of(const SyntaxTree& t, std::string_view name) {
+  static int calls_of(const SyntaxTree& t, std::string_view name, std::optional<size_t> arity = std::nullopt) {
     int calls = 0;
-    for (int c : nodes_of(t, "call_expression")) calls += call_name(t, c) == name;
+    for (int c : nodes_of(t, "call_expression")) calls += call_name(t, c) == name && (!arity || call_arguments(t, c).size() == *arity);
     return calls;
   }
 

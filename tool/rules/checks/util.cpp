@@ -187,6 +187,26 @@ int defined_function(const SyntaxTree& tree, std::string_view name) {
   return found;
 }
 
+size_t function_arity(const SyntaxTree& tree, int definition) {
+  int declarator = tree.child_by_field(definition, "declarator");
+  int list = declarator >= 0 ? tree.child_by_field(declarator, "parameters") : -1;
+  size_t n = 0;
+  if (list >= 0)
+    for (int c : tree.named_children(list)) n += tree.is(c, "parameter_declaration");
+  return n;
+}
+
+int defined_function(const SyntaxTree& tree, std::string_view name, size_t arity) {
+  int found = -1;
+  for (int fn : nodes_of(tree, "function_definition")) {
+    int n = function_name(tree, fn);
+    if (n < 0 || tree.text(n) != name || function_arity(tree, fn) != arity) continue;
+    if (found >= 0) return -1;
+    found = fn;
+  }
+  return found;
+}
+
 int undemoted(const SyntaxTree& tree, int node) {
   while (tree.is(node, "parenthesized_expression")) node = tree.named_child(node);
   if (!tree.is(node, "call_expression")) return node;

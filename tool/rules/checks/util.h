@@ -30,8 +30,12 @@ int function_name(const SyntaxTree& tree, int definition);
 std::string ue5_spelling(const CheckContext& ctx, int node);
 // The file defines a function of that name itself (its own copy, as plugins carry): not the engine's.
 bool defines_function(const SyntaxTree& tree, std::string_view name);
-// The one definition of a function of this file called `name` (-1 when none, or overloads).
+// The one definition of a function of this file called `name` (-1 when none, or overloads); with
+// `arity`, the one taking that many parameters.
 int defined_function(const SyntaxTree& tree, std::string_view name);
+int defined_function(const SyntaxTree& tree, std::string_view name, size_t arity);
+// The number of parameters a function definition declares.
+size_t function_arity(const SyntaxTree& tree, int definition);
 // True when `node` is `base.name`: that member or swizzle of that expression.
 bool is_field_of(const SyntaxTree& tree, int node, int base, std::string_view name);
 // True when an identifier is the name being declared or defined (a macro, a function), not a use.
