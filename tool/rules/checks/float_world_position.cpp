@@ -313,6 +313,8 @@ class FloatWorldPosition : public Check {
     // The copy: the function's text with its name and return values translated.
     inside.push_back({t.span(function_name(t, fn)), new_name});
     std::string copy = spliced(std::string(t.text(fn)), whole.begin, inside);
+    // Written with "\n" like every rewrite: the writer gives it the file's own line endings.
+    for (size_t crlf; (crlf = copy.find("\r\n")) != std::string::npos;) copy.erase(crlf, 1);
     std::string marker = ctx.unreal->era == UnrealEra::ue5_0 ? "LWCHackToFloat" : "DFHackToFloat";
     std::string args;
     for (const Variable& v : ctx.world.variables())
