@@ -41,6 +41,22 @@ class TranslatedMember : public Check {
     while (t.is(parent, "parenthesized_expression") || is_field_of(t, parent, use, "xyz")) use = parent, parent = t.at(use).parent;
     const std::string& twin = vars["twin"];
     std::string pre_view = vars["marker"] + "(PrimaryView.PreViewTranslation)";
+    // A store into a member that has a twin (`LightData.Position = DeferredLightUniforms.Position`):
+    // the whole assignment moves, from either side's finding.
+    if (t.is(parent, "assignment_expression") && t.text(t.child_by_field(parent, "operator")) == "=") {
+      int left = t.child_by_field(parent, "left"), right = t.child_by_field(parent, "right");
+      std::string left_twin = engine_translated_twin(ctx, left), right_twin = engine_translated_twin(ctx, right);
+      if (!left_twin.empty() && !right_twin.empty()) {
+        vars["stored"] = left_twin;
+        ctx.fix(f, "store", vars, {{t.span(left), left_twin}, {t.span(right), right_twin}});
+        return;
+      }
+      if (left == use) {
+        f.withheld.push_back(fmt::format("`{}` stores `{}`, which has no translated twin: store it in translated world (plus the pre-view "
+                                         "translation), or have the host hand it over translated", t.text(id), shortened(t.text(right))));
+        return;
+      }
+    }
     bool position = twin.ends_with("Position");
     // A difference with a translated point: both sides in translated world.
     if (position && t.is(parent, "binary_expression") && t.text(t.child_by_field(parent, "operator")) == "-") {
