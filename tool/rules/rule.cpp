@@ -170,10 +170,69 @@ bool CheckContext::too_long(Finding& finding, std::string_view kind, size_t byte
   return true;
 }
 
+namespace {
+
+// Text that can be stored to: a name, then members and indices (`A.B[i].C`).
+bool lvalue_text(std::string_view text) {
+  size_t i = 0;
+  auto word = [&] {
+    size_t start = i;
+    while (i < text.size() && (std::isalnum(static_cast<unsigned char>(text[i])) || text[i] == '_')) ++i;
+    return i > start && !std::isdigit(static_cast<unsigned char>(text[start]));
+  };
+  if (!word()) return false;
+  while (i < text.size()) {
+    if (text[i] == '.') {
+      ++i;
+      if (!word()) return false;
+    } else if (text[i] == '[') {
+      int depth = 0;
+      for (; i < text.size(); ++i) {
+        depth += text[i] == '[' ? 1 : text[i] == ']' ? -1 : 0;
+        if (depth == 0) break;
+      }
+      if (i++ >= text.size()) return false;
+    } else {
+      return false;
+    }
+  }
+  return true;
+}
+
+// An edit that replaces what an assignment (or ++/--) stores into, or the object of a member or
+// element stored into, with text that cannot be stored to: a rewrite that would not compile.
+bool replaces_store_target(const SyntaxTree& tree, const Edit& e) {
+  if (lvalue_text(e.text)) return false;
+  // Nodes are in pre-order, so by their start: the nodes that start where the edit does.
+  auto first = std::lower_bound(tree.nodes.begin(), tree.nodes.end(), e.span.begin, [](const Node& n, uint32_t b) { return n.begin < b; });
+  for (auto it = first; it != tree.nodes.end() && it->begin == e.span.begin; ++it) {
+    if (it->end != e.span.end) continue;
+    int node = static_cast<int>(it - tree.nodes.begin());
+    for (int parent = tree.at(node).parent; parent >= 0; node = parent, parent = tree.at(node).parent) {
+      std::string_view type = tree.at(parent).type;
+      bool object = (type == "field_expression" || type == "subscript_expression") && tree.child_by_field(parent, "argument") == node;
+      if (object || type == "parenthesized_expression") continue;
+      if (type == "assignment_expression") return tree.child_by_field(parent, "left") == node;
+      return type == "update_expression";
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
 Fix* CheckContext::fix(Finding& finding, std::string_view kind, const Vars& vars, std::vector<Edit> edits) const {
   size_t bytes = 0;
   for (const Edit& e : edits) bytes += e.text.size();
   if (too_long(finding, kind, bytes)) return nullptr;
+  // A rewrite never turns what the code stores into into an expression.
+  for (const Edit& e : edits)
+    if (e.path.empty() && replaces_store_target(tree, e)) {
+      Fix f = make_fix(rule, kind, {}, {});
+      finding.withheld.push_back(fmt::format("{}{}the rewrite would store into `{}`, which is not a place: it is withheld", f.strategy,
+                                             f.strategy.empty() ? "" : ": ", e.text.size() > 60 ? e.text.substr(0, 57) + "..." : e.text));
+      return nullptr;
+    }
   // A rewrite whose edits overlap cannot be applied as one: it is withheld, never half applied.
   std::vector<Span> spans;
   for (const Edit& e : edits) spans.push_back(e.span);
