@@ -219,3 +219,28 @@ TEST(WorldModel, ACallMatchingNoDefinitionsArityGivesItsParametersNothing) {
 
 }  // namespace
 }  // namespace lwc
+
+namespace lwc {
+namespace {
+
+// The body of a material custom node (a `return` outside every function; Unreal pastes it into a
+// generated function): its file-level declarations are that function's locals, not uniforms the
+// host uploads. (Not a corpus file: a body does not compile on its own.)
+TEST(WorldModel, CustomNodeBodiesDeclareLocalsNotUniforms) {
+  std::string body =
+      "float3 WorldPosition = PixelInput;\n"
+      "float3 BoxLocal = WorldPosition - BoxCenter;\n"
+      "return dot(BoxLocal, BoxLocal) < BoxRadius * BoxRadius ? 1 : 0;\n";
+  auto rules = [](const std::vector<Finding>& findings) {
+    std::vector<std::string> out;
+    for (const Finding& f : findings) out.push_back(f.rule);
+    return out;
+  };
+  EXPECT_EQ(rules(test::lint_text(body, Lang::hlsl)), std::vector<std::string>{"lwc-float-world-position"});
+  // The same declaration in a file of functions is a uniform.
+  std::string library = "float3 WorldPosition;\nfloat InBox(float3 BoxCenter) { return length(WorldPosition - BoxCenter); }\n";
+  EXPECT_EQ(rules(test::lint_text(library, Lang::hlsl)), std::vector<std::string>{"lwc-uniform-world-float"});
+}
+
+}  // namespace
+}  // namespace lwc

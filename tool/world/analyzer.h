@@ -128,6 +128,9 @@ class Analyzer {
   void collect_struct(int id);
 
   void collect_global(int id);
+  // The file is the body of a material custom node (a `return` outside every function): its
+  // file-level declarations are the node function's locals, not uniforms.
+  bool custom_node_body() const;
 
   bool private_storage(const std::vector<std::string_view>& words) const;
 
@@ -285,6 +288,7 @@ class Analyzer {
   std::map<int, NamedOutput> named_outputs_;
   // Included fields by name -> their one type ("" when types differ), built on first use.
   mutable std::optional<std::unordered_map<std::string, std::string>> include_field_by_name_;
+  mutable std::optional<bool> custom_node_body_;
 };
 
 }  // namespace analysis

@@ -453,12 +453,21 @@ void Analyzer::collect_struct(int id) {
   }
 }
 
+bool Analyzer::custom_node_body() const {
+  if (!custom_node_body_) {
+    custom_node_body_ = false;
+    for (int r : t_.of_type("return_statement"))
+      if (t_.ancestor(r, "function_definition") < 0) custom_node_body_ = true;
+  }
+  return *custom_node_body_;
+}
+
 void Analyzer::collect_global(int id) {
   auto words = leading_words(t_, id);
   int block = t_.ancestor(id, "linkage_specification");  // an HLSL cbuffer after masking
   bool uniform;
   if (t_.lang == Lang::hlsl) {
-    uniform = block >= 0 || (!has_word(words, "static") && !has_word(words, "groupshared"));
+    uniform = block >= 0 || (!has_word(words, "static") && !has_word(words, "groupshared") && !custom_node_body());
   } else {
     uniform = has_word(words, "uniform");
   }
