@@ -669,6 +669,8 @@ int Analyzer::add_global(int declaration, int name, std::string type, int block,
   v.uniform = uniform;
   v.precise = precise;
   if (name_counts) v.kind = source_kind(Path{{v.name, false}}, true).value_or(Kind::unknown);
+  // A 3x3 matrix holds no translation, whatever its name says (`TangentToWorld`).
+  if (is_3x3_type(v.type) && is_matrix(v.kind)) v.kind = Kind::rotation_matrix;
   int var = new_variable(std::move(v));
   globals_[m_.variables_[var].name] = var;
   // A GLSL varying named as a world position (`in vec3 vWorldPosition`) holds one.
