@@ -262,6 +262,7 @@ std::vector<int> WorldModel::parameters_receiving(int call, int argument) const 
   int fn = tree_.child_by_field(call, "function");
   if (fn < 0 || !tree_.is(fn, "identifier")) return out;
   std::vector<int> list = tree_.named_children(tree_.child_by_field(call, "arguments"));
+  std::erase_if(list, [&](int n) { return tree_.is(n, "comment"); });  // a comment between arguments is not one
   size_t index = 0;
   while (index < list.size() && !(tree_.at(list[index]).begin <= tree_.at(argument).begin && tree_.at(argument).end <= tree_.at(list[index]).end)) ++index;
   if (index == list.size()) return out;
@@ -305,6 +306,7 @@ std::optional<ParameterUse> WorldModel::included_parameter_use(int call, int arg
   int fn = tree_.child_by_field(call, "function");
   if (!includes_ || fn < 0 || !tree_.is(fn, "identifier")) return std::nullopt;
   std::vector<int> list = tree_.named_children(tree_.child_by_field(call, "arguments"));
+  std::erase_if(list, [&](int n) { return tree_.is(n, "comment"); });  // a comment between arguments is not one
   size_t index = 0;
   while (index < list.size() && !(tree_.at(list[index]).begin <= tree_.at(argument).begin && tree_.at(argument).end <= tree_.at(list[index]).end)) ++index;
   auto it = includes_->parameter_uses.find(std::string(tree_.text(fn)) + "/" + std::to_string(list.size()));

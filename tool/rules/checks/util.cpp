@@ -28,7 +28,9 @@ std::string_view call_name(const SyntaxTree& tree, int call) {
 
 std::vector<int> call_arguments(const SyntaxTree& tree, int call) {
   int args = tree.child_by_field(call, "arguments");
-  return args >= 0 ? tree.named_children(args) : std::vector<int>{};
+  std::vector<int> out = args >= 0 ? tree.named_children(args) : std::vector<int>{};
+  std::erase_if(out, [&](int n) { return tree.is(n, "comment"); });  // a comment between arguments is not one
+  return out;
 }
 
 std::vector<std::string> string_list(const nlohmann::json& data, const char* key) {
