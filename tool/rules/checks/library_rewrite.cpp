@@ -105,13 +105,28 @@ LibraryRewrite library_rewrite(const SyntaxTree& t, const WorldData& data, const
   int call = t.at(p).parent;
   auto args = call_arguments(t, call);
   std::string point = args.size() == 2 && args[1] == node ? position_of_homogeneous(t, args[0]) : "";
-  if (point.empty()) return out;
-  // `mul(float4(P, 1), M).xyz` becomes the 3-vector itself; without the swizzle, w stays 1.
   bool xyz = is_field_of(t, t.at(call).parent, call, "xyz");
-  Span span = t.span(xyz ? t.at(call).parent : call);
-  auto homogeneous = [&](const std::string& p3) { return xyz ? p3 : fmt::format("float4({}, 1)", p3); };
   auto twin = data.twins.members.find(value.member);
   bool view = !value.object.empty() && matches_any(data.twins.objects, value.object);
+  if (point.empty()) {
+    // A direction (`mul(float4(D, 0), M)`): no translation moves it, so the view's translated twin
+    // gives the same vector, and any transform's 3x3 part does.
+    std::string direction = args.size() == 2 && args[1] == node ? direction_of_homogeneous(t, args[0]) : "";
+    if (direction.empty()) return out;
+    if (view && twin != data.twins.members.end()) {
+      out.fix = "direction-twin";
+      out.vars["twin"] = (value.object == "View" ? "PrimaryView" : value.object) + "." + twin->second;
+      out.edits = {{t.span(node), out.vars["twin"]}};
+    } else if (xyz) {
+      out.fix = "rotation";
+      out.vars["call"] = to3x3;
+      out.edits = {{t.span(t.at(call).parent), fmt::format("mul({}, {}({}))", direction, to3x3, value.text)}};
+    }
+    return out;
+  }
+  // `mul(float4(P, 1), M).xyz` becomes the 3-vector itself; without the swizzle, w stays 1.
+  Span span = t.span(xyz ? t.at(call).parent : call);
+  auto homogeneous = [&](const std::string& p3) { return xyz ? p3 : fmt::format("float4({}, 1)", p3); };
   if (value.kind == Kind::world_matrix && !xyz && view && twin != data.twins.members.end()) {
     // From clip or screen space the product's w is not 1, and the code reads it.
     out.blocker = fmt::format("`{}` is a projection whose w the code reads: the reconstruction must move to its translated twin "

@@ -1,4 +1,5 @@
 // lwc-primary-view: `View.<member>` (or ResolvedView's) for a world-space member that UE5 moved to PrimaryView.
+#include "rules/checks/library_rewrite.h"
 #include "rules/checks/util.h"
 
 namespace lwc::checks {
@@ -51,6 +52,15 @@ class PrimaryView : public Check {
       auto operand_size = [&](int n) { return n == id ? 12 + member.size() : t.text(n).size(); };
       if (ctx.too_long(f, "demote", vars["call"].size() + operand_size(left) + operand_size(right) + 4)) return;
       ctx.fix(f, "demote", vars, {{t.span(parent), vars["call"] + "(" + operand(left) + ", " + operand(right) + ")"}});
+      return;
+    }
+    // A point or direction transformed by a view matrix: in the era's library, or by its twin.
+    UnrealEra era = ctx.unreal ? ctx.unreal->era : UnrealEra::ue5_4;
+    LibraryRewrite r = library_rewrite(t, ctx.world.data(), {id, "PrimaryView." + member, ctx.world.kind(id), "PrimaryView", member},
+                                       era != UnrealEra::ue5_0);
+    if (!r.fix.empty()) {
+      for (const auto& [key, text] : r.vars) vars[key] = text;
+      ctx.fix(f, r.fix, vars, r.edits);
       return;
     }
     f.withheld.push_back("in UE 5.4 `PrimaryView." + member + "` is a DoubleFloat value and this use (`" +

@@ -243,19 +243,30 @@ int mul_call(const SyntaxTree& tree, int node) {
   return node;
 }
 
-std::string position_of_homogeneous(const SyntaxTree& tree, int node) {
+namespace {
+
+// The 3-vector of `float4(V, w)` / `float4(x, y, z, w)` / `vec4(..)` when w is the literal given
+// ("1" or "0", in any of its spellings), as text; else "".
+std::string homogeneous_part(const SyntaxTree& tree, int node, char w_digit) {
   if (!tree.is(node, "call_expression")) return {};
   std::string_view ctor = call_name(tree, node);
   if (ctor != "float4" && ctor != "vec4") return {};
   auto args = call_arguments(tree, node);
   if (args.size() < 2 || args.size() > 4) return {};
   std::string_view w = tree.text(args.back());
-  if (w != "1" && w != "1.0" && w != "1.0f" && w != "1.f") return {};
+  std::string d(1, w_digit);
+  if (w != d && w != d + ".0" && w != d + ".0f" && w != d + ".f" && w != d + "f") return {};
   if (args.size() == 2) return std::string(tree.text(args[0]));
   std::string out = ctor == "vec4" ? "vec3(" : "float3(";
   for (size_t i = 0; i + 1 < args.size(); ++i) out += std::string(i ? ", " : "") + std::string(tree.text(args[i]));
   return out + ")";
 }
+
+}  // namespace
+
+std::string position_of_homogeneous(const SyntaxTree& tree, int node) { return homogeneous_part(tree, node, '1'); }
+
+std::string direction_of_homogeneous(const SyntaxTree& tree, int node) { return homogeneous_part(tree, node, '0'); }
 
 int homogeneous_wrapper(const SyntaxTree& tree, int use) {
   int list = tree.at(use).parent;

@@ -80,6 +80,8 @@ std::string translated_name(const std::string& name);
 int mul_call(const SyntaxTree& tree, int node);
 // The position of a `float4(P, 1)` / `vec4(P, 1.0)` / `float4(x, y, z, 1)` call as text, or "".
 std::string position_of_homogeneous(const SyntaxTree& tree, int node);
+// The direction of a `float4(D, 0)` / `vec4(x, y, z, 0.0)` call as text, or "".
+std::string direction_of_homogeneous(const SyntaxTree& tree, int node);
 // The `float4(use, 1)` / `vec4(use, 1.0)` call that wraps a use, or -1.
 int homogeneous_wrapper(const SyntaxTree& tree, int use);
 // The names of a model's variables by where they are declared: in a function (locals and
