@@ -43,13 +43,22 @@ class PrimaryView : public Check {
       ctx.fix(f, "primary-view", vars, {{t.span(t.child_by_field(id, "argument")), "PrimaryView"}});
       return;
     }
-    int op = t.is(parent, "binary_expression") ? t.child_by_field(parent, "operator") : -1;
+    // The member as an operand: through `.xyz` (a 3-vector's own value) and parentheses.
+    int use = id, above = parent;
+    while (t.is(above, "parenthesized_expression") || is_field_of(t, above, use, "xyz")) use = above, above = t.at(use).parent;
+    int op = t.is(above, "binary_expression") ? t.child_by_field(above, "operator") : -1;
     if (op >= 0 && (t.text(op) == "-" || t.text(op) == "+") && matches_any(positions_, member)) {
+      parent = above;
       int left = t.child_by_field(parent, "left"), right = t.child_by_field(parent, "right");
-      auto operand = [&](int n) { return n == id ? "PrimaryView." + member : std::string(t.text(n)); };
+      // Either operand that is a view position member (this one, or another beside it) is written
+      // as UE5 spells it, so both findings of `A - B` carry the same rewrite.
+      auto operand = [&](int n) {
+        std::string other = view_position(ctx, n);
+        return !other.empty() ? "PrimaryView." + other : std::string(t.text(n));
+      };
       vars["call"] = t.text(op) == "-" ? "DFSubtractDemote" : "DFAddDemote";
       // Measured before it is written: in a long chain of sums each operand is the chain so far.
-      auto operand_size = [&](int n) { return n == id ? 12 + member.size() : t.text(n).size(); };
+      auto operand_size = [&](int n) { return t.text(n).size() + 12; };
       if (ctx.too_long(f, "demote", vars["call"].size() + operand_size(left) + operand_size(right) + 4)) return;
       ctx.fix(f, "demote", vars, {{t.span(parent), vars["call"] + "(" + operand(left) + ", " + operand(right) + ")"}});
       return;
@@ -66,6 +75,20 @@ class PrimaryView : public Check {
     f.withheld.push_back("in UE 5.4 `PrimaryView." + member + "` is a DoubleFloat value and this use (`" +
                          shortened(t.text(parent)) + "`) needs a float: the surrounding computation must move " +
                          "to translated world or DoubleFloat first (lwc-float-world-position)");
+  }
+
+  // The position member of the view a node is (`View.M`, `View.M.xyz`, through parentheses) as
+  // its name, or "".
+  std::string view_position(const CheckContext& ctx, int n) const {
+    const SyntaxTree& t = ctx.tree;
+    while (t.is(n, "parenthesized_expression")) n = t.named_child(n);
+    if (is_field_of(t, n, t.child_by_field(n, "argument"), "xyz")) n = t.child_by_field(n, "argument");
+    int base = t.is(n, "field_expression") ? t.child_by_field(n, "argument") : -1;
+    if (base < 0 || !t.is(base, "identifier") || !matches_any(objects_, t.text(base))) return {};
+    int var = ctx.world.variable_at(base);
+    if (var >= 0 && ctx.world.variables()[var].role != Variable::Role::global) return {};
+    std::string member(t.text(t.child_by_field(n, "field")));
+    return matches_any(positions_, member) ? member : "";
   }
 
   // The member's large-world type in the era the code builds against, and what that means for it.
