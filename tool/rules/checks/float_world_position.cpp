@@ -162,6 +162,18 @@ class FloatWorldPosition : public Check {
       // A point and a small offset (`P + Normal * Bias`, `P - Dir * T`): the point moves.
       if ((op == "+" || op == "-") && small_vector(ctx, right)) return translate_value(ctx, names, left, plan, depth);
       if (op == "+" && small_vector(ctx, left)) return translate_value(ctx, names, right, plan, depth);
+      // The camera plus a vector that is no position (`ScreenVector * SceneDepth + View.WorldCameraOrigin`,
+      // a view ray scaled to a depth): the camera takes its translated twin, the vector stays.
+      if (op == "+" || op == "-") {
+        for (auto [camera, other] : {std::pair{left, right}, std::pair{right, left}}) {
+          if (op == "-" && camera != left) continue;
+          std::string twin = ctx.world.kind(camera) == Kind::absolute ? translated_twin(ctx, camera) : "";
+          if (!twin.empty() && !is_position(ctx.world.kind(other))) {
+            plan.edits.push_back({t.span(camera), twin});
+            return {};
+          }
+        }
+      }
       // A homogeneous point divided by its own w (`H.xyz / H.w`): H moves, its w stays.
       if (op == "/" && t.is(left, "field_expression") && is_field_of(t, left, t.child_by_field(left, "argument"), "xyz") &&
           t.is(right, "field_expression") && is_field_of(t, right, t.child_by_field(right, "argument"), "w") &&
@@ -170,6 +182,11 @@ class FloatWorldPosition : public Check {
     }
     if (int base = t.child_by_field(value, "argument"); t.is(base, "identifier") && is_field_of(t, value, base, "xyz"))
       return translate_value(ctx, names, base, plan, depth);
+    // A point made homogeneous (`float4(P, 1)`, or its `.xyz` again): the point moves.
+    if (int base = t.child_by_field(value, "argument"); is_field_of(t, value, base, "xyz") && !position_of_homogeneous(t, base).empty())
+      value = base;
+    if (std::string p = position_of_homogeneous(t, value); !p.empty() && call_arguments(t, value).size() == 2)
+      return translate_value(ctx, names, call_arguments(t, value)[0], plan, depth);
     // A wrapper that only changes how the value is computed (`INVARIANT(P)`): its operand moves.
     if (t.is(value, "call_expression") && matches_any(wrappers_, call_name(t, value)))
       if (auto args = call_arguments(t, value); args.size() == 1) return translate_value(ctx, names, args[0], plan, depth);
@@ -543,6 +560,9 @@ class FloatWorldPosition : public Check {
       return n;
     }
   }
+
+  // A kind that is a point in some frame (absolute, translated, or the camera offset).
+  static bool is_position(Kind k) { return k == Kind::absolute || k == Kind::translated || k == Kind::camera_offset; }
 
   // A vector that is not a position: small by its kind, or built only from names that say so
   // (`Normal * Bias`, `Dir * T`) and numbers.
