@@ -561,6 +561,17 @@ class FloatWorldPosition : public Check {
     }
   }
 
+  // `float4(P, W)` around P (its first argument) with W no homogeneous 0 or 1: the call, or -1.
+  static int packed_point(const SyntaxTree& t, int point) {
+    int list = t.at(point).parent;
+    int call = t.is(list, "argument_list") ? t.at(list).parent : -1;
+    if (call < 0 || (call_name(t, call) != "float4" && call_name(t, call) != "vec4")) return -1;
+    auto args = call_arguments(t, call);
+    if (args.size() != 2 || args[0] != point) return -1;
+    if (!position_of_homogeneous(t, call).empty() || !direction_of_homogeneous(t, call).empty()) return -1;
+    return call;
+  }
+
   // A kind that is a point in some frame (absolute, translated, or the camera offset).
   static bool is_position(Kind k) { return k == Kind::absolute || k == Kind::translated || k == Kind::camera_offset; }
 
@@ -601,6 +612,9 @@ class FloatWorldPosition : public Check {
   // name, and its own uses follow.
   bool follow_into_local(const CheckContext& ctx, const DeclaredNames& names, int expr, RewritePlan& plan, int depth) const {
     const SyntaxTree& t = ctx.tree;
+    // Packed with a scalar (`float4(P, Radius)`, a bounding sphere): the 4-vector's xyz is the
+    // point, and its w stays what it was.
+    if (int packed = packed_point(t, expr); packed >= 0) expr = packed;
     int declarator = t.at(expr).parent;
     if (!t.is(declarator, "init_declarator") || t.child_by_field(declarator, "value") != expr) return false;
     int id = t.child_by_field(declarator, "declarator");
