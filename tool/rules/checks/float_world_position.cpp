@@ -23,6 +23,7 @@ class FloatWorldPosition : public Check {
       : descriptions_(rule.data.at("kinds")),
         primitive_objects_(string_list(rule.data, "primitive-objects")),
         wrappers_(string_list(rule.data, "wrappers")),
+        translation_invariant_(string_list(rule.data, "translation-invariant")),
         camera_{string_list(rule.data, "camera-words")} {}
 
   void run(const CheckContext& ctx) const override {
@@ -515,6 +516,13 @@ class FloatWorldPosition : public Check {
       renamed();
       return;
     }
+    // A screen derivative of the point: the camera's translation is the same at every pixel, so
+    // the derivative of the translated point is the one of the absolute point.
+    if (int list = t.at(expr).parent; t.is(list, "argument_list") && call_arguments(t, t.at(list).parent).size() == 1 &&
+                                      matches_any(translation_invariant_, call_name(t, t.at(list).parent))) {
+      renamed();
+      return;
+    }
     if (depth < 4 && t.is(t.at(expr).parent, "return_statement")) {
       int fn = expr;
       while (fn >= 0 && !t.is(fn, "function_definition")) fn = t.at(fn).parent;
@@ -790,6 +798,7 @@ class FloatWorldPosition : public Check {
   nlohmann::json descriptions_;  // kind -> words for the message
   std::vector<std::string> primitive_objects_;
   std::vector<std::string> wrappers_;  // calls that return their operand, computed differently (`INVARIANT`)
+  std::vector<std::string> translation_invariant_;  // calls whose result a translation of their operand leaves be (`ddx`)
   CameraNames camera_;  // plain code: which absolute uniforms are the camera
 };
 
