@@ -12,6 +12,9 @@
 namespace lwc::checks {
 namespace {
 
+// The most callers a function split tries (split_function).
+constexpr size_t kMaxSplitCallers = 32;
+
 bool unreal_code(const SyntaxTree& t) {
   const std::string& p = t.source->path();
   return p.ends_with(".usf") || p.ends_with(".ush");
@@ -317,6 +320,10 @@ class FloatWorldPosition : public Check {
     int body = t.child_by_field(fn, "body");
     int type = t.child_by_field(fn, "type");
     if (!ctx.unreal || body < 0 || type < 0 || t.text(type) != "float3") return false;
+    // Each finding of the chain plans the split again, trying every caller: a bound keeps a file
+    // with a function called from hundreds of places linear.
+    std::vector<int> callers = calls_to(t, fn);
+    if (callers.size() > kMaxSplitCallers) return false;
     Span whole = t.span(fn);
     // The return values' edits inside the function go to the copy; those outside it (a function
     // it calls, moved on the way) stay.
@@ -341,16 +348,18 @@ class FloatWorldPosition : public Check {
     split.edits.push_back({t.span(body), fmt::format("{{\n\treturn {}({}) - {}(PrimaryView.PreViewTranslation);\n}}", new_name, args, marker)});
     Span kept = t.span(body);
     int moved = 0;
-    for (int call : calls_to(t, fn)) {
+    for (int call : callers) {
       if (t.at(call).begin >= kept.begin && t.at(call).end <= kept.end) continue;
       if (covered(split, t.span(t.child_by_field(call, "function")))) continue;  // renamed as another call's partner
-      RewritePlan trial = split;
-      follow_use(ctx, names, call, new_name + std::string(t.text(t.child_by_field(call, "arguments"))), trial, depth + 1);
+      PlanMark before = mark(split);
+      follow_use(ctx, names, call, new_name + std::string(t.text(t.child_by_field(call, "arguments"))), split, depth + 1);
       // A caller's rewrite may not reach into the body the split replaces.
-      bool clear = trial.blocker.empty() && std::none_of(trial.edits.begin() + static_cast<long>(split.edits.size()), trial.edits.end(),
+      bool clear = split.blocker.empty() && std::none_of(split.edits.begin() + static_cast<long>(before.edits), split.edits.end(),
                                                          [&](const Edit& e) { return e.span.end > kept.begin && e.span.begin < kept.end; });
-      if (!clear) continue;
-      split = std::move(trial);
+      if (!clear) {
+        roll_back(split, before);
+        continue;
+      }
       ++moved;
     }
     if (moved == 0) return false;
@@ -378,11 +387,11 @@ class FloatWorldPosition : public Check {
       if (!covered(plan, callee)) plan.edits.push_back({callee, translated_name(std::string(t.text(function_name(t, fn))))});
       return true;
     }
-    RewritePlan trial = plan;
+    PlanMark before = mark(plan);
     // A sibling of the use, not a step deeper: each function moves once per plan, which bounds it.
-    if (!translate_value(ctx, names, partner, trial, depth).empty() || !trial.blocker.empty() || !covered(trial, callee)) return false;
-    plan = std::move(trial);
-    return true;
+    if (translate_value(ctx, names, partner, plan, depth).empty() && plan.blocker.empty() && covered(plan, callee)) return true;
+    roll_back(plan, before);
+    return false;
   }
 
   // Some edit of the plan rewrites `span` (or text around it).
@@ -646,11 +655,11 @@ class FloatWorldPosition : public Check {
     if (std::find(plan.moving_variables.begin(), plan.moving_variables.end(), var) != plan.moving_variables.end()) return true;
     const Variable& v = ctx.world.variables()[var];
     if (v.role != Variable::Role::local || v.kind != Kind::absolute || depth >= 4) return false;
-    RewritePlan trial = plan;
-    std::string why = v.init >= 0 ? move_local(ctx, names, var, true, trial, depth + 1) : move_out_local(ctx, names, var, trial, depth + 1);
-    if (!why.empty()) return false;
-    plan = std::move(trial);
-    return true;
+    PlanMark before = mark(plan);
+    std::string why = v.init >= 0 ? move_local(ctx, names, var, true, plan, depth + 1) : move_out_local(ctx, names, var, plan, depth + 1);
+    if (why.empty()) return true;
+    roll_back(plan, before);
+    return false;
   }
 
   // The function a returned use leaves through: its value is already translated (the use is), so

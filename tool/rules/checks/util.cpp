@@ -130,6 +130,22 @@ RewritePlan withheld(std::string why) {
   return plan;
 }
 
+PlanMark mark(const RewritePlan& plan) {
+  return {plan.edits.size(),     plan.helpers.size(),          plan.notes.size(),           plan.library.size(),
+          plan.interface.size(), plan.moving_functions.size(), plan.moving_variables.size(), plan.blocker};
+}
+
+void roll_back(RewritePlan& plan, const PlanMark& mark) {
+  plan.edits.resize(mark.edits);
+  plan.helpers.resize(mark.helpers);
+  plan.notes.resize(mark.notes);
+  plan.library.resize(mark.library);
+  plan.interface.resize(mark.interface);
+  plan.moving_functions.resize(mark.functions);
+  plan.moving_variables.resize(mark.variables);
+  plan.blocker = mark.blocker;
+}
+
 std::string translated_name(const std::string& name) {
   if (name.rfind("Absolute", 0) == 0) return "Translated" + name.substr(8);
   // Insert before the world (or, failing that, the first) word, in the name's own case.

@@ -72,6 +72,15 @@ struct RewritePlan {
   std::vector<int> moving_variables;  // locals that become translated in this plan
 };
 RewritePlan withheld(std::string why);
+// A plan's size at one moment, to try a step on the plan itself and take it back if it fails:
+// every step only appends (or rewrites what it appended), so the plan up to the mark is kept. A
+// copy of the plan per try costs its whole size, and a chain tries once per caller.
+struct PlanMark {
+  size_t edits, helpers, notes, library, interface, functions, variables;
+  std::string blocker;
+};
+PlanMark mark(const RewritePlan& plan);
+void roll_back(RewritePlan& plan, const PlanMark& mark);
 
 // The camera-relative name of a world-position name: WorldPos -> TranslatedWorldPos,
 // vWorldPosition -> vTranslatedWorldPosition, AbsoluteWorldPosition -> TranslatedWorldPosition.
