@@ -54,6 +54,40 @@ std::vector<int> SyntaxTree::named_children(int id) const {
   return out;
 }
 
+void SyntaxTree::index_names() const {
+  if (names_indexed_) return;
+  names_indexed_ = true;
+  for (int id : of_type("identifier")) identifiers_.emplace(text(id), true);
+  for (int fn : of_type("function_definition")) {
+    int declarator = child_by_field(fn, "declarator");
+    int name = declarator >= 0 ? child_by_field(declarator, "declarator") : -1;
+    if (name >= 0 && is(name, "identifier")) definitions_by_name_[text(name)].push_back(fn);
+  }
+  for (int call : of_type("call_expression")) {
+    int name = child_by_field(call, "function");
+    if (name >= 0 && is(name, "identifier")) calls_by_name_[text(name)].push_back(call);
+  }
+}
+
+const std::vector<int>& SyntaxTree::definitions_named(std::string_view name) const {
+  static const std::vector<int> none;
+  index_names();
+  auto it = definitions_by_name_.find(name);
+  return it != definitions_by_name_.end() ? it->second : none;
+}
+
+const std::vector<int>& SyntaxTree::calls_named(std::string_view name) const {
+  static const std::vector<int> none;
+  index_names();
+  auto it = calls_by_name_.find(name);
+  return it != calls_by_name_.end() ? it->second : none;
+}
+
+bool SyntaxTree::has_identifier(std::string_view name) const {
+  index_names();
+  return identifiers_.count(name) > 0;
+}
+
 const std::vector<int>& SyntaxTree::of_type(std::string_view type) const {
   if (by_type_pointer_.empty() && !nodes.empty()) {
     // One pass for every type: a node's type is one of the grammar's static strings.

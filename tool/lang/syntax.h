@@ -85,8 +85,18 @@ class SyntaxTree {
   // type name. That name's node when `call` is such a call with one argument, else -1 (the caller
   // decides whether the name is a type).
   int cast_written_as_call(int call) const;
+  // Function definitions and calls by their plain name (an identifier), and whether any identifier
+  // is spelled so: indexed on first use, as the checks ask once per finding (a scan of the whole
+  // tree each time made lint quadratic in the file's size).
+  const std::vector<int>& definitions_named(std::string_view name) const;
+  const std::vector<int>& calls_named(std::string_view name) const;
+  bool has_identifier(std::string_view name) const;
 
  private:
+  void index_names() const;
+  mutable bool names_indexed_ = false;
+  mutable std::map<std::string_view, std::vector<int>, std::less<>> definitions_by_name_, calls_by_name_;
+  mutable std::map<std::string_view, bool, std::less<>> identifiers_;
   mutable std::vector<std::pair<const char*, std::vector<int>>> by_type_pointer_;  // every node, by its type's string
   mutable std::deque<std::pair<std::string, std::vector<int>>> of_type_;  // a deque: what of_type returned stays put
 };

@@ -404,16 +404,12 @@ class FloatWorldPosition : public Check {
     std::string_view name = t.text(function_name(t, fn));
     size_t arity = function_arity(t, fn);
     std::vector<int> out;
-    for (int c : nodes_of(t, "call_expression"))
-      if (call_name(t, c) == name && call_arguments(t, c).size() == arity) out.push_back(c);
+    for (int c : t.calls_named(name))
+      if (call_arguments(t, c).size() == arity) out.push_back(c);
     return out;
   }
 
-  static bool name_used(const SyntaxTree& t, std::string_view name) {
-    for (int id : nodes_of(t, "identifier"))
-      if (t.text(id) == name) return true;
-    return false;
-  }
+  static bool name_used(const SyntaxTree& t, std::string_view name) { return t.has_identifier(name); }
 
   static void collect_returns(const SyntaxTree& t, int node, std::vector<int>& out) {
     if (node < 0) return;
@@ -742,15 +738,22 @@ class FloatWorldPosition : public Check {
     std::string_view callee = call_name(t, call);
     auto args = call_arguments(t, call);
     size_t index = std::find(args.begin(), args.end(), argument) - args.begin();
-    const auto& vars = ctx.world.variables();
+    // The definition taking that many arguments, else the first of that name.
+    const std::vector<int>& defs = t.definitions_named(callee);
+    if (defs.empty()) return -1;
+    int fn = defined_function(t, callee, args.size());
+    if (fn < 0) fn = defs.front();
+    int declarator = t.child_by_field(fn, "declarator");
+    int parameters = declarator >= 0 ? t.child_by_field(declarator, "parameters") : -1;
     size_t seen = 0;
-    for (size_t i = 0; i < vars.size(); ++i) {
-      const Variable& p = vars[i];
-      if (p.role != Variable::Role::parameter || p.function < 0) continue;
-      int name = function_name(t, p.function);
-      if (name < 0 || t.text(name) != callee) continue;
-      if (seen++ == index) return static_cast<int>(i);
-    }
+    if (parameters >= 0)
+      for (int p : t.named_children(parameters)) {
+        if (!t.is(p, "parameter_declaration")) continue;
+        if (seen++ != index) continue;
+        int name = t.declarator_name(t.child_by_field(p, "declarator"));
+        int var = name >= 0 ? ctx.world.variable_declared_at(name) : -1;
+        return var >= 0 && ctx.world.variables()[static_cast<size_t>(var)].role == Variable::Role::parameter ? var : -1;
+      }
     return -1;
   }
 
@@ -764,7 +767,7 @@ class FloatWorldPosition : public Check {
 
   static int calls_of(const SyntaxTree& t, std::string_view name, std::optional<size_t> arity = std::nullopt) {
     int calls = 0;
-    for (int c : nodes_of(t, "call_expression")) calls += call_name(t, c) == name && (!arity || call_arguments(t, c).size() == *arity);
+    for (int c : t.calls_named(name)) calls += !arity || call_arguments(t, c).size() == *arity;
     return calls;
   }
 

@@ -164,19 +164,21 @@ class LargeWorldMember : public Check {
   // A function of an included file: its type where every overload of that arity agrees.
   static std::string parameter_type(const CheckContext& ctx, std::string_view function, size_t index) {
     const SyntaxTree& t = ctx.tree;
-    std::string type;
-    int defined = -1;
+    const std::vector<int>& defs = t.definitions_named(function);
+    if (defs.size() != 1) return {};
+    int declarator = t.child_by_field(defs.front(), "declarator");
+    int parameters = declarator >= 0 ? t.child_by_field(declarator, "parameters") : -1;
     size_t seen = 0;
-    for (const Variable& v : ctx.world.variables()) {
-      if (v.role != Variable::Role::parameter || v.function < 0) continue;
-      int name = function_name(t, v.function);
-      if (name < 0 || t.text(name) != function) continue;
-      if (defined >= 0 && v.function != defined) return {};
-      defined = v.function;
-      if (seen++ == index) type = v.type;
-    }
-    return type;
+    if (parameters >= 0)
+      for (int p : t.named_children(parameters)) {
+        if (!t.is(p, "parameter_declaration") || seen++ != index) continue;
+        int name = t.declarator_name(t.child_by_field(p, "declarator"));
+        int var = name >= 0 ? ctx.world.variable_declared_at(name) : -1;
+        return var >= 0 ? ctx.world.variables()[static_cast<size_t>(var)].type : std::string();
+      }
+    return {};
   }
+
 
   // The arithmetic done in the era's large-world library (library_rewrite.h).
   // `id`: the member access or call that is the large-world value; `value`: it as the library takes it.

@@ -188,21 +188,11 @@ std::string engine_struct_of(const CheckContext& ctx, int field) {
   return {};
 }
 
-bool defines_function(const SyntaxTree& tree, std::string_view name) {
-  for (int fn : nodes_of(tree, "function_definition"))
-    if (int n = function_name(tree, fn); n >= 0 && tree.text(n) == name) return true;
-  return false;
-}
+bool defines_function(const SyntaxTree& tree, std::string_view name) { return !tree.definitions_named(name).empty(); }
 
 int defined_function(const SyntaxTree& tree, std::string_view name) {
-  int found = -1;
-  for (int fn : nodes_of(tree, "function_definition")) {
-    int n = function_name(tree, fn);
-    if (n < 0 || tree.text(n) != name) continue;
-    if (found >= 0) return -1;
-    found = fn;
-  }
-  return found;
+  const std::vector<int>& defs = tree.definitions_named(name);
+  return defs.size() == 1 ? defs.front() : -1;
 }
 
 size_t function_arity(const SyntaxTree& tree, int definition) {
@@ -216,9 +206,8 @@ size_t function_arity(const SyntaxTree& tree, int definition) {
 
 int defined_function(const SyntaxTree& tree, std::string_view name, size_t arity) {
   int found = -1;
-  for (int fn : nodes_of(tree, "function_definition")) {
-    int n = function_name(tree, fn);
-    if (n < 0 || tree.text(n) != name || function_arity(tree, fn) != arity) continue;
+  for (int fn : tree.definitions_named(name)) {
+    if (function_arity(tree, fn) != arity) continue;
     if (found >= 0) return -1;
     found = fn;
   }
