@@ -1,0 +1,176 @@
+#include "rules/checks/chain_shapes.h"
+
+#include <algorithm>
+
+namespace lwc::checks {
+
+// `V += PreViewTranslation;` (or `V.xyz += ...`) as a statement of the function's own body, not
+// under a branch or a loop: the statement, or -1.
+int rebase_statement(const CheckContext& ctx, int use) {
+  const SyntaxTree& t = ctx.tree;
+  int target = use, assignment = t.at(use).parent;
+  if (is_field_of(t, assignment, use, "xyz")) target = assignment, assignment = t.at(assignment).parent;
+  if (!t.is(assignment, "assignment_expression") || t.child_by_field(assignment, "left") != target ||
+      t.text(t.child_by_field(assignment, "operator")) != "+=" || ctx.world.kind(t.child_by_field(assignment, "right")) != Kind::camera_offset)
+    return -1;
+  int statement = t.at(assignment).parent;
+  return unconditional_statement(t, statement) ? statement : -1;
+}
+
+// The largest expression around a use that is still the same point, moved by the same
+// translation: through parentheses, `.xyz`, a perspective divide (`H.xyz / H.w`), and a small
+// offset added to it or taken from it.
+int climb_point(const CheckContext& ctx, int n) {
+  const SyntaxTree& t = ctx.tree;
+  for (;;) {
+    int p = t.at(n).parent;
+    if (p < 0) return n;
+    if (t.is(p, "parenthesized_expression") || is_field_of(t, p, n, "xyz")) {
+      n = p;
+      continue;
+    }
+    if (!t.is(p, "binary_expression")) return n;
+    std::string_view op = t.text(t.child_by_field(p, "operator"));
+    int left = t.child_by_field(p, "left"), right = t.child_by_field(p, "right");
+    bool small = small_vector(ctx, left == n ? right : left);
+    if ((op == "/" && left == n && small) || (op == "+" && small) || (op == "-" && left == n && small)) {
+      n = p;
+      continue;
+    }
+    return n;
+  }
+}
+
+// `float4(P, W)` around P (its first argument) with W no homogeneous 0 or 1: the call, or -1.
+int packed_point(const SyntaxTree& t, int point) {
+  int list = t.at(point).parent;
+  int call = t.is(list, "argument_list") ? t.at(list).parent : -1;
+  if (call < 0 || (call_name(t, call) != "float4" && call_name(t, call) != "vec4")) return -1;
+  auto args = call_arguments(t, call);
+  if (args.size() != 2 || args[0] != point) return -1;
+  if (!position_of_homogeneous(t, call).empty() || !direction_of_homogeneous(t, call).empty()) return -1;
+  return call;
+}
+
+// A kind that is a point in some frame (absolute, translated, or the camera offset).
+bool is_position(Kind k) { return k == Kind::absolute || k == Kind::translated || k == Kind::camera_offset; }
+
+// A vector that is not a position: small by its kind, or built only from names that say so
+// (`Normal * Bias`, `Dir * T`) and numbers.
+bool small_vector(const CheckContext& ctx, int n) {
+  Kind kind = ctx.world.kind(n);
+  if (kind == Kind::local || kind == Kind::direction) return true;
+  if (kind != Kind::unknown) return false;
+  const SyntaxTree& t = ctx.tree;
+  bool named = false;
+  std::vector<int> stack{n};
+  while (!stack.empty()) {
+    int m = stack.back();
+    stack.pop_back();
+    if (t.is(m, "identifier") || t.is(m, "field_identifier")) {
+      if (ctx.world.data().named_kind(t.text(m), Kind::absolute) != Kind::local) return false;
+      named = true;
+    } else if (t.is(m, "call_expression")) {
+      return false;
+    }
+    for (int c : t.named_children(m)) stack.push_back(c);
+  }
+  return named;
+}
+
+// `X + PreViewTranslation` (either order, through parentheses) around an expression: the sum, or -1.
+int pre_view_sum(const CheckContext& ctx, int expr) {
+  const SyntaxTree& t = ctx.tree;
+  int parent = t.at(expr).parent;
+  while (t.is(parent, "parenthesized_expression")) expr = parent, parent = t.at(expr).parent;
+  if (!t.is(parent, "binary_expression") || t.text(t.child_by_field(parent, "operator")) != "+") return -1;
+  int left = t.child_by_field(parent, "left"), right = t.child_by_field(parent, "right");
+  return ctx.world.kind(left == expr ? right : left) == Kind::camera_offset ? parent : -1;
+}
+
+// `text` (which starts at `offset` in the file) with edits inside it applied.
+std::string spliced(std::string text, uint32_t offset, std::vector<Edit> edits) {
+  std::sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) { return a.span.begin > b.span.begin; });
+  for (const Edit& e : edits) text.replace(e.span.begin - offset, e.span.end - e.span.begin, e.text);
+  return text;
+}
+
+// Some edit of the plan rewrites `span` (or text around it).
+bool covered(const RewritePlan& plan, Span span) {
+  return std::any_of(plan.edits.begin(), plan.edits.end(), [&](const Edit& e) { return e.span.begin <= span.begin && span.end <= e.span.end; });
+}
+
+// The calls of function `fn` in this file: its name, with as many arguments as it takes.
+std::vector<int> calls_to(const SyntaxTree& t, int fn) {
+  std::string_view name = t.text(function_name(t, fn));
+  size_t arity = function_arity(t, fn);
+  std::vector<int> out;
+  for (int c : t.calls_named(name))
+    if (call_arguments(t, c).size() == arity) out.push_back(c);
+  return out;
+}
+
+bool name_used(const SyntaxTree& t, std::string_view name) { return t.has_identifier(name); }
+
+void collect_returns(const SyntaxTree& t, int node, std::vector<int>& out) {
+  if (node < 0) return;
+  if (t.is(node, "return_statement")) out.push_back(node);
+  for (int c : t.named_children(node))
+    if (!t.is(c, "function_definition")) collect_returns(t, c, out);
+}
+
+// A file compiled as one program (an Unreal .usf, a GLSL stage): nothing outside it calls its functions.
+bool whole_program(const SyntaxTree& t) {
+  const std::string& p = t.source->path();
+  for (const char* ext : {".usf", ".vert", ".frag", ".comp", ".geom", ".tesc", ".tese"})
+    if (p.ends_with(ext)) return true;
+  return false;
+}
+
+// The parameter of a function of this file that an argument is passed to, or -1.
+int parameter_of(const CheckContext& ctx, int argument) {
+  const SyntaxTree& t = ctx.tree;
+  int list = t.at(argument).parent;
+  if (!t.is(list, "argument_list")) return -1;
+  int call = t.at(list).parent;
+  std::string_view callee = call_name(t, call);
+  auto args = call_arguments(t, call);
+  size_t index = std::find(args.begin(), args.end(), argument) - args.begin();
+  // The definition taking that many arguments, else the first of that name.
+  const std::vector<int>& defs = t.definitions_named(callee);
+  if (defs.empty()) return -1;
+  int fn = defined_function(t, callee, args.size());
+  if (fn < 0) fn = defs.front();
+  int declarator = t.child_by_field(fn, "declarator");
+  int parameters = declarator >= 0 ? t.child_by_field(declarator, "parameters") : -1;
+  size_t seen = 0;
+  if (parameters >= 0)
+    for (int p : t.named_children(parameters)) {
+      if (!t.is(p, "parameter_declaration")) continue;
+      if (seen++ != index) continue;
+      int name = t.declarator_name(t.child_by_field(p, "declarator"));
+      int var = name >= 0 ? ctx.world.variable_declared_at(name) : -1;
+      return var >= 0 && ctx.world.variables()[static_cast<size_t>(var)].role == Variable::Role::parameter ? var : -1;
+    }
+  return -1;
+}
+
+// The `out` parameter (not `inout`: that reads the value too) an argument is passed to, or -1.
+int out_parameter_of(const CheckContext& ctx, int argument) {
+  int param = parameter_of(ctx, argument);
+  if (param < 0 || !ctx.world.variables()[param].output) return -1;
+  auto words = leading_words(ctx.tree, ctx.world.variables()[param].declaration);
+  return std::find(words.begin(), words.end(), "out") != words.end() ? param : -1;
+}
+
+int calls_of(const SyntaxTree& t, std::string_view name, std::optional<size_t> arity) {
+  int calls = 0;
+  for (int c : t.calls_named(name)) calls += !arity || call_arguments(t, c).size() == *arity;
+  return calls;
+}
+
+bool moving(const RewritePlan& plan, int var) {
+  return std::find(plan.moving_variables.begin(), plan.moving_variables.end(), var) != plan.moving_variables.end();
+}
+
+}  // namespace lwc::checks
