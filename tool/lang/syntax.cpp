@@ -57,7 +57,7 @@ std::vector<int> SyntaxTree::named_children(int id) const {
 void SyntaxTree::index_names() const {
   if (names_indexed_) return;
   names_indexed_ = true;
-  for (int id : of_type("identifier")) identifiers_.emplace(text(id), true);
+  for (int id : of_type("identifier")) identifiers_.insert(text(id));
   for (int fn : of_type("function_definition")) {
     int declarator = child_by_field(fn, "declarator");
     int name = declarator >= 0 ? child_by_field(declarator, "declarator") : -1;

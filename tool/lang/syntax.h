@@ -3,6 +3,7 @@
 #include <deque>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -96,7 +97,7 @@ class SyntaxTree {
   void index_names() const;
   mutable bool names_indexed_ = false;
   mutable std::map<std::string_view, std::vector<int>, std::less<>> definitions_by_name_, calls_by_name_;
-  mutable std::map<std::string_view, bool, std::less<>> identifiers_;
+  mutable std::set<std::string_view, std::less<>> identifiers_;
   mutable std::vector<std::pair<const char*, std::vector<int>>> by_type_pointer_;  // every node, by its type's string
   mutable std::deque<std::pair<std::string, std::vector<int>>> of_type_;  // a deque: what of_type returned stays put
 };

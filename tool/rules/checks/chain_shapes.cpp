@@ -110,7 +110,6 @@ std::vector<int> calls_to(const SyntaxTree& t, int fn) {
   return out;
 }
 
-bool name_used(const SyntaxTree& t, std::string_view name) { return t.has_identifier(name); }
 
 void collect_returns(const SyntaxTree& t, int node, std::vector<int>& out) {
   if (node < 0) return;
@@ -141,18 +140,7 @@ int parameter_of(const CheckContext& ctx, int argument) {
   if (defs.empty()) return -1;
   int fn = defined_function(t, callee, args.size());
   if (fn < 0) fn = defs.front();
-  int declarator = t.child_by_field(fn, "declarator");
-  int parameters = declarator >= 0 ? t.child_by_field(declarator, "parameters") : -1;
-  size_t seen = 0;
-  if (parameters >= 0)
-    for (int p : t.named_children(parameters)) {
-      if (!t.is(p, "parameter_declaration")) continue;
-      if (seen++ != index) continue;
-      int name = t.declarator_name(t.child_by_field(p, "declarator"));
-      int var = name >= 0 ? ctx.world.variable_declared_at(name) : -1;
-      return var >= 0 && ctx.world.variables()[static_cast<size_t>(var)].role == Variable::Role::parameter ? var : -1;
-    }
-  return -1;
+  return parameter_variable(ctx, fn, index);
 }
 
 // The `out` parameter (not `inout`: that reads the value too) an argument is passed to, or -1.
@@ -163,11 +151,7 @@ int out_parameter_of(const CheckContext& ctx, int argument) {
   return std::find(words.begin(), words.end(), "out") != words.end() ? param : -1;
 }
 
-int calls_of(const SyntaxTree& t, std::string_view name, std::optional<size_t> arity) {
-  int calls = 0;
-  for (int c : t.calls_named(name)) calls += !arity || call_arguments(t, c).size() == *arity;
-  return calls;
-}
+int calls_of(const SyntaxTree& t, std::string_view name) { return static_cast<int>(t.calls_named(name).size()); }
 
 bool moving(const RewritePlan& plan, int var) {
   return std::find(plan.moving_variables.begin(), plan.moving_variables.end(), var) != plan.moving_variables.end();

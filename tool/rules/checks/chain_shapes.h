@@ -3,7 +3,6 @@
 // chain rewrites of lwc-float-world-position meet them: which expression around a use is still
 // the same point, which vectors are no positions, who calls a function and which parameter an
 // argument lands in, and the plan's own bookkeeping.
-#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -43,7 +42,6 @@ bool covered(const RewritePlan& plan, Span span);
 // The calls of function `fn` in this file: its name, with as many arguments as it takes.
 std::vector<int> calls_to(const SyntaxTree& t, int fn);
 
-bool name_used(const SyntaxTree& t, std::string_view name);
 
 void collect_returns(const SyntaxTree& t, int node, std::vector<int>& out);
 
@@ -56,7 +54,7 @@ int parameter_of(const CheckContext& ctx, int argument);
 // The `out` parameter (not `inout`: that reads the value too) an argument is passed to, or -1.
 int out_parameter_of(const CheckContext& ctx, int argument);
 
-int calls_of(const SyntaxTree& t, std::string_view name, std::optional<size_t> arity = std::nullopt);
+int calls_of(const SyntaxTree& t, std::string_view name);
 
 bool moving(const RewritePlan& plan, int var);
 

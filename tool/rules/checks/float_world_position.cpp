@@ -291,8 +291,8 @@ class FloatWorldPosition : public Check {
     std::string old_name(t.text(function_name(t, fn)));
     // Another file may call a header's function with an absolute position in mind.
     if (!whole_program(t)) return fmt::format("`{}` is in a header other files may call", old_name);
-    if (names.taken(new_name, -1) || name_used(t, new_name)) return fmt::format("the name `{}` is already taken", new_name);
-    if (calls_of(t, old_name, function_arity(t, fn)) == 0)
+    if (names.taken(new_name, -1) || t.has_identifier(new_name)) return fmt::format("the name `{}` is already taken", new_name);
+    if (calls_to(t, fn).empty())
       return fmt::format("nothing in this file calls `{}` (an entry point's name is the engine's to call)", old_name);
     return {};
   }
@@ -343,8 +343,11 @@ class FloatWorldPosition : public Check {
     for (size_t crlf; (crlf = copy.find("\r\n")) != std::string::npos;) copy.erase(crlf, 1);
     std::string marker = ctx.unreal->era == UnrealEra::ue5_0 ? "LWCHackToFloat" : "DFHackToFloat";
     std::string args;
-    for (const Variable& v : ctx.world.variables())
-      if (v.role == Variable::Role::parameter && v.function == fn) args += (args.empty() ? "" : ", ") + v.name;
+    for (size_t i = 0; i < function_arity(t, fn); ++i) {
+      int param = parameter_variable(ctx, fn, i);
+      if (param < 0) return false;  // an unnamed parameter: the original cannot pass it on
+      args += (args.empty() ? "" : ", ") + ctx.world.variables()[static_cast<size_t>(param)].name;
+    }
     split.edits.push_back({Span{whole.begin, whole.begin}, copy + "\n\n"});
     split.edits.push_back({t.span(body), fmt::format("{{\n\treturn {}({}) - {}(PrimaryView.PreViewTranslation);\n}}", new_name, args, marker)});
     Span kept = t.span(body);

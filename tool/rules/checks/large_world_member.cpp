@@ -77,7 +77,7 @@ class LargeWorldMember : public Check {
     std::string what;  // "" when the use takes the large-world value (or lwcport cannot tell)
     int parent = -1;
     int node = -1;     // the expression that stands for the member there (`M`, `(M)`, `M.xyz`)
-    std::string callee;  // a function of the project whose float parameter takes it, else ""
+    std::string callee = "";  // a function of the project whose float parameter takes it, else ""
   };
 
   Use float_use(const CheckContext& ctx, int node, bool vector3) const {
@@ -166,17 +166,8 @@ class LargeWorldMember : public Check {
     const SyntaxTree& t = ctx.tree;
     const std::vector<int>& defs = t.definitions_named(function);
     if (defs.size() != 1) return {};
-    int declarator = t.child_by_field(defs.front(), "declarator");
-    int parameters = declarator >= 0 ? t.child_by_field(declarator, "parameters") : -1;
-    size_t seen = 0;
-    if (parameters >= 0)
-      for (int p : t.named_children(parameters)) {
-        if (!t.is(p, "parameter_declaration") || seen++ != index) continue;
-        int name = t.declarator_name(t.child_by_field(p, "declarator"));
-        int var = name >= 0 ? ctx.world.variable_declared_at(name) : -1;
-        return var >= 0 ? ctx.world.variables()[static_cast<size_t>(var)].type : std::string();
-      }
-    return {};
+    int var = parameter_variable(ctx, defs.front(), index);
+    return var >= 0 ? ctx.world.variables()[static_cast<size_t>(var)].type : std::string();
   }
 
 

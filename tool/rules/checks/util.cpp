@@ -204,6 +204,21 @@ size_t function_arity(const SyntaxTree& tree, int definition) {
   return n;
 }
 
+int parameter_variable(const CheckContext& ctx, int definition, size_t index) {
+  const SyntaxTree& t = ctx.tree;
+  int declarator = t.child_by_field(definition, "declarator");
+  int list = declarator >= 0 ? t.child_by_field(declarator, "parameters") : -1;
+  size_t seen = 0;
+  if (list >= 0)
+    for (int p : t.named_children(list)) {
+      if (!t.is(p, "parameter_declaration") || seen++ != index) continue;
+      int name = t.declarator_name(t.child_by_field(p, "declarator"));
+      int var = name >= 0 ? ctx.world.variable_declared_at(name) : -1;
+      return var >= 0 && ctx.world.variables()[static_cast<size_t>(var)].role == Variable::Role::parameter ? var : -1;
+    }
+  return -1;
+}
+
 int defined_function(const SyntaxTree& tree, std::string_view name, size_t arity) {
   int found = -1;
   for (int fn : tree.definitions_named(name)) {

@@ -36,6 +36,8 @@ int defined_function(const SyntaxTree& tree, std::string_view name);
 int defined_function(const SyntaxTree& tree, std::string_view name, size_t arity);
 // The number of parameters a function definition declares.
 size_t function_arity(const SyntaxTree& tree, int definition);
+// The model's variable for the `index`-th parameter of a function definition, or -1.
+int parameter_variable(const CheckContext& ctx, int definition, size_t index);
 // True when `node` is `base.name`: that member or swizzle of that expression.
 bool is_field_of(const SyntaxTree& tree, int node, int base, std::string_view name);
 // True when an identifier is the name being declared or defined (a macro, a function), not a use.
