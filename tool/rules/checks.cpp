@@ -12,6 +12,7 @@ std::unique_ptr<Check> make_primary_view(const RuleInfo&);
 std::unique_ptr<Check> make_removed_engine_api(const RuleInfo&);
 std::unique_ptr<Check> make_tile_offset(const RuleInfo&);
 std::unique_ptr<Check> make_translated_member(const RuleInfo&);
+std::unique_ptr<Check> make_translated_parameter(const RuleInfo&);
 std::unique_ptr<Check> make_translated_world(const RuleInfo&);
 std::unique_ptr<Check> make_uniform_world_float(const RuleInfo&);
 }  // namespace checks
@@ -28,6 +29,7 @@ const std::map<std::string_view, CheckFactory>& check_factories() {
       {"lwc-removed-engine-api", checks::make_removed_engine_api},
       {"lwc-tile-offset", checks::make_tile_offset},
       {"lwc-translated-member", checks::make_translated_member},
+      {"lwc-translated-parameter", checks::make_translated_parameter},
       {"lwc-translated-world", checks::make_translated_world},
       {"lwc-uniform-world-float", checks::make_uniform_world_float},
   };

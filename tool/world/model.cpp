@@ -244,6 +244,11 @@ WorldData WorldData::load(const nlohmann::json& ws, const nlohmann::json& extra_
     d.engine_functions[name] = {kind_of(e.at(0)), kind_of(e.at(1)), kind_of(e.at(2))};
   for (const auto& [name, e] : ws.at("engine").at("function-types").items())
     d.engine_function_types[name] = {e.at(0).get<std::string>(), e.at(1).get<std::string>(), e.at(2).get<std::string>()};
+  for (const auto& [name, e] : ws.at("engine").at("translated-parameters").items()) {
+    std::optional<UnrealEra> from = parse_unreal_era(e.at(1).get<std::string>());
+    if (!from) throw std::runtime_error("world-space.json: translated-parameters: bad era for " + name);
+    d.engine_translated_parameters[name] = {e.at(0).get<size_t>(), *from};
+  }
   d.engine_objects = ws.at("engine").at("objects").get<std::map<std::string, std::string>>();
   d.uniform_buffer = ws.at("engine").at("uniform-buffer").get<std::array<std::string, 2>>();
   const auto& names = ws.at("holder-names");

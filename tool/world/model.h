@@ -88,6 +88,12 @@ struct WorldData {
   std::map<std::string, std::array<Kind, 3>> engine_functions;  // return kind per era
   std::map<std::string, std::array<std::string, 3>> engine_function_types;  // return type per era (UE4, 5.0-5.3, 5.4+)
   std::map<std::string, std::string> engine_objects;  // engine global or call (`Name(..)`) -> its struct
+  // An engine function's position parameter that UE5 takes in translated world (UE4: absolute).
+  struct TranslatedParameter {
+    size_t index;
+    UnrealEra from;  // the first era that takes it so
+  };
+  std::map<std::string, TranslatedParameter> engine_translated_parameters;
   std::array<std::string, 2> uniform_buffer;  // UE4's primitive uniform buffer, and the call UE5 reads it through
   const EngineMember* engine_member(std::string_view owner, std::string_view member) const;
 

@@ -472,6 +472,12 @@ class FloatWorldPosition : public Check {
         return;
       }
     }
+    // An engine function that takes its position in translated world (UE5's lighting, the global
+    // distance field): the translated point is what it wants.
+    if (ctx.unreal && ctx.unreal->era != UnrealEra::ue4 && translated_parameter_call(ctx, expr) >= 0) {
+      renamed();
+      return;
+    }
     if (depth < 4 && expr == use && follow_into_helper(ctx, names, use, plan, depth)) {
       renamed();
       return;

@@ -133,6 +133,8 @@ class LargeWorldMember : public Check {
       }
       std::string_view callee = call_name(t, call);
       if (callee.empty() || matches_any(lwc_calls_, callee)) return {};
+      // An engine function that takes it in translated world: lwc-translated-parameter's finding.
+      if (translated_parameter_call(ctx, node) == call) return {};
       if (matches_any(float_calls_, callee)) return {fmt::format("passed to `{}`", callee), p};
       auto args = call_arguments(t, call);
       size_t index = std::find(args.begin(), args.end(), node) - args.begin();

@@ -124,6 +124,24 @@ std::string engine_translated_twin(const CheckContext& ctx, int node) {
   return member != object->second.end() ? m.object + "." + member->second : std::string();
 }
 
+int translated_parameter_call(const CheckContext& ctx, int argument, UnrealEra* from) {
+  const SyntaxTree& t = ctx.tree;
+  int list = t.at(argument).parent;
+  if (!t.is(list, "argument_list")) return -1;
+  int call = t.at(list).parent;
+  std::string_view name = call_name(t, call);
+  const auto& table = ctx.world.data().engine_translated_parameters;
+  auto entry = name.empty() ? table.end() : table.find(std::string(name));
+  if (entry == table.end()) return -1;
+  std::vector<int> args = call_arguments(t, call);
+  if (entry->second.index >= args.size() || args[entry->second.index] != argument) return -1;
+  UnrealEra target = !ctx.unreal || ctx.unreal->era == UnrealEra::ue4 ? UnrealEra::ue5_4 : ctx.unreal->era;
+  if (static_cast<int>(target) < static_cast<int>(entry->second.from)) return -1;
+  if (defines_function(t, name) || ctx.world.included_parameter_use(call, argument)) return -1;
+  if (from) *from = entry->second.from;
+  return call;
+}
+
 RewritePlan withheld(std::string why) {
   RewritePlan plan;
   plan.blocker = std::move(why);
