@@ -205,7 +205,9 @@ std::string unreal_environment_text(std::string_view code, const std::string& li
   // A struct or engine function the file declares itself (a copy of an engine header's) is left
   // out of the stub.
   static const std::set<std::string, std::less<>> copied_functions = {"TransformLocalToWorld", "TransformLocalToTranslatedWorld",
-                                                                      "SvPositionToWorld", "SvPositionToTranslatedWorld"};
+                                                                      "SvPositionToWorld", "SvPositionToTranslatedWorld",
+                                                                      "ComputeDirectionalLightStaticShadowing",
+                                                                      "GetDistanceToNearestSurfaceGlobal"};
   TokenText tokens(code);
   bool material_parameters = false, light_data = false;
   std::set<std::string, std::less<>> defined;

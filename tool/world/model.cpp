@@ -224,6 +224,7 @@ WorldData WorldData::load(const nlohmann::json& ws, const nlohmann::json& extra_
   d.twins.members = twins.at("members").get<std::map<std::string, std::string>>();
   d.twins.functions = twins.at("functions").get<std::map<std::string, std::string>>();
   d.twins.engine_members = twins.at("engine-members").get<std::map<std::string, std::map<std::string, std::string>>>();
+  d.twins.struct_members = twins.at("struct-members").get<std::map<std::string, std::map<std::string, std::string>>>();
   d.twins.engine_globals = twins.at("engine-globals").get<std::map<std::string, std::string>>();
   const auto& library = ws.at("library-definitions");
   d.library = {library.at("functions").get<std::vector<std::string>>(), library.at("types").get<std::vector<std::string>>(),

@@ -68,6 +68,8 @@ struct WorldData {
     // From UE 5.0: engine global or struct type -> member -> its translated twin; engine globals.
     std::map<std::string, std::map<std::string, std::string>> engine_members;
     std::map<std::string, std::string> engine_globals;
+    // Engine struct type -> member -> its translated twin, both there in every era.
+    std::map<std::string, std::map<std::string, std::string>> struct_members;
   };
   std::vector<std::string> float_types;
   std::vector<Source> sources;

@@ -93,7 +93,10 @@ std::string translated_twin(const CheckContext& ctx, int node) {
   if (ctx.unreal && ctx.unreal->era != UnrealEra::ue4)
     if (std::string twin = engine_translated_twin(ctx, node); !twin.empty()) return twin;
   Member m = member_of(t, node);
-  if (m.empty() || !matches_any(twins.objects, m.object) || !twins.members.count(m.member)) return {};
+  if (m.empty()) return {};
+  if (auto owner = twins.struct_members.find(engine_struct_of(ctx, node)); owner != twins.struct_members.end())
+    if (auto twin = owner->second.find(m.member); twin != owner->second.end()) return m.object + "." + twin->second;
+  if (!matches_any(twins.objects, m.object) || !twins.members.count(m.member)) return {};
   // UE5 keeps the view's world members on PrimaryView; the translated ones stay where they were.
   return (m.object == "View" ? "PrimaryView" : m.object) + "." + twins.members.at(m.member);
 }
