@@ -1,6 +1,6 @@
 // lwc-translated-member: an engine member or global that UE 5.0 replaced by its translated-world
-// twin (a light's position, a directional light's shadow matrices, a light function's matrix),
-// read under its UE4 name. The line stops compiling in UE5; the rewrite reads the twin.
+// twin (a light's position, a directional light's shadow matrices, a light function's matrix, the
+// sky's camera and planet centre), read under its UE4 name. The line stops compiling in UE5; the rewrite reads the twin.
 #include <fmt/format.h>
 
 #include "rules/checks/util.h"
@@ -57,7 +57,15 @@ class TranslatedMember : public Check {
         return;
       }
     }
-    bool position = twin.ends_with("Position");
+    // A float4 that packs a position with a scalar (Unreal names them `XAndY`: the sky's
+    // `SkyPlanetCenterAndViewHeight`): its `.xyz` is the position, its `.w` the same in both spaces.
+    bool packed = twin.find("And") != std::string::npos;
+    if (packed && use == id && t.is(parent, "field_expression") && t.text(t.child_by_field(parent, "field")) == "w") {
+      ctx.fix(f, "packed-scalar", vars, {{t.span(id), twin}});
+      return;
+    }
+    bool position = twin.ends_with("Position") || ctx.world.kind(use) == Kind::absolute;
+    if (packed && use == id) position = false;  // the whole float4: no float3 arithmetic rebuilds it
     // A difference with a translated point: both sides in translated world.
     if (position && t.is(parent, "binary_expression") && t.text(t.child_by_field(parent, "operator")) == "-") {
       int other = t.child_by_field(parent, "left") == use ? t.child_by_field(parent, "right") : t.child_by_field(parent, "left");
@@ -67,10 +75,19 @@ class TranslatedMember : public Check {
         ctx.fix(f, "twin", vars, {{t.span(id), twin}});
         return;
       }
+      // Another absolute point with a translated twin (the sky's camera minus its planet centre):
+      // both take their twins, and the camera's translation cancels in the difference.
+      while (t.is(other, "parenthesized_expression")) other = t.named_child(other);
+      if (std::string other_twin = kind == Kind::absolute ? translated_twin(ctx, other) : ""; !other_twin.empty()) {
+        vars["other"] = other_twin;
+        ctx.fix(f, "difference", vars, {{t.span(id), twin}, {t.span(other), other_twin}});
+        return;
+      }
     }
     // A position anywhere else: the absolute one UE4 read, rebuilt from the twin and marked.
     if (position) {
-      ctx.fix(f, "absolute", vars, {{t.span(id), fmt::format("({} - {})", twin, pre_view)}});
+      std::string value = packed ? twin + ".xyz" : twin;
+      ctx.fix(f, "absolute", vars, {{packed ? t.span(use) : t.span(id), fmt::format("({} - {})", value, pre_view)}});
       return;
     }
     // A matrix transforming an absolute point: the point moves to translated world, marked.

@@ -90,8 +90,12 @@ std::string translated_twin(const CheckContext& ctx, int node) {
     if (it == twins.functions.end()) return {};
     return it->second + std::string(t.text(t.child_by_field(node, "arguments")));
   }
-  if (ctx.unreal && ctx.unreal->era != UnrealEra::ue4)
+  if (ctx.unreal && ctx.unreal->era != UnrealEra::ue4) {
     if (std::string twin = engine_translated_twin(ctx, node); !twin.empty()) return twin;
+    // The position part of a packed member (`View.SkyPlanetCenterAndViewHeight.xyz`).
+    if (int base = t.child_by_field(node, "argument"); is_field_of(t, node, base, "xyz"))
+      if (std::string twin = engine_translated_twin(ctx, base); !twin.empty()) return twin + ".xyz";
+  }
   Member m = member_of(t, node);
   if (m.empty()) return {};
   if (auto owner = twins.struct_members.find(engine_struct_of(ctx, node)); owner != twins.struct_members.end())
