@@ -304,6 +304,21 @@ TEST(FixCli, UnsafeFixesWaitForTheFlag) {
             std::string::npos) << r.out;
 }
 
+// One fix may settle several findings (a difference of two sky members moved whole, a local moved
+// to translated world with the value it is made from): the summary counts findings, not fixes.
+TEST(FixCli, TheSummaryCountsTheFindingsTheFixesTookAway) {
+  std::string dir = test::scratch("fix-counts-findings");
+  test::write(dir + "/.lwcport.json", "{\"unreal\": \"5.4\"}");
+  test::write(dir + "/a.usf",
+              "float3 CameraToPlanet()\n{\n\treturn View.SkyWorldCameraOrigin - View.SkyPlanetCenterAndViewHeight.xyz;\n}\n");
+  auto r = test::run("cd " + dir + " && " + test::binary() + " lint a.usf --format json --fail-on none");
+  ASSERT_EQ(nlohmann::json::parse(r.out)["findings"].size(), 2u) << r.out;
+  r = test::run("cd " + dir + " && " + test::binary() + " fix a.usf --color never 2>&1");
+  EXPECT_NE(r.out.find("Fixed 2 finding(s) in 1 file(s)."), std::string::npos) << r.out;
+  EXPECT_EQ(test::read(dir + "/a.usf"),
+            "float3 CameraToPlanet()\n{\n\treturn View.SkyCameraTranslatedWorldOrigin - View.SkyPlanetTranslatedWorldCenterAndViewHeight.xyz;\n}\n");
+}
+
 TEST(FixCli, FixesAreLabelledInJsonAndSarif) {
   std::string code = "float3 F(float3 P) { return P - View.WorldCameraOrigin; }\n";
   // UE4 code, with no engine named: taken as built against UE4, where PrimaryView and

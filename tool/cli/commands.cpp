@@ -791,7 +791,8 @@ struct FixedFile {
   std::filesystem::path path;
   FileReport report;   // what remains, plus any write problem
   std::string diff;    // --diff
-  int applied = 0;
+  int applied = 0;      // fixes
+  int resolved = 0;     // findings they took away (FixOutcome::resolved)
   int unsafe_left = 0;  // remaining findings whose fix is unsafe
   bool changed = false;
   // The fixed text includes lwcport's library, which must then exist beside it with these names.
@@ -816,6 +817,7 @@ struct LibraryFile {
 void keep_original(FixedFile& out, const Source& source, const AnalyzeOptions& options, const Finding& why) {
   out.changed = false;
   out.applied = 0;
+  out.resolved = 0;
   out.diff.clear();
   out.report.findings.clear();
   out.report.findings.push_back(locate(source, why));
@@ -837,6 +839,7 @@ FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& in
   out.report.path = file.display;
   out.report.has_code = holds_shader_code(source, f.options);
   out.applied = fixed.applied;
+  out.resolved = fixed.resolved();
   out.changed = fixed.text != source.text();
   Source result(file.display, fixed.text);
   for (const Finding& finding : fixed.remaining) {
@@ -958,7 +961,7 @@ int fix(const Options& o, std::ostream& out, std::ostream& err) {
   std::optional<ReportWriter> writer;
   if (!o.diff) writer.emplace(to_stdout ? err : *target.stream, ro);
   IncludeSummaries includes;
-  int applied = 0, changed_files = 0, unsafe_left = 0;
+  int applied = 0, resolved = 0, changed_files = 0, unsafe_left = 0;
   std::map<BuildCheck::Outcome, int> builds;
   CodeCounter counter(files);
   std::map<std::string, LibraryFile> libraries;  // by path
@@ -1002,6 +1005,7 @@ int fix(const Options& o, std::ostream& out, std::ostream& err) {
       r.pending.reset();
     }
     applied += r.applied;
+    resolved += r.resolved;
     changed_files += r.changed;
     unsafe_left += r.unsafe_left;
     if (r.build) ++builds[*r.build];
@@ -1023,12 +1027,12 @@ int fix(const Options& o, std::ostream& out, std::ostream& err) {
                        builds[BuildCheck::Outcome::compiles], builds[BuildCheck::Outcome::incomplete],
                        builds[BuildCheck::Outcome::breaks], builds[BuildCheck::Outcome::unchecked]);
   if (o.diff) {
-    err << fmt::format("Would fix {} finding(s) in {} file(s).{}\n", applied, changed_files, unsafe);
+    err << fmt::format("Would fix {} finding(s) in {} file(s).{}\n", resolved, changed_files, unsafe);
     if (!arguments_ok) return 2;
     return changed_files && o.fail_on ? 1 : 0;  // like a linter: changes to make fail the run
   }
   writer->finish();
-  err << fmt::format("Fixed {} finding(s) in {} file(s).{}\n", applied, changed_files, unsafe);
+  err << fmt::format("Fixed {} finding(s) in {} file(s).{}\n", resolved, changed_files, unsafe);
   if (!arguments_ok) return 2;
   return o.fail_on && writer->failed(*o.fail_on) ? 1 : 0;
 }

@@ -66,6 +66,7 @@ FixOutcome fix_source(const Source& source, const AnalyzeOptions& options, bool 
   Source current(source.path(), source.text());
   for (int round = 0;; ++round) {
     std::vector<Finding> findings = analyze(current, options);
+    if (round == 0) outcome.found = static_cast<int>(findings.size());
     std::vector<const Fix*> chosen = choose_fixes(findings, unsafe);
     if (chosen.empty()) {
       outcome.remaining = std::move(findings);

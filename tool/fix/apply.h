@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 #include <set>
 #include <string>
 #include <string_view>
@@ -25,9 +26,13 @@ std::string apply_edits(const Source& source, std::vector<Edit> edits);
 struct FixOutcome {
   std::string text;              // the fixed text (equal to the input when nothing applied)
   int applied = 0;               // fixes applied over all rounds
+  int found = 0;                 // findings of the original text
   std::vector<Finding> remaining;  // findings of the fixed text
   std::set<std::string> library;   // shader-library functions the applied fixes call
   bool converged = true;         // false when the round limit stopped it (a fix keeps re-firing)
+  // Findings the fixes took away: one fix may settle several (a chain moved whole), and a later
+  // round's fix finishes one an earlier round started, so this is not the count of fixes.
+  int resolved() const { return std::max(0, found - static_cast<int>(remaining.size())); }
 };
 
 // Analyses, applies the chosen fixes and analyses again until no fix applies (at most
