@@ -47,6 +47,7 @@ class FloatWorldPosition : public Check {
       if (!names) names.emplace(ctx.world);
       if (h.what == AbsoluteHolder::What::variable) offer_rewrites(ctx, f, h, *names);
       if (h.what == AbsoluteHolder::What::return_value) offer_function_rewrite(ctx, f, h, *names);
+      if (h.what == AbsoluteHolder::What::parameter) offer_parameter_rewrite(ctx, f, h, *names);
     }
   }
 
@@ -202,6 +203,8 @@ class FloatWorldPosition : public Check {
       if (std::find(plan.moving_variables.begin(), plan.moving_variables.end(), var) != plan.moving_variables.end()) return {};
       if (v.role == Variable::Role::local && depth < 4)
         return v.init >= 0 ? move_local(ctx, names, var, true, plan, depth + 1) : move_out_local(ctx, names, var, plan, depth + 1);
+      // The caller's own parameter: its callers pass the translated value in turn.
+      if (v.role == Variable::Role::parameter && depth < 4) return move_parameter(ctx, names, var, plan, depth + 1);
     }
     if (int fn = t.is(value, "call_expression") ? defined_function(t, call_name(t, value), call_arguments(t, value).size()) : -1;
         fn >= 0 && depth < 4) {
@@ -232,6 +235,48 @@ class FloatWorldPosition : public Check {
       return fmt::format("its matrix `{}` has no translated twin", shortened(t.text(args[1])));
     }
     return {};
+  }
+
+  // A parameter holding an absolute position: the function takes it in translated world (the
+  // parameter renamed, its uses following) and every caller passes the translated value.
+  void offer_parameter_rewrite(const CheckContext& ctx, Finding& f, const AbsoluteHolder& h, const DeclaredNames& names) const {
+    int var = ctx.world.variable_declared_at(h.site);
+    if (var < 0) return;
+    RewritePlan plan;
+    if (std::string why = move_parameter(ctx, names, var, plan, 0); !why.empty()) {
+      f.withheld.push_back("translated world: " + why);
+      return;
+    }
+    const Variable& p = ctx.world.variables()[var];
+    ctx.fix(f, "translated-parameter", {{"name", p.name}, {"new-name", translated_name(p.name)}}, plan.edits);
+  }
+
+  // A parameter becomes translated under a translated name: its uses follow, and each call of its
+  // function in this file (a whole program: nothing else calls it) passes the translated value.
+  // Returns why not, or "".
+  std::string move_parameter(const CheckContext& ctx, const DeclaredNames& names, int var, RewritePlan& plan, int depth) const {
+    const SyntaxTree& t = ctx.tree;
+    const Variable& p = ctx.world.variables()[var];
+    int fn = p.function;
+    if (p.output) return fmt::format("`{}` is an `out` parameter", p.name);
+    if (!whole_program(t))
+      return fmt::format("`{}` is a parameter of `{}`, which other files may call with an absolute position", p.name, t.text(function_name(t, fn)));
+    std::string new_name = translated_name(p.name);
+    if (new_name == p.name || names.taken(new_name, fn)) return fmt::format("the name `{}` is already taken", new_name);
+    size_t index = 0, arity = function_arity(t, fn);
+    while (index < arity && parameter_variable(ctx, fn, index) != var) ++index;
+    std::vector<int> calls = calls_to(t, fn);
+    if (index == arity || calls.empty()) return fmt::format("no call in this file passes `{}`", p.name);
+    plan.moving_variables.push_back(var);
+    plan.edits.push_back({t.span(p.decl), new_name});
+    follow_translated(ctx, names, var, new_name, plan, depth + 1);
+    if (!plan.blocker.empty()) return plan.blocker;
+    for (int call : calls) {
+      int argument = call_arguments(t, call)[index];
+      if (std::string why = translate_value(ctx, names, argument, plan, depth + 1); !why.empty())
+        return fmt::format("the call on line {} passes `{}`: {}", line_of(t, call), shortened(t.text(argument)), why);
+    }
+    return plan.blocker;
   }
 
   // A function returning an absolute position built from translated values: it returns the
@@ -427,8 +472,9 @@ class FloatWorldPosition : public Check {
   void follow_use(const CheckContext& ctx, const DeclaredNames& names, int use, const std::string& text, RewritePlan& plan, int depth) const {
     const SyntaxTree& t = ctx.tree;
     auto renamed = [&] { plan.edits.push_back({t.span(use), text}); };
-    // Written through an `out` parameter that this plan moves: the helper writes it translated.
-    if (int p = out_parameter_of(ctx, use); p >= 0 && moving(plan, p)) {
+    // Passed to a parameter that this plan moves (written through an `out` one, or read by a
+    // helper that now takes a translated position): the helper takes it translated.
+    if (int p = parameter_of(ctx, use); p >= 0 && moving(plan, p)) {
       renamed();
       return;
     }
@@ -579,6 +625,13 @@ class FloatWorldPosition : public Check {
     const SyntaxTree& t = ctx.tree;
     int param = parameter_of(ctx, use);
     if (param < 0) return false;
+    // A whole program: the helper takes the translated value from every caller.
+    if (whole_program(t)) {
+      PlanMark before = mark(plan);
+      if (move_parameter(ctx, names, param, plan, depth + 1).empty()) return true;
+      roll_back(plan, before);
+      return false;
+    }
     std::string_view callee = call_name(t, t.at(t.at(use).parent).parent);
     // One caller only: another call might pass an absolute position.
     if (calls_of(t, callee) != 1) return false;
