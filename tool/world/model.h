@@ -251,6 +251,8 @@ class WorldModel {
   std::optional<ParameterUse> included_parameter_use(int call, int argument) const;
   // How the model read naming conventions in this file (ModelContext).
   bool names_as_evidence() const { return names_as_evidence_; }
+  // Unreal code: the engine era its own code is written for (ModelContext::era).
+  std::optional<UnrealEra> code_era() const { return era_; }
   bool plain_names() const { return plain_names_; }
   const WorldData& data() const { return data_; }
 

@@ -82,20 +82,32 @@ Member member_of(const SyntaxTree& tree, int node) {
 std::string translated_twin(const CheckContext& ctx, int node) {
   const SyntaxTree& t = ctx.tree;
   const WorldData::Twins& twins = ctx.world.data().twins;
+  // A demotion or marker of a value with a twin (`DFHackToFloat(View.WorldCameraOrigin)`): the
+  // twin is a float already.
+  if (int inner = undemoted(t, node); inner != node) return translated_twin(ctx, inner);
+  // The 3-vector of a value with a twin (`TransformLocalToWorld(P).xyz`, a packed member's `.xyz`).
+  if (int base = t.child_by_field(node, "argument"); is_field_of(t, node, base, "xyz")) {
+    std::string twin = translated_twin(ctx, base);
+    if (twin.empty() && ctx.unreal && ctx.unreal->era != UnrealEra::ue4) twin = engine_translated_twin(ctx, base);
+    return twin.empty() || twin.ends_with(".xyz") ? twin : twin + ".xyz";
+  }
   if (t.is(node, "call_expression")) {
     // A twin for one arity only is keyed `Name/N` (UE4's overload with a primitive id has none).
     std::string name(call_name(t, node));
     auto it = twins.functions.find(name + "/" + std::to_string(call_arguments(t, node).size()));
     if (it == twins.functions.end()) it = twins.functions.find(name);
     if (it == twins.functions.end()) return {};
-    return it->second + std::string(t.text(t.child_by_field(node, "arguments")));
+    std::string twin = it->second + std::string(t.text(t.child_by_field(node, "arguments")));
+    // UE5 returns the absolute point as a large-world 3-vector and the translated one homogeneous
+    // (`TransformLocalToWorld` -> `TransformLocalToTranslatedWorld`): the twin's xyz is the point.
+    const auto& types = ctx.world.data().engine_function_types;
+    auto own = types.find(name), other = types.find(it->second);
+    size_t era = !ctx.world.code_era() || *ctx.world.code_era() == UnrealEra::ue4 ? 0 : *ctx.world.code_era() == UnrealEra::ue5_0 ? 1 : 2;
+    if (own != types.end() && other != types.end() && !own->second[era].ends_with("4") && other->second[era] == "float4") twin += ".xyz";
+    return twin;
   }
-  if (ctx.unreal && ctx.unreal->era != UnrealEra::ue4) {
+  if (ctx.unreal && ctx.unreal->era != UnrealEra::ue4)
     if (std::string twin = engine_translated_twin(ctx, node); !twin.empty()) return twin;
-    // The position part of a packed member (`View.SkyPlanetCenterAndViewHeight.xyz`).
-    if (int base = t.child_by_field(node, "argument"); is_field_of(t, node, base, "xyz"))
-      if (std::string twin = engine_translated_twin(ctx, base); !twin.empty()) return twin + ".xyz";
-  }
   Member m = member_of(t, node);
   if (m.empty()) return {};
   if (auto owner = twins.struct_members.find(engine_struct_of(ctx, node)); owner != twins.struct_members.end())
