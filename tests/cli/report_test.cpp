@@ -80,10 +80,25 @@ TEST(Report, ItsThreeFormsAgreeWithLint) {
   std::set<std::string> eras;
   for (const auto& f : report["files"]) eras.insert(f["era"].get<std::string>());
   EXPECT_EQ(eras, (std::set<std::string>{"GLSL", "HLSL", "UE4", "UE 5.0-5.3", "UE 5.4+"}));
+  // Host-side work: every absolute uniform a shader reads is listed with what the host must upload
+  // instead, and nothing is listed twice.
+  std::set<std::string> uniforms, host_side;
+  for (const auto& f : lint["findings"])
+    if (f["rule"] == "lwc-uniform-world-float") uniforms.insert(f["path"].get<std::string>() + ":" + std::to_string(f["start"]["line"].get<int>()));
+  for (const auto& h : report["host_side"]) {
+    EXPECT_TRUE(host_side.insert(h["path"].get<std::string>() + ":" + std::to_string(h["line"].get<int>()) + ":" +
+                                 std::to_string(h["column"].get<int>()) + h["rule"].get<std::string>()).second) << h;
+    EXPECT_FALSE(h["needs"].get<std::string>().empty()) << h;
+    if (h["rule"] == "lwc-uniform-world-float") uniforms.erase(h["path"].get<std::string>() + ":" + std::to_string(h["line"].get<int>()));
+  }
+  EXPECT_TRUE(uniforms.empty()) << *uniforms.begin();
+  EXPECT_GT(report["host_side"].size(), 0u);
   std::string markdown = test::read(dir + "/out/report.md");
   expect_valid_tables(markdown);
   EXPECT_NE(markdown.find("## Marker ledger (" + std::to_string(report["markers"].size()) + ")"), std::string::npos);
+  EXPECT_NE(markdown.find("## Host-side work (" + std::to_string(report["host_side"].size()) + ")"), std::string::npos);
   std::string html = test::read(dir + "/out/report.html");
+  EXPECT_NE(html.find("<h2>Host-side work (" + std::to_string(report["host_side"].size()) + ")</h2>"), std::string::npos);
   EXPECT_EQ(html.find("http://"), std::string::npos) << "nothing is fetched";
   EXPECT_EQ(html.find("https://"), std::string::npos);
   EXPECT_EQ(html.find("<link"), std::string::npos);

@@ -225,6 +225,17 @@ std::string report_html(const json& j) {
     out += "</tbody></table>";
   }
 
+  out += fmt::format("<h2>Host-side work ({})</h2>", j["host_side"].size());
+  if (j["host_side"].empty()) out += "<p>No value the shaders read needs the host to hand it over differently.</p>";
+  else {
+    out += "<p class=basis>" + esc(kHostSideNote) + "</p><table id=host-side>" +
+           th({{"where", false}, {"rule", false}, {"value", false}, {"what the host must do", false}}) + "<tbody>";
+    for (const auto& h : j["host_side"])
+      out += "<tr>" + td(h["path"].get<std::string>() + ":" + str(h["line"])) + "<td><code>" + esc(h["rule"].get<std::string>()) +
+             "</code></td><td><code>" + esc(h["value"].get<std::string>()) + "</code></td>" + td(h["needs"]) + "</tr>";
+    out += "</tbody></table>";
+  }
+
   if (!j["scenes"].empty()) {
     out += "<h2>What each scene needs</h2><table id=scenes>" +
            th({{"scene", false}, {"needed", true}, {"not needed", true}, {"safe fix", true}, {"unsafe fix", true}, {"by hand", true},

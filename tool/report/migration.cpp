@@ -22,6 +22,9 @@ const char* const kEraNote =
     "`UE4` is Unreal code with neither (code written for UE4, or code that never needed a large-world type); `HLSL` and `GLSL` "
     "are files outside Unreal; `C++ host` is the host code `--host` names (lwcport host).";
 const char* const kHostEra = "C++ host";
+const char* const kHostSideNote =
+    "Values the shaders read from the host (uniforms, buffers, what a particle simulation or the engine writes) that the port needs "
+    "handed over differently: no shader rewrite recovers precision lost before the shader sees the value, so these change on the host.";
 
 namespace {
 
@@ -116,13 +119,24 @@ SceneCost scene_cost(const std::string& name, const std::vector<FileEntry>& file
   return c;
 }
 
+std::string host_work(const ReportedFinding& f) {
+  if (f.rule == "lwc-uniform-world-float") return f.hint;
+  std::string notes;
+  if (f.fix)
+    for (const std::string& n : f.fix->notes) notes += (notes.empty() ? "" : "; ") + n;
+  if (!notes.empty()) return notes;
+  for (const std::string& why : f.withheld)
+    if (why.find("host") != std::string::npos) return why;
+  return {};
+}
+
 nlohmann::ordered_json report_json(const MigrationReport& r) {
   using json = nlohmann::ordered_json;
   Tally all;
   std::map<std::string, Tally> by_rule, by_dir;
   std::map<std::string, size_t> eras, files_in_dir;
   std::map<std::string, std::set<std::string>> rules_in_dir;
-  json files = json::array(), findings = json::array();
+  json files = json::array(), findings = json::array(), host_side = json::array();
   for (const FileEntry& file : r.files) {
     ++eras[file.era];
     ++files_in_dir[directory_of(file.path)];
@@ -139,6 +153,9 @@ nlohmann::ordered_json report_json(const MigrationReport& r) {
                   {"severity", severity_name(f.severity)}, {"message", f.message}, {"fix", fix_kind(f)},
                   {"minutes", effort_minutes(f)}};
       findings.push_back(std::move(one));
+      if (std::string needs = file.era == kHostEra ? "" : host_work(f); !needs.empty())
+        host_side.push_back({{"path", file.path}, {"line", f.start.line}, {"column", f.start.column}, {"rule", f.rule}, {"value", f.text},
+                             {"needs", needs}});
     }
     json entry = {{"path", file.path}, {"era", file.era}};
     t.into(entry);
@@ -194,6 +211,7 @@ nlohmann::ordered_json report_json(const MigrationReport& r) {
           {"summary", summary},
           {"effort", {{"minutes", std::round(all.minutes * 10) / 10}, {"hours", std::round(all.minutes / 6) / 10}, {"basis", basis}}},
           {"markers", markers},
+          {"host_side", host_side},
           {"directories", dirs},
           {"files", files},
           {"findings", findings},
@@ -260,6 +278,13 @@ std::string report_markdown(const nlohmann::ordered_json& j) {
                     "`" + m["demotes"].get<std::string>() + "`", m["removal"]});
   out += fmt::format("## Marker ledger ({})\n\n", j["markers"].size());
   out += rows.empty() ? "No `LWCHackToFloat`, `DF*_Hack` or `LWC_HACK_TO_ZERO` left.\n\n" : table({"where", "marker", "demotes", "removal"}, rows);
+  rows.clear();
+  for (const auto& h : j["host_side"])
+    rows.push_back({h["path"].get<std::string>() + ":" + num(h["line"]), "`" + h["rule"].get<std::string>() + "`",
+                    "`" + h["value"].get<std::string>() + "`", h["needs"]});
+  out += fmt::format("## Host-side work ({})\n\n", j["host_side"].size());
+  out += rows.empty() ? std::string("No value the shaders read needs the host to hand it over differently.\n\n")
+                      : std::string(kHostSideNote) + "\n\n" + table({"where", "rule", "value", "what the host must do"}, rows);
   std::vector<nlohmann::ordered_json> files(j["files"].begin(), j["files"].end());
   std::stable_sort(files.begin(), files.end(), [](const auto& a, const auto& b) { return a["minutes"].template get<double>() > b["minutes"].template get<double>(); });
   rows.clear();

@@ -74,6 +74,11 @@ SceneCost scene_cost(const std::string& name, const std::vector<FileEntry>& file
 extern const char* const kEraNote;
 // The era of the host code's files.
 extern const char* const kHostEra;
+// What the host-side work list is, for both written forms.
+extern const char* const kHostSideNote;
+// What the host must change for a shader finding to be ported (a uniform it uploads, a note of the
+// finding's fix, a reason a rewrite was withheld that names the host), or "".
+std::string host_work(const ReportedFinding& f);
 
 // report.json (docs/report.md), and report.md and report.html written from it: the same data in
 // three forms.
