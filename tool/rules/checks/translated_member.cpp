@@ -1,6 +1,7 @@
 // lwc-translated-member: an engine member or global that UE 5.0 replaced by its translated-world
 // twin (a light's position, a directional light's shadow matrices, a light function's matrix, the
-// sky's camera and planet centre), read under its UE4 name. The line stops compiling in UE5; the rewrite reads the twin.
+// sky's camera and planet centre), read under its UE4 name. The line stops compiling in UE5; the
+// rewrite reads the twin.
 #include <fmt/format.h>
 
 #include "rules/checks/util.h"

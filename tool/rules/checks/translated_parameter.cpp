@@ -2,8 +2,6 @@
 // parameter UE5 takes in translated world (rules/world-space.json engine "translated-parameters").
 // The call compiles in every era; from the era the function changed, it reads a point displaced by
 // the camera's position. The rewrite passes the translated point.
-#include <optional>
-
 #include <fmt/format.h>
 
 #include "rules/checks/util.h"
@@ -19,15 +17,14 @@ class TranslatedParameter : public Check {
     if (!ctx.unreal) return;
     const SyntaxTree& t = ctx.tree;
     UnrealEra target = ctx.unreal->era;
-    std::optional<bool> ue4_code;  // read once, at the first finding
+    bool ue4_code = ctx.world.code_era() == UnrealEra::ue4;
     for (int call : nodes_of(t, "call_expression")) {
       for (int argument : call_arguments(t, call)) {
         UnrealEra from{};
         if (translated_parameter_call(ctx, argument, &from) != call) continue;
-        if (!ue4_code) ue4_code = infer_unreal_era(t.source->text()) == UnrealEra::ue4;
         // UE4 code passes what UE4's function takes: an absolute position, whatever it is called.
         Kind kind = ctx.world.kind(argument);
-        if (kind != Kind::absolute && !(*ue4_code && kind == Kind::unknown)) continue;
+        if (kind != Kind::absolute && !(ue4_code && kind == Kind::unknown)) continue;
         std::string argument_text = shortened(t.text(argument));
         Vars vars{{"callee", std::string(call_name(t, call))},
                   {"argument", argument_text},
@@ -41,7 +38,7 @@ class TranslatedParameter : public Check {
           f.withheld.push_back("the translated point is spelt with UE5's API: set \"unreal\" in .lwcport.json to the engine this code moves to");
           continue;
         }
-        offer_fix(ctx, f, argument, *ue4_code, vars);
+        offer_fix(ctx, f, argument, ue4_code, vars);
       }
     }
   }

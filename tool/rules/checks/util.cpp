@@ -88,7 +88,6 @@ std::string translated_twin(const CheckContext& ctx, int node) {
   // The 3-vector of a value with a twin (`TransformLocalToWorld(P).xyz`, a packed member's `.xyz`).
   if (int base = t.child_by_field(node, "argument"); is_field_of(t, node, base, "xyz")) {
     std::string twin = translated_twin(ctx, base);
-    if (twin.empty() && ctx.unreal && ctx.unreal->era != UnrealEra::ue4) twin = engine_translated_twin(ctx, base);
     return twin.empty() || twin.ends_with(".xyz") ? twin : twin + ".xyz";
   }
   if (t.is(node, "call_expression")) {
@@ -102,8 +101,9 @@ std::string translated_twin(const CheckContext& ctx, int node) {
     // (`TransformLocalToWorld` -> `TransformLocalToTranslatedWorld`): the twin's xyz is the point.
     const auto& types = ctx.world.data().engine_function_types;
     auto own = types.find(name), other = types.find(it->second);
-    size_t era = !ctx.world.code_era() || *ctx.world.code_era() == UnrealEra::ue4 ? 0 : *ctx.world.code_era() == UnrealEra::ue5_0 ? 1 : 2;
-    if (own != types.end() && other != types.end() && !own->second[era].ends_with("4") && other->second[era] == "float4") twin += ".xyz";
+    std::optional<UnrealEra> era = ctx.world.code_era();
+    size_t column = !era || *era == UnrealEra::ue4 ? 0 : *era == UnrealEra::ue5_0 ? 1 : 2;
+    if (own != types.end() && other != types.end() && own->second[column].ends_with("3") && other->second[column] == "float4") twin += ".xyz";
     return twin;
   }
   if (ctx.unreal && ctx.unreal->era != UnrealEra::ue4)
