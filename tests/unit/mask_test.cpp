@@ -166,6 +166,23 @@ TEST(Conditionals, ArmsThatOpenBlocksOfTheirOwnAreResolved) {
   for (const Variant& x : v) EXPECT_EQ(x.errors, 0) << x.masked;
 }
 
+// `#define X` with blanks after it (or a comment blanked there): the grammar took the next line as
+// its value and lost the group's `#endif`. The line now breaks before the blanks; every other byte,
+// the next line's `#endif` included, stays where it was. Both languages, LF and CRLF.
+TEST(Conditionals, AnEmptyDefineWithTrailingBlanksKeepsTheNextLine) {
+  for (Lang lang : {Lang::hlsl, Lang::glsl})
+    for (std::string eol : {"\n", "\r\n"}) {
+      std::string code = "#if A" + eol + "#define ATTR [x]" + eol + "#else" + eol + "#define ATTR \t " + eol + "#endif" + eol +
+                         "float F(float a)" + eol + "{" + eol + "#if B" + eol + "\treturn a;" + eol + "#else" + eol + "\treturn -a;" + eol +
+                         "#endif" + eol + "}" + eol;
+      EXPECT_EQ(errors(code, lang), 0) << code;
+      std::string masked = mask_source(code, lang).text;
+      ASSERT_EQ(masked.size(), code.size());
+      EXPECT_EQ(masked.find("#endif"), code.find("#endif"));
+      EXPECT_EQ(masked.find("float F"), code.find("float F"));
+    }
+}
+
 TEST(Macros, EachUseIsMaskedSoTheCodeParses) {
   std::string code =
       "struct FOut {\n\tINVARIANT_OUTPUT float4 Position : SV_POSITION;\n\tVF_GPUSCENE_DECLARE_INPUT_BLOCK(13)\n};\n"

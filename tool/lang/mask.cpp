@@ -530,6 +530,19 @@ MaskResult mask_source(std::string_view original, Lang lang, const MaskOptions& 
     }
   }
 
+  // Blanks that end a directive (a `#define X` whose comment was blanked above, or written so):
+  // the grammar would read the next line as the macro's value, so the line breaks before them and
+  // they open the next line instead; every other byte stays where it was.
+  for (const Token& t : kept) {
+    if (t.kind != Tok::directive || t.end >= text.size() || text[t.end] != '\n') continue;
+    size_t line_break = t.end > t.begin && text[t.end - 1] == '\r' ? t.end - 1 : t.end;
+    size_t last = line_break;
+    while (last > t.begin && (text[last - 1] == ' ' || text[last - 1] == '\t')) --last;
+    if (last == line_break || text[last - 1] == '\\') continue;
+    std::string moved = text.substr(line_break, t.end + 1 - line_break) + std::string(line_break - last, ' ');
+    text.replace(last, moved.size(), moved);
+  }
+
   const MacroTable& table = options.macros ? *options.macros : known_macros(lang);
   MacroTable learnt;
   learn_macros(source, table, learnt);
