@@ -35,8 +35,9 @@ class FloatWorldPosition : public Check {
                                                       {"name", h.name},
                                                       {"type", h.type.empty() ? "float" : h.type},
                                                       {"holds", descriptions_.value(kind, kind)}});
-      if (h.kind != Kind::absolute) continue;
       if (!names) names.emplace(ctx.world);
+      if (is_matrix(h.kind) && h.what == AbsoluteHolder::What::variable && unreal_code(ctx.tree)) offer_matrix_rewrite(ctx, f, h, *names);
+      if (h.kind != Kind::absolute) continue;
       if (h.what == AbsoluteHolder::What::variable) offer_rewrites(ctx, f, h, *names);
       if (h.what == AbsoluteHolder::What::return_value) offer_function_rewrite(ctx, f, h, *names);
       if (h.what == AbsoluteHolder::What::parameter) offer_parameter_rewrite(ctx, f, h, *names);
@@ -106,6 +107,19 @@ class FloatWorldPosition : public Check {
       }
     }
     f.withheld.push_back("DoubleFloat: this code has no DoubleFloat matrices to start from (the translated rewrite keeps its translations as High/Low pairs instead)");
+  }
+
+  // A local holding an engine transform demoted to float: the translated transform instead.
+  void offer_matrix_rewrite(const CheckContext& ctx, Finding& f, const AbsoluteHolder& h, const DeclaredNames& names) const {
+    int var = ctx.world.variable_declared_at(h.site);
+    if (var < 0) return;
+    RewritePlan plan;
+    if (std::string why = chain_.move_matrix(ctx, names, var, plan, 0); !why.empty()) {
+      f.withheld.push_back("translated world: " + why);
+      return;
+    }
+    const Variable& v = ctx.world.variables()[var];
+    ctx.fix(f, "translated-matrix", {{"name", v.name}, {"new-name", translated_name(v.name)}}, plan.edits);
   }
 
   // A parameter holding an absolute position: the function takes it in translated world (the

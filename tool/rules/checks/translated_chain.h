@@ -33,6 +33,14 @@ class TranslatedChain {
   // Returns why not, or "".
   std::string move_parameter(const CheckContext& ctx, const DeclaredNames& names, int var, RewritePlan& plan, int depth) const;
 
+  // A local holding an engine transform demoted to float (`float4x4 LocalToWorld =
+  // DFHackToFloat(Primitive.LocalToWorld)`) becomes the translated transform, made from the
+  // large-world one in the era's library (`DFFastToTranslatedWorld`, `LWCMultiplyTranslation`),
+  // under a translated name; its uses follow: a point it transforms becomes translated (a
+  // world-to-local transform takes a translated point), its rotation rows and 3x3 part stay, its
+  // translation row is the translated origin. Returns why not, or "".
+  std::string move_matrix(const CheckContext& ctx, const DeclaredNames& names, int var, RewritePlan& plan, int depth) const;
+
   // Renames a function of this file to `new_name`, its returned values made translated, and
   // follows every call. Returns why not, or "".
   std::string translate_function(const CheckContext& ctx, int fn, const std::string& new_name, const DeclaredNames& names,
@@ -41,6 +49,10 @@ class TranslatedChain {
  private:
   // A primitive's local-to-world transform (this frame's or the previous one's), or "".
   std::string primitive_to_world(const SyntaxTree& t, int node) const;
+
+  // One use of a transform that moves to translated world under `new_name` (move_matrix).
+  void follow_matrix_use(const CheckContext& ctx, const DeclaredNames& names, int use, Kind kind, const std::string& new_name,
+                         RewritePlan& plan, int depth) const;
 
   // A local becomes translated under a translated name: its value (when `with_value`; else the
   // value is a use already being moved), its declaration and every use. Returns why not, or "".
