@@ -29,6 +29,29 @@ TEST(Formats, DefaultsCoverWhatEnginesShipAndAProjectCanChangeThem) {
   EXPECT_THROW(project.set(".vs", "metal", "test"), std::runtime_error);
 }
 
+// The stage extensions both languages use: the text decides (Diligent's and D3D samples' HLSL
+// .vsh/.psh/.csh, iOS GLSL .vsh/.fsh); with no telling word, the extension's default; a project
+// that names the extension has decided, whatever the text.
+TEST(Formats, StageExtensionsBothLanguagesUseAreReadByTheirText) {
+  const FormatTable& d = FormatTable::defaults();
+  std::string hlsl = "cbuffer Camera { float4x4 ViewProj; };\nfloat4 main(float3 P : ATTRIB0) : SV_Position { return mul(float4(P, 1), ViewProj); }\n";
+  std::string glsl = "#version 300 es\nin vec3 position;\nvoid main() { gl_Position = vec4(position, 1.0); }\n";
+  for (const char* p : {"a.vsh", "b.psh", "c.csh", "d.fsh", "e.gsh"}) {
+    EXPECT_EQ(d.for_path(p, hlsl)->lang, Lang::hlsl) << p;
+    EXPECT_EQ(d.for_path(p, glsl)->lang, Lang::glsl) << p;
+  }
+  EXPECT_EQ(d.for_path("a.vsh", "void main() {}\n")->lang, Lang::glsl);
+  EXPECT_EQ(d.for_path("b.psh", "void main() {}\n")->lang, Lang::hlsl);
+  EXPECT_EQ(d.for_path("c.vert", hlsl)->lang, Lang::glsl);  // a stage only GLSL names keeps its language
+  FormatTable project = d;
+  project.set(".vsh", "glsl", "test");
+  EXPECT_EQ(project.for_path("a.vsh", hlsl)->lang, Lang::glsl);
+  // Read so, an HLSL .vsh parses and is linted as HLSL.
+  int errors = 0;
+  for (const Finding& f : analyze(Source("mesh.vsh", hlsl), {})) errors += f.rule == "lwc-input";
+  EXPECT_EQ(errors, 0);
+}
+
 const char* kScript = R"(import {x} from './x';
 const re = /`not a literal`/g;
 const label = `plain text ${x}`;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <initializer_list>
 #include <stdexcept>
 
 #include "lang/syntax.h"
@@ -16,6 +17,19 @@ std::string lower(std::string_view s) {
   return out;
 }
 
+// The language a text reads as, by words only one of the two writes: GLSL's version line and
+// built-ins, HLSL's semantics, registers and resources, then each one's vector types; none when
+// the text has neither.
+std::optional<Lang> language_of_text(std::string_view text) {
+  auto has = [&](std::initializer_list<const char*> words) {
+    return std::any_of(words.begin(), words.end(), [&](const char* w) { return text.find(w) != std::string_view::npos; });
+  };
+  if (has({"#version", "gl_Position", "gl_FragColor", "gl_FragCoord", "gl_GlobalInvocationID"})) return Lang::glsl;
+  if (reads_as_hlsl(text) || has({"Texture2D", "SamplerState", "float4 ", "float3 ", "float4x4", "mul("})) return Lang::hlsl;
+  if (has({"vec4 ", "vec3 ", "mat4 ", "layout("})) return Lang::glsl;
+  return std::nullopt;
+}
+
 std::optional<std::optional<FileFormat>> parse_format(std::string_view name) {
   if (name == "hlsl") return FileFormat{Lang::hlsl, Container::shader};
   if (name == "glsl") return FileFormat{Lang::glsl, Container::shader};
@@ -26,6 +40,15 @@ std::optional<std::optional<FileFormat>> parse_format(std::string_view name) {
 
 }  // namespace
 
+bool reads_as_hlsl(std::string_view text) {
+  if (text.find("cbuffer ") != std::string_view::npos || text.find(": register(") != std::string_view::npos) return true;
+  for (size_t at = text.find("SV_"); at != std::string_view::npos; at = text.find("SV_", at + 3)) {
+    size_t before = text.find_last_not_of(" \t", at - 1);
+    if (at > 0 && before != std::string_view::npos && text[before] == ':') return true;
+  }
+  return false;
+}
+
 const FormatTable& FormatTable::defaults() {
   static const FormatTable table = [] {
     FormatTable t;
@@ -33,8 +56,12 @@ const FormatTable& FormatTable::defaults() {
     for (const char* e : {".usf", ".ush", ".hlsl", ".hlsli", ".fx", ".fxh", ".cginc"}) t.set(e, "hlsl", "defaults");
     // GLSL: every stage glslang names, the iOS-style .vsh/.fsh, bgfx's .sc.
     for (const char* e : {".glsl", ".vert", ".frag", ".comp", ".geom", ".tesc", ".tese", ".mesh", ".task", ".rgen",
-                          ".rchit", ".rmiss", ".rahit", ".rint", ".rcall", ".vsh", ".fsh", ".sc"})
+                          ".rchit", ".rmiss", ".rahit", ".rint", ".rcall", ".vsh", ".fsh", ".gsh", ".sc"})
       t.set(e, "glsl", "defaults");
+    // Stage extensions both languages use (iOS GLSL, Diligent's and D3D samples' HLSL): the text
+    // decides; without one, the language named here.
+    for (const char* e : {".psh", ".csh"}) t.set(e, "hlsl", "defaults");
+    for (const char* e : {".vsh", ".fsh", ".gsh", ".psh", ".csh"}) t.by_content_[e] = true;
     // GLSL in JavaScript and TypeScript: literals tagged or commented `glsl` (and every literal of
     // a .glsl.js/.glsl.ts file, lang/embedded.h).
     for (const char* e : {".js", ".mjs", ".cjs", ".jsx", ".ts", ".mts", ".cts", ".tsx"}) t.set(e, "glsl-in-js", "defaults");
@@ -52,16 +79,20 @@ void FormatTable::set(std::string_view extension, std::string_view format, std::
     throw std::runtime_error(std::string(where) + ": extension \"" + std::string(extension) + "\": format must be hlsl, glsl, " +
                              "glsl-in-js or none (got \"" + std::string(format) + "\")");
   by_extension_[lower(extension)] = *f;
+  by_content_.erase(lower(extension));  // a project that names it has decided
 }
 
-std::optional<FileFormat> FormatTable::for_path(std::string_view path) const {
+std::optional<FileFormat> FormatTable::for_path(std::string_view path, std::string_view text) const {
   size_t slash = path.rfind('/');
   std::string name = lower(slash == std::string_view::npos ? path : path.substr(slash + 1));
   // The longest extension first: `.glsl.js` before `.js`.
   for (size_t dot = name.find('.'); dot != std::string::npos; dot = name.find('.', dot + 1)) {
     if (dot == 0) continue;  // a hidden file's leading dot is not an extension
     auto it = by_extension_.find(name.substr(dot));
-    if (it != by_extension_.end()) return it->second;
+    if (it == by_extension_.end()) continue;
+    if (it->second && by_content_.count(it->first))
+      if (std::optional<Lang> lang = language_of_text(text)) return FileFormat{*lang, Container::shader};
+    return it->second;
   }
   return std::nullopt;
 }

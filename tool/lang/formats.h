@@ -18,6 +18,10 @@ struct FileFormat {
   bool operator==(const FileFormat&) const = default;
 };
 
+// HLSL by what only HLSL writes: a `cbuffer`, a `register(..)` binding or an `SV_` semantic after
+// a colon (HLSL under a GLSL extension, as Vulkan's samples name their HLSL stages .vert and .frag).
+bool reads_as_hlsl(std::string_view text);
+
 // Which files are shaders, by extension (the longest matching one, case-insensitive: `.glsl.js`
 // before `.js`). The defaults cover what engines ship; a project's `.lwcport.json` "extensions"
 // adds to them or overrides them.
@@ -27,12 +31,15 @@ class FormatTable {
   // ".fxh" -> "hlsl", "glsl", "glsl-in-js" or "none" (not a shader). Throws std::runtime_error
   // naming `where` for a bad extension or format.
   void set(std::string_view extension, std::string_view format, std::string_view where);
-  std::optional<FileFormat> for_path(std::string_view path) const;
+  // `text`, where known, decides the language of the stage extensions engines use for both
+  // (`.vsh`, `.fsh`, `.psh`, `.csh`, `.gsh`) unless the project named it.
+  std::optional<FileFormat> for_path(std::string_view path, std::string_view text = {}) const;
   // The extensions of one language, for messages ("usf, ush, ...").
   std::string extensions() const;
 
  private:
   std::map<std::string, std::optional<FileFormat>> by_extension_;  // ".usf" -> format, or none
+  std::map<std::string, bool> by_content_;  // extensions whose language the text decides
 };
 
 }  // namespace lwc

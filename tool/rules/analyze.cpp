@@ -26,7 +26,7 @@ bool AnalyzeOptions::enabled(const std::string& rule) const {
 
 std::optional<FileFormat> format_for(const Source& source, const AnalyzeOptions& options) {
   if (options.lang) return FileFormat{*options.lang, Container::shader};
-  return (options.formats ? *options.formats : FormatTable::defaults()).for_path(source.path());
+  return (options.formats ? *options.formats : FormatTable::defaults()).for_path(source.path(), source.text());
 }
 
 ShaderCode shader_code(const Source& source, const AnalyzeOptions& options) {
@@ -479,17 +479,6 @@ void keep_fixes_inside(const std::vector<Span>& literals, std::vector<Finding>& 
 
 MacroTable macro_table(Lang lang, const AnalyzeOptions& options) {
   return lwc::macro_table(lang, options.includes ? &options.includes->macros : nullptr, options.macros);
-}
-
-// HLSL written under a GLSL extension (Vulkan samples name HLSL stages .vert and .frag): what
-// only HLSL has, a `cbuffer`, a `register(..)` binding or an `SV_` semantic after a colon.
-bool reads_as_hlsl(std::string_view text) {
-  if (text.find("cbuffer ") != std::string_view::npos || text.find(": register(") != std::string_view::npos) return true;
-  for (size_t at = text.find("SV_"); at != std::string_view::npos; at = text.find("SV_", at + 3)) {
-    size_t before = text.find_last_not_of(" \t", at - 1);
-    if (at > 0 && before != std::string_view::npos && text[before] == ':') return true;
-  }
-  return false;
 }
 
 // One shader: a file, or one GLSL template literal of a script (then `literal` is its span).
