@@ -36,11 +36,14 @@ class FloatWorldPosition : public Check {
                                                       {"type", h.type.empty() ? "float" : h.type},
                                                       {"holds", descriptions_.value(kind, kind)}});
       if (!names) names.emplace(ctx.world);
-      if (is_matrix(h.kind) && h.what == AbsoluteHolder::What::variable && unreal_code(ctx.tree)) offer_matrix_rewrite(ctx, f, h, *names);
+      // A transform kept in a local, and a parameter of a whole program: the chain moves whole.
+      if (is_matrix(h.kind) && h.what == AbsoluteHolder::What::variable && unreal_code(ctx.tree))
+        offer_move(ctx, f, h, "translated-matrix", [&](int var, RewritePlan& plan) { return chain_.move_matrix(ctx, *names, var, plan, 0); });
       if (h.kind != Kind::absolute) continue;
       if (h.what == AbsoluteHolder::What::variable) offer_rewrites(ctx, f, h, *names);
       if (h.what == AbsoluteHolder::What::return_value) offer_function_rewrite(ctx, f, h, *names);
-      if (h.what == AbsoluteHolder::What::parameter) offer_parameter_rewrite(ctx, f, h, *names);
+      if (h.what == AbsoluteHolder::What::parameter)
+        offer_move(ctx, f, h, "translated-parameter", [&](int var, RewritePlan& plan) { return chain_.move_parameter(ctx, *names, var, plan, 0); });
     }
   }
 
@@ -109,31 +112,19 @@ class FloatWorldPosition : public Check {
     f.withheld.push_back("DoubleFloat: this code has no DoubleFloat matrices to start from (the translated rewrite keeps its translations as High/Low pairs instead)");
   }
 
-  // A local holding an engine transform demoted to float: the translated transform instead.
-  void offer_matrix_rewrite(const CheckContext& ctx, Finding& f, const AbsoluteHolder& h, const DeclaredNames& names) const {
+  // A place whose whole chain moves to translated world by `move` (a parameter with every caller,
+  // a transform kept in a local with its uses): the fix of kind `fix`, or why not.
+  template <typename Move>
+  void offer_move(const CheckContext& ctx, Finding& f, const AbsoluteHolder& h, const char* fix, Move move) const {
     int var = ctx.world.variable_declared_at(h.site);
     if (var < 0) return;
     RewritePlan plan;
-    if (std::string why = chain_.move_matrix(ctx, names, var, plan, 0); !why.empty()) {
+    if (std::string why = move(var, plan); !why.empty()) {
       f.withheld.push_back("translated world: " + why);
       return;
     }
     const Variable& v = ctx.world.variables()[var];
-    ctx.fix(f, "translated-matrix", {{"name", v.name}, {"new-name", translated_name(v.name)}}, plan.edits);
-  }
-
-  // A parameter holding an absolute position: the function takes it in translated world (the
-  // parameter renamed, its uses following) and every caller passes the translated value.
-  void offer_parameter_rewrite(const CheckContext& ctx, Finding& f, const AbsoluteHolder& h, const DeclaredNames& names) const {
-    int var = ctx.world.variable_declared_at(h.site);
-    if (var < 0) return;
-    RewritePlan plan;
-    if (std::string why = chain_.move_parameter(ctx, names, var, plan, 0); !why.empty()) {
-      f.withheld.push_back("translated world: " + why);
-      return;
-    }
-    const Variable& p = ctx.world.variables()[var];
-    ctx.fix(f, "translated-parameter", {{"name", p.name}, {"new-name", translated_name(p.name)}}, plan.edits);
+    ctx.fix(f, fix, {{"name", v.name}, {"new-name", translated_name(v.name)}}, plan.edits);
   }
 
   // A function returning an absolute position built from translated values: it returns the
