@@ -186,6 +186,14 @@ class LargeWorldMember : public Check {
     // Beside another float32 absolute position the library gains nothing (library_rewrite.h): the
     // line compiles with the value UE4 read, marked for the ledger, until both move together.
     int other = kind == Kind::absolute || kind == Kind::camera_offset ? absolute_partner(ctx, use.node, kind) : -1;
+    // An engine member the code reads as absolute and UE 5.0 hands over translated
+    // (FMaterialVertexParameters.WorldPosition): the camera term takes its translated twin.
+    if (std::string twin = other >= 0 && translated_from_ue5(ctx, other) ? translated_twin(ctx, id) : ""; !twin.empty()) {
+      vars["partner"] = shortened(t.text(other));
+      vars["twin"] = twin;
+      ctx.fix(f, "twin-beside", vars, {{t.span(id), twin}});
+      return;
+    }
     if (other >= 0 && !large_world_value(ctx, other, era)) {
       vars["partner"] = shortened(t.text(other));
       ctx.fix(f, "marker-beside", vars, {{t.span(id), vars["marker"] + "(" + value.text + ")"}});
@@ -265,6 +273,18 @@ class LargeWorldMember : public Check {
     std::string owner = m.empty() ? "" : engine_struct_of(ctx, node);
     const WorldData::EngineMember* e = owner.empty() ? nullptr : ctx.world.data().engine_member(owner, m.member);
     return e && large_world_type(e->types[era == UnrealEra::ue5_0 ? 1 : 2]);
+  }
+
+  // An engine member whose kind UE 5.0 changed to translated world (rules/world-space.json engine
+  // "structs", a fifth entry), read by code written for UE4.
+  static bool translated_from_ue5(const CheckContext& ctx, int node) {
+    const SyntaxTree& t = ctx.tree;
+    while (t.is(node, "parenthesized_expression")) node = t.named_child(node);
+    if (is_field_of(t, node, t.child_by_field(node, "argument"), "xyz")) node = t.child_by_field(node, "argument");
+    Member m = member_of(t, node);
+    std::string owner = m.empty() ? "" : engine_struct_of(ctx, node);
+    const WorldData::EngineMember* e = owner.empty() ? nullptr : ctx.world.data().engine_member(owner, m.member);
+    return e && e->ue5_kind == Kind::translated && ctx.world.code_era() == UnrealEra::ue4 && ctx.unreal && ctx.unreal->era != UnrealEra::ue4;
   }
 
   bool large_world_matrix(const CheckContext& ctx, int node, UnrealEra era) const {
