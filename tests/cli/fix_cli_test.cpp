@@ -317,6 +317,11 @@ TEST(FixCli, TheSummaryCountsTheFindingsTheFixesTookAway) {
   EXPECT_NE(r.out.find("Fixed 2 finding(s) in 1 file(s)."), std::string::npos) << r.out;
   EXPECT_EQ(test::read(dir + "/a.usf"),
             "float3 CameraToPlanet()\n{\n\treturn View.SkyCameraTranslatedWorldOrigin - View.SkyPlanetTranslatedWorldCenterAndViewHeight.xyz;\n}\n");
+  // A fix that writes a marker settles its finding; the marker's own finding is new, not one left.
+  test::write(dir + "/b.usf", "float Far(float3 P)\n{\n\treturn length(P - ResolvedView.WorldCameraOrigin);\n}\n");
+  r = test::run("cd " + dir + " && " + test::binary() + " fix b.usf --color never 2>&1");
+  EXPECT_NE(r.out.find("Fixed 1 finding(s) in 1 file(s)."), std::string::npos) << r.out;
+  EXPECT_NE(test::read(dir + "/b.usf").find("DFHackToFloat(ResolvedView.WorldCameraOrigin)"), std::string::npos);
 }
 
 TEST(FixCli, FixesAreLabelledInJsonAndSarif) {

@@ -839,7 +839,7 @@ FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& in
   out.report.path = file.display;
   out.report.has_code = holds_shader_code(source, f.options);
   out.applied = fixed.applied;
-  out.resolved = fixed.resolved();
+  out.resolved = fixed.resolved;
   out.changed = fixed.text != source.text();
   Source result(file.display, fixed.text);
   for (const Finding& finding : fixed.remaining) {

@@ -1,6 +1,7 @@
 #include "fix/apply.h"
 
 #include <algorithm>
+#include <map>
 #include <stdexcept>
 
 namespace lwc {
@@ -63,10 +64,11 @@ std::string apply_edits(const Source& source, std::vector<Edit> edits) {
 
 FixOutcome fix_source(const Source& source, const AnalyzeOptions& options, bool unsafe, int max_rounds) {
   FixOutcome outcome;
+  std::vector<Finding> original;
   Source current(source.path(), source.text());
   for (int round = 0;; ++round) {
     std::vector<Finding> findings = analyze(current, options);
-    if (round == 0) outcome.found = static_cast<int>(findings.size());
+    if (round == 0) original = findings;
     std::vector<const Fix*> chosen = choose_fixes(findings, unsafe);
     if (chosen.empty()) {
       outcome.remaining = std::move(findings);
@@ -86,6 +88,11 @@ FixOutcome fix_source(const Source& source, const AnalyzeOptions& options, bool 
     current = Source(source.path(), apply_edits(current, std::move(edits)));
   }
   outcome.text = current.text();
+  std::map<std::pair<std::string, std::string>, int> left;
+  for (const Finding& f : outcome.remaining) ++left[{f.rule, std::string(current.slice(f.span))}];
+  for (const Finding& f : original)
+    if (int& n = left[{f.rule, std::string(source.slice(f.span))}]; n > 0) --n;
+    else ++outcome.resolved;
   return outcome;
 }
 

@@ -1,5 +1,4 @@
 #pragma once
-#include <algorithm>
 #include <set>
 #include <string>
 #include <string_view>
@@ -26,13 +25,13 @@ std::string apply_edits(const Source& source, std::vector<Edit> edits);
 struct FixOutcome {
   std::string text;              // the fixed text (equal to the input when nothing applied)
   int applied = 0;               // fixes applied over all rounds
-  int found = 0;                 // findings of the original text
   std::vector<Finding> remaining;  // findings of the fixed text
   std::set<std::string> library;   // shader-library functions the applied fixes call
   bool converged = true;         // false when the round limit stopped it (a fix keeps re-firing)
-  // Findings the fixes took away: one fix may settle several (a chain moved whole), and a later
-  // round's fix finishes one an earlier round started, so this is not the count of fixes.
-  int resolved() const { return std::max(0, found - static_cast<int>(remaining.size())); }
+  // Findings of the original text the fixed text no longer has, matched by rule and the text
+  // they point at: one fix may settle several (a chain moved whole), a later round's fix finish
+  // what an earlier one started, and a marker a fix writes is a new finding, not an old one left.
+  int resolved = 0;
 };
 
 // Analyses, applies the chosen fixes and analyses again until no fix applies (at most
