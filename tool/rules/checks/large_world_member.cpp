@@ -27,8 +27,7 @@ class LargeWorldMember : public Check {
     for (int id : nodes_of(t, "field_expression")) {
       Member m = member_of(t, id);
       if (m.empty()) continue;
-      std::string owner = engine_struct_of(ctx, id);
-      const WorldData::EngineMember* e = owner.empty() ? nullptr : ctx.world.data().engine_member(owner, m.member);
+      const WorldData::EngineMember* e = engine_member_at(ctx, id);
       if (!e) continue;
       const std::string& type = e->types[era == UnrealEra::ue5_0 ? 1 : 2];
       if (!large_world_type(type)) continue;
@@ -269,9 +268,7 @@ class LargeWorldMember : public Check {
       return types != ctx.world.data().engine_function_types.end() && !defines_function(t, call_name(t, node)) &&
              large_world_type(types->second[era == UnrealEra::ue5_0 ? 1 : 2]);
     }
-    Member m = member_of(t, node);
-    std::string owner = m.empty() ? "" : engine_struct_of(ctx, node);
-    const WorldData::EngineMember* e = owner.empty() ? nullptr : ctx.world.data().engine_member(owner, m.member);
+    const WorldData::EngineMember* e = engine_member_at(ctx, node);
     return e && large_world_type(e->types[era == UnrealEra::ue5_0 ? 1 : 2]);
   }
 
@@ -281,9 +278,7 @@ class LargeWorldMember : public Check {
     const SyntaxTree& t = ctx.tree;
     while (t.is(node, "parenthesized_expression")) node = t.named_child(node);
     if (is_field_of(t, node, t.child_by_field(node, "argument"), "xyz")) node = t.child_by_field(node, "argument");
-    Member m = member_of(t, node);
-    std::string owner = m.empty() ? "" : engine_struct_of(ctx, node);
-    const WorldData::EngineMember* e = owner.empty() ? nullptr : ctx.world.data().engine_member(owner, m.member);
+    const WorldData::EngineMember* e = engine_member_at(ctx, node);
     return e && e->ue5_kind == Kind::translated && ctx.world.code_era() == UnrealEra::ue4 && ctx.unreal && ctx.unreal->era != UnrealEra::ue4;
   }
 

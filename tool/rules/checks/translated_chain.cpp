@@ -514,8 +514,7 @@ std::string TranslatedChain::move_matrix(const CheckContext& ctx, const Declared
   // The engine's large-world transform the value reads (through a demotion or marker).
   int value = undemoted(t, v.init);
   Member m = member_of(t, value);
-  std::string owner = m.empty() ? "" : engine_struct_of(ctx, value);
-  const WorldData::EngineMember* e = owner.empty() ? nullptr : ctx.world.data().engine_member(owner, m.member);
+  const WorldData::EngineMember* e = engine_member_at(ctx, value);
   bool ue5_0 = ctx.unreal->era == UnrealEra::ue5_0;
   const std::string type = e ? e->types[ue5_0 ? 1 : 2] : "";
   if (!e || !is_matrix(e->kind) || !(type.starts_with("FDF") || type.starts_with("FLWC")))

@@ -225,6 +225,12 @@ std::string engine_struct_of(const CheckContext& ctx, int field) {
   return {};
 }
 
+const WorldData::EngineMember* engine_member_at(const CheckContext& ctx, int node) {
+  Member m = member_of(ctx.tree, node);
+  std::string owner = m.empty() ? "" : engine_struct_of(ctx, node);
+  return owner.empty() ? nullptr : ctx.world.data().engine_member(owner, m.member);
+}
+
 bool defines_function(const SyntaxTree& tree, std::string_view name) { return !tree.definitions_named(name).empty(); }
 
 int defined_function(const SyntaxTree& tree, std::string_view name) {

@@ -52,6 +52,8 @@ Member member_of(const SyntaxTree& tree, int node);
 // The engine struct a member access (`X.M`) reads: a variable's declared type, or the struct of an
 // engine global or call (rules/world-space.json engine "objects") the file does not declare; "".
 std::string engine_struct_of(const CheckContext& ctx, int field);
+// The entry of the engine's struct table a member access reads (`Primitive.LocalToWorld`), or null.
+const WorldData::EngineMember* engine_member_at(const CheckContext& ctx, int node);
 // The translated-world twin of an absolute view member or function call, as text
 // (`View.WorldCameraOrigin` -> `PrimaryView.TranslatedWorldCameraOrigin`,
 // `GetWorldPosition(P)` -> `GetTranslatedWorldPosition(P)`), or "" when it has none.
