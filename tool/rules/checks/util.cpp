@@ -80,6 +80,7 @@ Member member_of(const SyntaxTree& tree, int node) {
 }
 
 std::string translated_twin(const CheckContext& ctx, int node) {
+  if (node < 0) return {};  // a part the parser left out
   const SyntaxTree& t = ctx.tree;
   const WorldData::Twins& twins = ctx.world.data().twins;
   // A demotion or marker of a value with a twin (`DFHackToFloat(View.WorldCameraOrigin)`): the
