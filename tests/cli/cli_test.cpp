@@ -186,6 +186,32 @@ TEST(Cli, IncludesTeachDeclarationsAndMissingOnesAreFine) {
   EXPECT_EQ(doc["findings"][1]["start"]["column"], 43);
 }
 
+// An engine function whose position UE5 takes in translated world keeps that contract where the
+// engine's own folder defines it (the UE4 engine a plugin builds against today); a function of the
+// project's own header under an engine name takes what its declaration says. A value named as
+// translated is not taken for UE4 code's absolute point.
+TEST(Cli, AnEngineFunctionKeepsItsUe5ContractWhereTheEngineFolderDefinesIt) {
+  std::string dir = test::scratch("engine-contracts");
+  test::write(dir + "/.lwcport.json", R"({"unreal": "5.4", "virtual-roots": {"/Engine/": "Engine/Shaders"}})");
+  test::write(dir + "/Engine/Shaders/Private/Lights.ush",
+              "float GetLocalLightAttenuation(float3 WorldPosition, float R) { return length(WorldPosition) * R; }\n"
+              "float ShadowRayTraceThroughCulledObjects(float3 WorldRayStart, float3 WorldRayEnd) { return length(WorldRayEnd - WorldRayStart); }\n");
+  test::write(dir + "/Plugin/Shaders/Own.ush", "float GetCloudVolumetricShadow(float3 WorldPosition) { return WorldPosition.z; }\n");
+  test::write(dir + "/Plugin/Shaders/a.usf",
+              "#include \"/Engine/Private/Lights.ush\"\n#include \"Own.ush\"\n"
+              "float F(float3 L, float3 TranslatedWorldPosition) {\n"
+              "  float3 P = mul(float4(L, 1), Primitive.LocalToWorld).xyz;\n"
+              "  return GetLocalLightAttenuation(P, 1) + GetCloudVolumetricShadow(P) + ShadowRayTraceThroughCulledObjects(L, P)\n"
+              "       + GetLocalLightAttenuation(TranslatedWorldPosition, 1);\n}\n");
+  auto doc = nlohmann::json::parse(lint(dir, "Plugin/Shaders/a.usf --format json --fail-on none").out);
+  std::vector<std::string> got;
+  for (const auto& f : doc["findings"])
+    if (f["rule"] == "lwc-translated-parameter")
+      got.push_back(std::to_string(f["start"]["line"].get<int>()) + ":" + std::to_string(f["start"]["column"].get<int>()));
+  // `L` is what UE4 code hands a UE4 engine function: an absolute point, whatever it is called.
+  EXPECT_EQ(got, (std::vector<std::string>{"5:35", "5:108", "5:111"})) << doc.dump(2);
+}
+
 // A file that is both a lint target and an include is parsed once, and its summary is the same
 // whichever way it was made: linting the includer alone or with its includes gives the same.
 TEST(Cli, AnIncludeThatIsAlsoATargetTeachesWhatItTeachesAlone) {

@@ -47,6 +47,25 @@ std::optional<fs::path> find_include(const std::string& include, const fs::path&
   }
   return std::nullopt;
 }
+
+// One of Unreal's own shaders: under the folder a project maps `/Engine/` to, or in a `Shaders`
+// folder laid out as the engine's (under `Engine/`, or holding `Private/Common.ush`; a plugin's
+// are in `Plugins/<name>/Shaders` and hold no Common.ush of their own).
+bool engine_file(const fs::path& file, const ProjectConfig& config) {
+  auto under = [&](const fs::path& dir) {
+    std::error_code ec;
+    fs::path root = fs::weakly_canonical(dir, ec);
+    auto rel = file.lexically_relative(root);
+    return !ec && !rel.empty() && *rel.begin() != "..";
+  };
+  for (const auto& [prefix, folder] : config.virtual_roots)
+    if (prefix.rfind("/Engine/", 0) == 0 && under(folder)) return true;
+  for (fs::path dir = file.parent_path(); !dir.empty() && dir != dir.root_path(); dir = dir.parent_path())
+    if (std::error_code ec; dir.filename() == "Shaders" &&
+                            (dir.parent_path().filename() == "Engine" || fs::is_regular_file(dir / "Private" / "Common.ush", ec)))
+      return true;
+  return false;
+}
 }  // namespace
 
 std::optional<fs::path> IncludeSummaries::resolve(const std::string& include, const fs::path& from,
@@ -106,6 +125,7 @@ const IncludeSummaries::Entry& IncludeSummaries::scanned(const fs::path& file, c
   // Read outside the lock; a file two workers scan together is kept once.
   auto made = std::make_unique<Entry>();
   made->file = file;
+  made->engine = engine_file(file, config);
   scan(*made, content(file, config));
   ForkSafeLock lock(mutex_);
   return *entries_.emplace(file, std::move(made)).first->second;
@@ -183,7 +203,7 @@ std::vector<const IncludeSummaries::Entry*> IncludeSummaries::closure_of(const f
 
 FileSummary IncludeSummaries::for_file(const fs::path& path, std::string_view text, const ProjectConfig& config) {
   FileSummary out;
-  for (const Entry* inc : closure_of(canonical(path), include_paths(text), config)) out.merge(summarised(*inc, config));
+  for (const Entry* inc : closure_of(canonical(path), include_paths(text), config)) out.merge(summarised(*inc, config), inc->engine);
   return out;
 }
 

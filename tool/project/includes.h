@@ -56,6 +56,7 @@ class IncludeSummaries {
     std::optional<Lang> lang;    // none: not readable as a shader
     std::vector<std::string> includes;  // as written
     MacroTable macros;                  // what its #defines teach
+    bool engine = false;  // one of the engine's own shaders (its functions keep the engine's contracts)
     mutable std::shared_ptr<const FileSummary> own;  // null until summarised; set once, under the mutex
   };
   // A file's text: the editor's when it holds the file, else the disk's.

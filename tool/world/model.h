@@ -92,7 +92,7 @@ struct WorldData {
   std::map<std::string, std::string> engine_objects;  // engine global or call (`Name(..)`) -> its struct
   // An engine function's position parameter that UE5 takes in translated world (UE4: absolute).
   struct TranslatedParameter {
-    size_t index;
+    std::vector<size_t> indices;  // the position parameters it takes in translated world
     UnrealEra from;  // the first era that takes it so
   };
   std::map<std::string, TranslatedParameter> engine_translated_parameters;
@@ -151,6 +151,7 @@ struct ParameterUse {
   bool matters = false;  // some use lets its float32 rounding reach a result
   bool harmless = false;  // every use keeps only a direction or a rotation
   std::string type;       // its declared type where every overload of that arity agrees, else ""
+  bool engine = false;    // defined in the engine's own shaders (under an /Engine/ virtual root)
 };
 
 // What an included file teaches: its globals' kinds and its functions' return kinds.
@@ -166,8 +167,9 @@ struct FileSummary {
   // declaration (types, names where they count): what verify fills each argument with.
   std::map<std::string, std::vector<Kind>> parameter_kinds;
 
-  // Adds what `from` knows; what this summary already knows wins.
-  void merge(const FileSummary& from);
+  // Adds what `from` knows; what this summary already knows wins. `engine`: `from` is a file of
+  // the engine's own shaders, whose functions' parameters are marked so.
+  void merge(const FileSummary& from, bool engine = false);
 };
 
 // What the last models of one document did, function by function, kept so that the model of its

@@ -327,13 +327,17 @@ std::vector<int> WorldModel::uses(int variable) const {
   return variable >= 0 && variable < static_cast<int>(uses_.size()) ? uses_[variable] : std::vector<int>{};
 }
 
-void FileSummary::merge(const FileSummary& from) {
+void FileSummary::merge(const FileSummary& from, bool engine) {
   globals.insert(from.globals.begin(), from.globals.end());
   function_returns.insert(from.function_returns.begin(), from.function_returns.end());
   function_return_types.insert(from.function_return_types.begin(), from.function_return_types.end());
   macros.insert(from.macros.begin(), from.macros.end());
   field_types.insert(from.field_types.begin(), from.field_types.end());
-  parameter_uses.insert(from.parameter_uses.begin(), from.parameter_uses.end());
+  for (const auto& [function, uses] : from.parameter_uses) {
+    auto [it, added] = parameter_uses.emplace(function, uses);
+    if (added && engine)
+      for (ParameterUse& u : it->second) u.engine = true;
+  }
   parameter_kinds.insert(from.parameter_kinds.begin(), from.parameter_kinds.end());
 }
 

@@ -57,26 +57,57 @@ bool is_position(Kind k) { return k == Kind::absolute || k == Kind::translated |
 
 // A vector that is not a position: small by its kind, or built only from names that say so
 // (`Normal * Bias`, `Dir * T`) and numbers.
-bool small_vector(const CheckContext& ctx, int n) {
+namespace {
+// A name that says direction or normal, in any space (`WorldNormal`, `RayDirection`): no position.
+bool direction_name(std::string_view name) {
+  for (std::string_view end : {"Normal", "normal", "Dir", "Direction", "direction"})
+    if (name.ends_with(end)) return true;
+  return false;
+}
+
+bool scalar_type(std::string_view type) {
+  return type == "float" || type == "half" || type == "int" || type == "uint" || type == "min16float" || type == "double";
+}
+
+bool small_vector_at(const CheckContext& ctx, int n, int depth) {
   Kind kind = ctx.world.kind(n);
   if (kind == Kind::local || kind == Kind::direction) return true;
   if (kind != Kind::unknown) return false;
   const SyntaxTree& t = ctx.tree;
-  bool named = false;
+  bool small = false;  // some factor is a vector known to be no position; scalars only scale it
   std::vector<int> stack{n};
   while (!stack.empty()) {
     int m = stack.back();
     stack.pop_back();
     if (t.is(m, "identifier") || t.is(m, "field_identifier")) {
-      if (ctx.world.data().named_kind(t.text(m), Kind::absolute) != Kind::local) return false;
-      named = true;
+      Kind k = ctx.world.kind(m);
+      int var = t.is(m, "identifier") ? ctx.world.variable_at(m) : -1;
+      const Variable* v = var >= 0 ? &ctx.world.variables()[var] : nullptr;
+      if (k == Kind::local || k == Kind::direction || ctx.world.data().named_kind(t.text(m), Kind::absolute) == Kind::local ||
+          (k == Kind::unknown && direction_name(t.text(m))))
+        small = true;
+      else if (k != Kind::unknown)
+        return false;
+      else if (v && scalar_type(v->type))
+        continue;
+      // A local whose value is such a vector (`float3 L = normalize(ToLight);`).
+      else if (v && v->role == Variable::Role::local && v->init >= 0 && depth < 3 && small_vector_at(ctx, v->init, depth + 1))
+        small = true;
+      else
+        return false;
     } else if (t.is(m, "call_expression")) {
-      return false;
+      // A unit vector, whatever it was made from.
+      if (call_name(t, m) != "normalize") return false;
+      small = true;
+      continue;
     }
     for (int c : t.named_children(m)) stack.push_back(c);
   }
-  return named;
+  return small;
 }
+}  // namespace
+
+bool small_vector(const CheckContext& ctx, int n) { return small_vector_at(ctx, n, 0); }
 
 // `X + PreViewTranslation` (either order, through parentheses) around an expression: the sum, or -1.
 int pre_view_sum(const CheckContext& ctx, int expr) {

@@ -26,8 +26,9 @@ int packed_point(const SyntaxTree& t, int point);
 // A kind that is a point in some frame (absolute, translated, or the camera offset).
 bool is_position(Kind k);
 
-// A vector that is not a position: small by its kind, or built only from names that say so
-// (`Normal * Bias`, `Dir * T`) and numbers.
+// A vector that is not a position: small by its kind, or built from names that say so, unit
+// vectors (`normalize(..)`) and locals holding such vectors, scaled by scalars and numbers
+// (`Normal * Bias`, `L * MaxDistance`).
 bool small_vector(const CheckContext& ctx, int n);
 
 // `X + PreViewTranslation` (either order, through parentheses) around an expression: the sum, or -1.

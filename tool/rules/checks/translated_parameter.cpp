@@ -24,7 +24,7 @@ class TranslatedParameter : public Check {
         if (translated_parameter_call(ctx, argument, &from) != call) continue;
         // UE4 code passes what UE4's function takes: an absolute position, whatever it is called.
         Kind kind = ctx.world.kind(argument);
-        if (kind != Kind::absolute && !(ue4_code && kind == Kind::unknown)) continue;
+        if (kind != Kind::absolute && !(ue4_code && kind == Kind::unknown && !named_otherwise(ctx, argument))) continue;
         std::string argument_text = shortened(t.text(argument));
         Vars vars{{"callee", std::string(call_name(t, call))},
                   {"argument", argument_text},
@@ -44,6 +44,15 @@ class TranslatedParameter : public Check {
   }
 
  private:
+  // A value whose name says it is translated or local (`TranslatedWorldPosition`): code that
+  // names its space is not taken for UE4 code passing the absolute point.
+  static bool named_otherwise(const CheckContext& ctx, int argument) {
+    const SyntaxTree& t = ctx.tree;
+    int name = t.is(argument, "field_expression") ? t.child_by_field(argument, "field") : argument;
+    if (name < 0 || !(t.is(name, "identifier") || t.is(name, "field_identifier"))) return false;
+    return ctx.world.data().named_kind(t.text(name), Kind::absolute) != Kind::absolute;
+  }
+
   // The translated point: the value's translated twin where it has one (a marker or demotion
   // around it goes too), else the absolute value plus the pre-view translation in the era's library.
   static void offer_fix(const CheckContext& ctx, Finding& f, int argument, bool ue4_code, Vars vars) {

@@ -154,10 +154,13 @@ int translated_parameter_call(const CheckContext& ctx, int argument, UnrealEra* 
   auto entry = name.empty() ? table.end() : table.find(std::string(name));
   if (entry == table.end()) return -1;
   std::vector<int> args = call_arguments(t, call);
-  if (entry->second.index >= args.size() || args[entry->second.index] != argument) return -1;
+  const std::vector<size_t>& indices = entry->second.indices;
+  if (std::none_of(indices.begin(), indices.end(), [&](size_t i) { return i < args.size() && args[i] == argument; })) return -1;
   UnrealEra target = !ctx.unreal || ctx.unreal->era == UnrealEra::ue4 ? UnrealEra::ue5_4 : ctx.unreal->era;
   if (static_cast<int>(target) < static_cast<int>(entry->second.from)) return -1;
-  if (defines_function(t, name) || ctx.world.included_parameter_use(call, argument)) return -1;
+  // A definition of the project's own keeps its contract; the engine's is the one the table reads.
+  if (defines_function(t, name)) return -1;
+  if (auto included = ctx.world.included_parameter_use(call, argument); included && !included->engine) return -1;
   if (from) *from = entry->second.from;
   return call;
 }
