@@ -152,6 +152,7 @@ struct ParameterUse {
   bool harmless = false;  // every use keeps only a direction or a rotation
   std::string type;       // its declared type where every overload of that arity agrees, else ""
   bool engine = false;    // defined in the engine's own shaders (under an /Engine/ virtual root)
+  bool translated = false;  // named as translated (`TranslatedWorldPosition`) in every overload
 };
 
 // What an included file teaches: its globals' kinds and its functions' return kinds.

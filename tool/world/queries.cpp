@@ -374,6 +374,8 @@ FileSummary WorldModel::summary() const {
       // Only a float vector or matrix can carry a world position or transform.
       bool shaped = !type.empty() && (type.back() == '3' || type.back() == '4' || type.rfind("mat", 0) == 0);
       if (!shaped || !data_.is_float_type(type)) continue;
+      bool named = data_.named_kind(variables_[params[k]].name, Kind::absolute) == Kind::translated;
+      entry[k].translated = first ? named : entry[k].translated && named;
       bool used = !uses(params[k]).empty();
       bool matters = used && used_where_precision_matters(params[k]);
       bool harmless = used && only_harmless_uses(params[k]);

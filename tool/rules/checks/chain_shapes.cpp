@@ -58,9 +58,10 @@ bool is_position(Kind k) { return k == Kind::absolute || k == Kind::translated |
 // A vector that is not a position: small by its kind, or built only from names that say so
 // (`Normal * Bias`, `Dir * T`) and numbers.
 namespace {
-// A name that says direction or normal, in any space (`WorldNormal`, `RayDirection`): no position.
+// A name that says direction or normal, in any space (`WorldNormal`, `RayDirection`, `ViewForward`):
+// no position.
 bool direction_name(std::string_view name) {
-  for (std::string_view end : {"Normal", "normal", "Dir", "Direction", "direction"})
+  for (std::string_view end : {"Normal", "normal", "Dir", "Direction", "direction", "Forward"})
     if (name.ends_with(end)) return true;
   return false;
 }
@@ -95,6 +96,16 @@ bool small_vector_at(const CheckContext& ctx, int n, int depth) {
         small = true;
       else
         return false;
+    } else if (int field = t.is(m, "field_expression") ? t.child_by_field(m, "field") : -1; field >= 0) {
+      // A member is what its name says (`View.ViewForward`), whatever its object is called.
+      Kind k = ctx.world.kind(m);
+      if (k == Kind::local || k == Kind::direction || (k == Kind::unknown && direction_name(t.text(field))))
+        small = true;
+      else if (k != Kind::unknown || ctx.world.data().named_kind(t.text(field), Kind::absolute) != Kind::local)
+        return false;
+      else
+        small = true;
+      continue;
     } else if (t.is(m, "call_expression")) {
       // A unit vector, whatever it was made from.
       if (call_name(t, m) != "normalize") return false;
@@ -108,6 +119,37 @@ bool small_vector_at(const CheckContext& ctx, int n, int depth) {
 }  // namespace
 
 bool small_vector(const CheckContext& ctx, int n) { return small_vector_at(ctx, n, 0); }
+
+bool shifted_in_place(const CheckContext& ctx, int use) {
+  const SyntaxTree& t = ctx.tree;
+  int target = use, parent = t.at(use).parent;
+  bool component = false;
+  if (t.is(parent, "field_expression") && t.child_by_field(parent, "argument") == use) {
+    std::string_view field = t.text(t.child_by_field(parent, "field"));
+    if (field != "x" && field != "y" && field != "z" && field != "xyz") return false;
+    component = field.size() == 1;
+    target = parent, parent = t.at(parent).parent;
+  }
+  if (!t.is(parent, "assignment_expression") || t.child_by_field(parent, "left") != target) return false;
+  std::string_view op = t.text(t.child_by_field(parent, "operator"));
+  if (op != "+=" && op != "-=") return false;
+  int offset = t.child_by_field(parent, "right");
+  if (small_vector(ctx, offset)) return true;
+  // One coordinate moved by a scalar: every identifier in it a scalar that is no position.
+  if (!component) return false;
+  std::vector<int> stack{offset};
+  while (!stack.empty()) {
+    int m = stack.back();
+    stack.pop_back();
+    if (t.is(m, "call_expression")) return false;
+    if (t.is(m, "identifier")) {
+      int var = ctx.world.variable_at(m);
+      if (var < 0 || !scalar_type(ctx.world.variables()[var].type) || is_position(ctx.world.kind(m))) return false;
+    }
+    for (int c : t.named_children(m)) stack.push_back(c);
+  }
+  return true;
+}
 
 // `X + PreViewTranslation` (either order, through parentheses) around an expression: the sum, or -1.
 int pre_view_sum(const CheckContext& ctx, int expr) {

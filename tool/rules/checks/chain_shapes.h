@@ -30,6 +30,9 @@ bool is_position(Kind k);
 // vectors (`normalize(..)`) and locals holding such vectors, scaled by scalars and numbers
 // (`Normal * Bias`, `L * MaxDistance`).
 bool small_vector(const CheckContext& ctx, int n);
+// A point moved in place by an offset (`P -= Bias * Dir`, `P.z += Height` with Height a scalar):
+// the statement keeps it a point of the same space.
+bool shifted_in_place(const CheckContext& ctx, int use);
 
 // `X + PreViewTranslation` (either order, through parentheses) around an expression: the sum, or -1.
 int pre_view_sum(const CheckContext& ctx, int expr);

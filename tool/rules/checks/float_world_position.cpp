@@ -65,10 +65,9 @@ class FloatWorldPosition : public Check {
     bool written = v.role == Variable::Role::local && v.init < 0;
     RewritePlan translated = local || written ? chain_.plan_translated(ctx, var, names) : withheld("not a local with a value");
     if (translated.blocker.empty()) {
-      std::string helpers;
-      for (const std::string& name : translated.helpers) helpers += (helpers.empty() ? "`" : ", `") + name + "`";
-      Vars fix_vars{{"name", v.name}, {"new-name", translated_name(v.name)}, {"helpers", helpers}};
-      ctx.fix(f, translated.helpers.empty() ? "translated" : "translated-helpers", fix_vars, translated.edits);
+      Vars fix_vars{{"name", v.name}, {"new-name", translated_name(v.name)}, {"helpers", helper_list(translated)}};
+      Fix* fix = ctx.fix(f, translated_kind(translated, "translated"), fix_vars, translated.edits);
+      if (fix) fix->notes = translated.notes;
     }
     // Without Unreal's view and primitive data, plain code gets the High/Low design instead.
     if (!unreal_code(t)) {
@@ -124,7 +123,21 @@ class FloatWorldPosition : public Check {
       return;
     }
     const Variable& v = ctx.world.variables()[var];
-    ctx.fix(f, fix, {{"name", v.name}, {"new-name", translated_name(v.name)}}, plan.edits);
+    Fix* made = ctx.fix(f, translated_kind(plan, fix), {{"name", v.name}, {"new-name", translated_name(v.name)}, {"helpers", helper_list(plan)}},
+                        plan.edits);
+    if (made) made->notes = plan.notes;
+  }
+
+  // The fix a translated plan makes: unsafe where it changes what a header's functions take (their
+  // callers in other files must follow) or what the host must set (the notes say what).
+  static const char* translated_kind(const RewritePlan& plan, const char* kind) {
+    return !plan.helpers.empty() ? "translated-helpers" : !plan.notes.empty() ? "translated-host" : kind;
+  }
+
+  static std::string helper_list(const RewritePlan& plan) {
+    std::string helpers;
+    for (const std::string& name : plan.helpers) helpers += (helpers.empty() ? "`" : ", `") + name + "`";
+    return helpers;
   }
 
   // A function returning an absolute position built from translated values: it returns the
@@ -140,7 +153,8 @@ class FloatWorldPosition : public Check {
       f.withheld.push_back("translated world: " + why);
       return;
     }
-    ctx.fix(f, "translated", {{"name", h.name}, {"new-name", new_name}, {"helpers", ""}}, plan.edits);
+    Fix* fix = ctx.fix(f, translated_kind(plan, "translated"), {{"name", h.name}, {"new-name", new_name}, {"helpers", helper_list(plan)}}, plan.edits);
+    if (fix) fix->notes = plan.notes;
   }
 
   // FDFVector3 X = DFMultiply(P, M); differences become DF*Demote; anything else withholds.

@@ -56,6 +56,10 @@ std::string TranslatedChain::translate_value(const CheckContext& ctx, const Decl
     plan.edits.push_back({t.span(value), twin});
     return {};
   }
+  if (std::string twin = ctx.world.kind(value) == Kind::absolute ? host_twin(ctx, names, value, plan) : ""; !twin.empty()) {
+    plan.edits.push_back({t.span(value), twin});
+    return {};
+  }
   if (t.is(value, "binary_expression")) {
     std::string_view op = t.text(t.child_by_field(value, "operator"));
     int left = t.child_by_field(value, "left"), right = t.child_by_field(value, "right");
@@ -127,6 +131,8 @@ std::string TranslatedChain::translate_value(const CheckContext& ctx, const Decl
   if (mul != value && !is_field_of(t, value, mul, "xyz")) return fmt::format("it takes part of a transformed point (`{}`)", shortened(t.text(value)));
   if (std::string m = translated_twin(ctx, matrix); !m.empty()) {
     plan.edits.push_back({t.span(args[1]), m});
+  } else if (std::string h = host_twin(ctx, names, matrix, plan); !h.empty()) {
+    plan.edits.push_back({t.span(args[1]), h});
   } else if (std::string p = position_of_homogeneous(t, args[0]); !p.empty() && !translation.empty()) {
     // The library call gives the 3-vector; a 4-vector value keeps its w of 1.
     std::string call = fmt::format("DFTransformLocalToTranslatedWorld({}, {}, PrimaryView.{})", p,
@@ -138,21 +144,64 @@ std::string TranslatedChain::translate_value(const CheckContext& ctx, const Decl
   return {};
 }
 
+std::string TranslatedChain::host_twin(const CheckContext& ctx, const DeclaredNames& names, int node, RewritePlan& plan) const {
+  const SyntaxTree& t = ctx.tree;
+  while (t.is(node, "parenthesized_expression")) node = t.named_child(node);
+  int name = node;
+  std::string suffix;
+  if (int base = t.child_by_field(node, "argument"); t.is(base, "identifier") && is_field_of(t, node, base, "xyz")) {
+    name = base;
+    suffix = ".xyz";
+  }
+  int var = t.is(name, "identifier") && unreal_code(t) ? ctx.world.variable_at(name) : -1;
+  if (var < 0) return {};
+  const Variable& v = ctx.world.variables()[var];
+  Kind kind = ctx.world.kind(name);
+  bool from_world = kind == Kind::from_world_matrix, to_world = kind == Kind::world_matrix;
+  if (v.role != Variable::Role::global || !v.uniform || v.private_global || (kind != Kind::absolute && !from_world && !to_world)) return {};
+  for (std::string_view word : leading_words(t, v.declaration))
+    if (word == "static" || word == "const" || word == "groupshared") return {};
+  // One declarator per declaration: the new one is a copy of it under the new name.
+  std::string declaration(t.text(v.declaration));
+  if (declaration.find(',') != std::string::npos) return {};
+  std::string twin = translated_name(v.name);
+  if (twin == v.name || names.taken(twin, -1)) return {};
+  uint32_t at = t.at(v.declaration).end, line = t.at(v.declaration).begin;
+  std::string_view text = t.source->text();
+  while (line > 0 && (text[line - 1] == ' ' || text[line - 1] == '\t')) --line;
+  std::string indent(text.substr(line, t.at(v.declaration).begin - line));
+  if (line > 0 && text[line - 1] != '\n') indent.clear();  // something else on the line before it
+  Edit added{{at, at}, "\n" + indent + declaration.replace(t.at(v.decl).begin - t.at(v.declaration).begin, v.name.size(), twin)};
+  if (std::find(plan.edits.begin(), plan.edits.end(), added) == plan.edits.end()) {
+    plan.edits.push_back(added);
+    std::string what = from_world ? "taking translated-world points (its translation moved by the camera's position)"
+                       : to_world ? "giving translated-world points (the pre-view translation added to its translation)"
+                                  : "plus the pre-view translation";
+    plan.notes.push_back(fmt::format("the pass must also set `{}`: `{}` {}, computed in double on the host", twin, v.name, what));
+  }
+  return twin + suffix;
+}
+
 std::string TranslatedChain::move_parameter(const CheckContext& ctx, const DeclaredNames& names, int var, RewritePlan& plan, int depth) const {
   const SyntaxTree& t = ctx.tree;
   const Variable& p = ctx.world.variables()[var];
   int fn = p.function;
   if (p.output) return fmt::format("`{}` is an `out` parameter", p.name);
-  if (!whole_program(t))
-    return fmt::format("`{}` is a parameter of `{}`, which other files may call with an absolute position", p.name, t.text(function_name(t, fn)));
+  // A header's function may be called from other files: in Unreal code it moves all the same, with
+  // this file's callers, and the fix names it (unsafe: the other files' callers must follow).
+  bool header = !whole_program(t);
+  std::string function(t.text(function_name(t, fn)));
+  if (header && !unreal_code(t))
+    return fmt::format("`{}` is a parameter of `{}`, which other files may call with an absolute position", p.name, function);
   std::string new_name = translated_name(p.name);
   if (new_name == p.name || names.taken(new_name, fn)) return fmt::format("the name `{}` is already taken", new_name);
   size_t index = 0, arity = function_arity(t, fn);
   while (index < arity && parameter_variable(ctx, fn, index) != var) ++index;
   std::vector<int> calls = calls_to(t, fn);
-  if (index == arity || calls.empty()) return fmt::format("no call in this file passes `{}`", p.name);
+  if (index == arity || (calls.empty() && !header)) return fmt::format("no call in this file passes `{}`", p.name);
   plan.moving_variables.push_back(var);
   plan.edits.push_back({t.span(p.decl), new_name});
+  if (header && std::find(plan.helpers.begin(), plan.helpers.end(), function) == plan.helpers.end()) plan.helpers.push_back(function);
   follow_translated(ctx, names, var, new_name, plan, depth + 1);
   if (!plan.blocker.empty()) return plan.blocker;
   for (int call : calls) {
@@ -329,6 +378,11 @@ void TranslatedChain::follow_use(const CheckContext& ctx, const DeclaredNames& n
     plan.edits.push_back({t.span(partner), m});
     return;
   }
+  if (std::string m = partner >= 0 ? host_twin(ctx, names, partner, plan) : ""; !m.empty()) {
+    renamed();
+    plan.edits.push_back({t.span(partner), m});
+    return;
+  }
   if (partner >= 0 && follow_partner(ctx, names, partner, plan, depth)) {
     renamed();
     return;
@@ -348,19 +402,37 @@ void TranslatedChain::follow_use(const CheckContext& ctx, const DeclaredNames& n
     plan.edits.push_back({left ? Span{t.at(inner).end, t.at(sum).end} : Span{t.at(sum).begin, t.at(inner).begin}, ""});
     return;
   }
+  // The point moved by an offset in place (`P -= Bias * Dir`, `P.z += Height`): it stays a point
+  // of the same space.
+  if (shifted_in_place(ctx, use)) {
+    renamed();
+    return;
+  }
   int wrapper = homogeneous_wrapper(t, expr);
   int outer = wrapper >= 0 ? t.at(t.at(wrapper).parent).parent : -1;
   if (outer >= 0 && mul_call(t, outer) == outer && call_arguments(t, outer)[0] == wrapper) {
-    if (std::string m = translated_twin(ctx, call_arguments(t, outer)[1]); !m.empty()) {
+    int matrix = call_arguments(t, outer)[1];
+    std::string m = translated_twin(ctx, matrix);
+    if (m.empty()) m = host_twin(ctx, names, matrix, plan);
+    if (!m.empty()) {
       renamed();
-      plan.edits.push_back({t.span(call_arguments(t, outer)[1]), m});
+      plan.edits.push_back({t.span(matrix), m});
       return;
     }
   }
   // An engine function that takes its position in translated world (UE5's lighting, the global
   // distance field): the translated point is what it wants.
-  if (ctx.unreal && ctx.unreal->era != UnrealEra::ue4 && translated_parameter_call(ctx, expr) >= 0) {
-    renamed();
+  // Only UE4 code hands such a function what it always meant; a function that takes translated
+  // world by its own declaration, or UE5 code, gets a different point: the call's own finding
+  // (lwc-translated-parameter) offers that, as a change of behaviour.
+  bool declared = false;
+  if (int call = ctx.unreal && ctx.unreal->era != UnrealEra::ue4 ? translated_parameter_call(ctx, expr, nullptr, &declared) : -1; call >= 0) {
+    if (!declared && ctx.world.code_era() == UnrealEra::ue4) {
+      renamed();
+      return;
+    }
+    plan.blocker = fmt::format("it is passed to `{}` (line {}), which takes a translated point already: passing one changes what the call "
+                               "computes (lwc-translated-parameter offers it there)", call_name(t, call), line_of(t, call));
     return;
   }
   if (depth < 4 && expr == use && follow_into_helper(ctx, names, use, plan, depth)) {
@@ -425,9 +497,15 @@ bool TranslatedChain::follow_partner(const CheckContext& ctx, const DeclaredName
   if (var < 0) return false;
   if (std::find(plan.moving_variables.begin(), plan.moving_variables.end(), var) != plan.moving_variables.end()) return true;
   const Variable& v = ctx.world.variables()[var];
-  if (v.role != Variable::Role::local || v.kind != Kind::absolute || depth >= 4) return false;
+  if (depth >= 4) return false;
+  // A parameter on the other side of a difference with a world point is a world point too (a
+  // difference of points is meaningful only in one frame): it moves with its callers.
+  bool parameter = v.role == Variable::Role::parameter && !v.output && (v.type == "float3" || v.type == "float4") &&
+                   (v.kind == Kind::absolute || (v.kind == Kind::unknown && ctx.world.data().named_kind(v.name, Kind::absolute) == Kind::absolute));
+  if (!parameter && (v.role != Variable::Role::local || v.kind != Kind::absolute)) return false;
   PlanMark before = mark(plan);
-  std::string why = v.init >= 0 ? move_local(ctx, names, var, true, plan, depth + 1) : move_out_local(ctx, names, var, plan, depth + 1);
+  std::string why = parameter ? move_parameter(ctx, names, var, plan, depth + 1)
+                    : v.init >= 0 ? move_local(ctx, names, var, true, plan, depth + 1) : move_out_local(ctx, names, var, plan, depth + 1);
   if (why.empty()) return true;
   roll_back(plan, before);
   return false;

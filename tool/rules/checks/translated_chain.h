@@ -58,6 +58,12 @@ class TranslatedChain {
   // value is a use already being moved), its declaration and every use. Returns why not, or "".
   std::string move_local(const CheckContext& ctx, const DeclaredNames& names, int var, bool with_value, RewritePlan& plan, int depth) const;
 
+  // A uniform of this file that the host sets (a pass parameter, `float4 LightPositionAndInvRadius;`)
+  // holding an absolute position, or a transform from world: its translated form is a new uniform
+  // declared beside it, which the host must set (the plan's note says to what), as Epic's own passes
+  // did; the uniform's other uses keep the absolute one. The text for `node`, or "" where none.
+  std::string host_twin(const CheckContext& ctx, const DeclaredNames& names, int node, RewritePlan& plan) const;
+
   // An absolute value's translated form, as edits: a transform whose matrix has a translated
   // twin or is a primitive's, or a translated value minus the pre-view translation (which goes).
   // Returns why not, or "".

@@ -21,24 +21,27 @@ class TranslatedParameter : public Check {
     for (int call : nodes_of(t, "call_expression")) {
       for (int argument : call_arguments(t, call)) {
         UnrealEra from{};
-        if (translated_parameter_call(ctx, argument, &from) != call) continue;
-        // UE4 code passes what UE4's function takes: an absolute position, whatever it is called.
+        bool declared = false;
+        if (translated_parameter_call(ctx, argument, &from, &declared) != call) continue;
+        // UE4 code passes what UE4's engine function takes: an absolute position, whatever it is
+        // called. A function whose own declaration says translated is judged by what is known.
         Kind kind = ctx.world.kind(argument);
-        if (kind != Kind::absolute && !(ue4_code && kind == Kind::unknown && !named_otherwise(ctx, argument))) continue;
+        if (kind != Kind::absolute && !(ue4_code && !declared && kind == Kind::unknown && !named_otherwise(ctx, argument))) continue;
         std::string argument_text = shortened(t.text(argument));
         Vars vars{{"callee", std::string(call_name(t, call))},
                   {"argument", argument_text},
                   {"what", kind == Kind::absolute ? fmt::format("`{}` is an absolute world position", argument_text)
                                                   : fmt::format("`{}` is the absolute world position UE4's function takes", argument_text)},
-                  {"from", from == UnrealEra::ue5_0 ? "UE 5.0" : "UE 5.4"},
+                  {"from", declared ? std::string("its declaration") : from == UnrealEra::ue5_0 ? "UE 5.0" : "UE 5.4"},
                   {"era", std::string(era_name(target))},
-                  {"when", target == UnrealEra::ue4 ? "when this code moves to UE5" : "in " + std::string(era_name(target))}};
+                  {"when", declared ? "as it is" : target == UnrealEra::ue4 ? "when this code moves to UE5" : "in " + std::string(era_name(target))}};
         Finding& f = ctx.report(t.span(argument), vars);
         if (target == UnrealEra::ue4) {
           f.withheld.push_back("the translated point is spelt with UE5's API: set \"unreal\" in .lwcport.json to the engine this code moves to");
           continue;
         }
-        offer_fix(ctx, f, argument, ue4_code, vars);
+        // Passing the translated point changes what a function declared so computes: unsafe.
+        offer_fix(ctx, f, argument, ue4_code && !declared, vars);
       }
     }
   }

@@ -144,14 +144,39 @@ std::string engine_translated_twin(const CheckContext& ctx, int node) {
   return member != object->second.end() ? m.object + "." + member->second : std::string();
 }
 
-int translated_parameter_call(const CheckContext& ctx, int argument, UnrealEra* from) {
+namespace {
+// The function's own declaration names the parameter `argument` is passed to as translated
+// (`float3 TranslatedWorldPosition`): defined in this file, or in an included one.
+bool declared_translated(const CheckContext& ctx, int call, int argument) {
+  const SyntaxTree& t = ctx.tree;
+  std::vector<int> args = call_arguments(t, call);
+  size_t index = std::find(args.begin(), args.end(), argument) - args.begin();
+  if (index == args.size()) return false;
+  if (int fn = defined_function(t, call_name(t, call), args.size()); fn >= 0) {
+    int p = parameter_variable(ctx, fn, index);
+    if (p < 0) return false;
+    const Variable& v = ctx.world.variables()[p];
+    return (v.type == "float3" || v.type == "float4") && ctx.world.data().named_kind(v.name, Kind::absolute) == Kind::translated;
+  }
+  auto included = ctx.world.included_parameter_use(call, argument);
+  return included && included->translated;
+}
+}  // namespace
+
+int translated_parameter_call(const CheckContext& ctx, int argument, UnrealEra* from, bool* declared) {
   const SyntaxTree& t = ctx.tree;
   int list = t.at(argument).parent;
   if (!t.is(list, "argument_list")) return -1;
   int call = t.at(list).parent;
   std::string_view name = call_name(t, call);
+  if (declared) *declared = false;
+  if (name.empty()) return -1;
+  if (declared_translated(ctx, call, argument)) {
+    if (declared) *declared = true;
+    return call;
+  }
   const auto& table = ctx.world.data().engine_translated_parameters;
-  auto entry = name.empty() ? table.end() : table.find(std::string(name));
+  auto entry = table.find(std::string(name));
   if (entry == table.end()) return -1;
   std::vector<int> args = call_arguments(t, call);
   const std::vector<size_t>& indices = entry->second.indices;

@@ -64,11 +64,13 @@ std::string translated_twin(const CheckContext& ctx, int node);
 // code built against UE 5.0 or later, where the twins exist.
 std::string engine_translated_twin(const CheckContext& ctx, int node);
 
-// An argument an engine function takes in translated world where UE4 took absolute world
-// (rules/world-space.json engine "translated-parameters"), in the era the code moves to (UE4 code:
-// UE 5.4): the call, or -1. A function the file or its includes define themselves takes what
-// their declaration says, so it is not the engine's. `from` gets the first era that takes it so.
-int translated_parameter_call(const CheckContext& ctx, int argument, UnrealEra* from = nullptr);
+// An argument a function takes in translated world: one whose declaration (in this file or an
+// included one) names the parameter as translated (`declared` set), or an engine function that
+// takes it so where UE4 took absolute world (rules/world-space.json engine "translated-parameters"),
+// in the era the code moves to (UE4 code: UE 5.4). The call, or -1. A function the file or the
+// project's own headers define otherwise takes what its declaration says, so it is not the engine's.
+// `from` gets the first era the engine takes it so.
+int translated_parameter_call(const CheckContext& ctx, int argument, UnrealEra* from = nullptr, bool* declared = nullptr);
 
 // A world-position rewrite of one variable: its edits, or why it is withheld.
 struct RewritePlan {
