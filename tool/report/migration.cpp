@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <set>
+#include <tuple>
 
 #include "rules/rule.h"
 
@@ -137,6 +138,9 @@ nlohmann::ordered_json report_json(const MigrationReport& r) {
   std::map<std::string, size_t> eras, files_in_dir;
   std::map<std::string, std::set<std::string>> rules_in_dir;
   json files = json::array(), findings = json::array(), host_side = json::array();
+  // (file, what the host must do, the value unless the words are a fix's notes): a fix's notes name
+  // what they ask for, and the findings sharing one fix list them once; each uniform is its own row.
+  std::set<std::tuple<std::string, std::string, std::string>> host_listed;
   for (const FileEntry& file : r.files) {
     ++eras[file.era];
     ++files_in_dir[directory_of(file.path)];
@@ -153,7 +157,10 @@ nlohmann::ordered_json report_json(const MigrationReport& r) {
                   {"severity", severity_name(f.severity)}, {"message", f.message}, {"fix", fix_kind(f)},
                   {"minutes", effort_minutes(f)}};
       findings.push_back(std::move(one));
-      if (std::string needs = file.era == kHostEra ? "" : host_work(f); !needs.empty())
+      std::string needs = file.era == kHostEra ? "" : host_work(f);
+      bool shared = f.rule != "lwc-uniform-world-float" && f.fix && !f.fix->notes.empty();  // each uniform is listed
+      std::string where = shared ? "" : f.text + ":" + std::to_string(f.start.line);
+      if (!needs.empty() && host_listed.emplace(file.path, needs, where).second)
         host_side.push_back({{"path", file.path}, {"line", f.start.line}, {"column", f.start.column}, {"rule", f.rule}, {"value", f.text},
                              {"needs", needs}});
     }
