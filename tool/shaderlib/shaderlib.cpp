@@ -206,7 +206,7 @@ std::string unreal_environment_text(std::string_view code, const std::string& li
   // out of the stub.
   static const std::set<std::string, std::less<>> copied_functions = {"TransformLocalToWorld", "TransformLocalToTranslatedWorld",
                                                                       "SvPositionToWorld", "SvPositionToTranslatedWorld",
-                                                                      "ComputeDirectionalLightStaticShadowing",
+                                                                      "ComputeDirectionalLightStaticShadowing", "ComputeDirectionalLightDynamicShadowing",
                                                                       "GetDistanceToNearestSurfaceGlobal"};
   TokenText tokens(code);
   bool material_parameters = false, light_data = false;

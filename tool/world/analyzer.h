@@ -124,6 +124,9 @@ class Analyzer {
   std::string function_name(int fn) const;
 
   void collect();
+  // UE4 code: a parameter passed whole to an engine function that takes a world position (one UE5
+  // moved to translated world) holds an absolute position by UE4's contract.
+  void engine_contract_parameters();
 
   void collect_struct(int id);
 

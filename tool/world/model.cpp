@@ -371,6 +371,7 @@ void Analyzer::run() {
     end_run(fn);
   }
   if (log_) context_.reuse->logs_[context_.variant] = std::move(log_);
+  if (m_.era_ == UnrealEra::ue4) engine_contract_parameters();
   // A stage output named as world-space data holds what the file stores into it when every
   // store is classified and none is absolute (`cameraPosition = vec3(1.0)`): the name was wrong.
   for (const auto& [var, output] : named_outputs_) {
@@ -385,6 +386,32 @@ void Analyzer::run() {
     auto it = decl_var_.find(h.site);
     return it != decl_var_.end() && (m_.cleared_.count(it->second) || m_.only_harmless_uses(it->second));
   });
+}
+
+void Analyzer::engine_contract_parameters() {
+  std::set<std::string_view> defined;  // a function the file defines itself takes what it declares
+  for (int fn : function_order_)
+    if (int name = t_.declarator_name(t_.child_by_field(fn, "declarator")); name >= 0) defined.insert(t_.text(name));
+  for (const auto& [name, entry] : d_.engine_translated_parameters) {
+    if (defined.count(name)) continue;
+    for (int call : t_.calls_named(name)) {
+      std::vector<int> args = t_.named_children(t_.child_by_field(call, "arguments"));
+      std::erase_if(args, [&](int n) { return t_.is(n, "comment"); });
+      if (inc_) {
+        auto it = inc_->parameter_uses.find(name + "/" + std::to_string(args.size()));
+        if (it != inc_->parameter_uses.end() && !it->second.empty() && !it->second.front().engine) continue;  // the project's own copy
+      }
+      for (size_t index : entry.indices) {
+        int var = index < args.size() && t_.is(args[index], "identifier") ? m_.variable_at(args[index]) : -1;
+        if (var < 0) continue;
+        const Variable& v = m_.variables_[var];
+        if (v.role != Variable::Role::parameter || v.output || v.kind != Kind::unknown || (v.type != "float3" && v.type != "float4") ||
+            d_.named_kind(v.name, Kind::absolute) != Kind::absolute)
+          continue;
+        hold(var, Kind::absolute, v.decl);
+      }
+    }
+  }
 }
 
 std::string_view Analyzer::type_of(int declaration) const {
