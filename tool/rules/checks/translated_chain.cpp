@@ -144,7 +144,7 @@ std::string TranslatedChain::translate_value(const CheckContext& ctx, const Decl
   return {};
 }
 
-std::string TranslatedChain::host_twin(const CheckContext& ctx, const DeclaredNames& names, int node, RewritePlan& plan) const {
+std::string TranslatedChain::host_twin(const CheckContext& ctx, const DeclaredNames& names, int node, RewritePlan& plan, bool takes_point) const {
   const SyntaxTree& t = ctx.tree;
   while (t.is(node, "parenthesized_expression")) node = t.named_child(node);
   int name = node;
@@ -157,7 +157,8 @@ std::string TranslatedChain::host_twin(const CheckContext& ctx, const DeclaredNa
   if (var < 0) return {};
   const Variable& v = ctx.world.variables()[var];
   Kind kind = ctx.world.kind(name);
-  bool from_world = kind == Kind::from_world_matrix, to_world = kind == Kind::world_matrix;
+  bool from_world = kind == Kind::from_world_matrix || (takes_point && kind == Kind::unknown && (v.type == "float4x4" || v.type == "float3x4"));
+  bool to_world = kind == Kind::world_matrix;
   if (v.role != Variable::Role::global || !v.uniform || v.private_global || (kind != Kind::absolute && !from_world && !to_world)) return {};
   for (std::string_view word : leading_words(t, v.declaration))
     if (word == "static" || word == "const" || word == "groupshared") return {};
@@ -413,7 +414,7 @@ void TranslatedChain::follow_use(const CheckContext& ctx, const DeclaredNames& n
   if (outer >= 0 && mul_call(t, outer) == outer && call_arguments(t, outer)[0] == wrapper) {
     int matrix = call_arguments(t, outer)[1];
     std::string m = translated_twin(ctx, matrix);
-    if (m.empty()) m = host_twin(ctx, names, matrix, plan);
+    if (m.empty()) m = host_twin(ctx, names, matrix, plan, true);
     if (!m.empty()) {
       renamed();
       plan.edits.push_back({t.span(matrix), m});

@@ -62,7 +62,9 @@ class TranslatedChain {
   // holding an absolute position, or a transform from world: its translated form is a new uniform
   // declared beside it, which the host must set (the plan's note says to what), as Epic's own passes
   // did; the uniform's other uses keep the absolute one. The text for `node`, or "" where none.
-  std::string host_twin(const CheckContext& ctx, const DeclaredNames& names, int node, RewritePlan& plan) const;
+  // `takes_point`: the node is the matrix of a transform of a world point the chain moves, so a
+  // matrix uniform of no known kind takes world points (`LocalLightFunctionMatrix`).
+  std::string host_twin(const CheckContext& ctx, const DeclaredNames& names, int node, RewritePlan& plan, bool takes_point = false) const;
 
   // An absolute value's translated form, as edits: a transform whose matrix has a translated
   // twin or is a primitive's, or a translated value minus the pre-view translation (which goes).
