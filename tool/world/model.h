@@ -164,6 +164,8 @@ struct FileSummary {
   std::map<std::string, std::string> field_types;  // "Struct.Field" -> declared type
   // "name/arity" -> its parameters' uses (over every overload of that arity).
   std::map<std::string, std::vector<ParameterUse>> parameter_uses;
+  // "name/arity" -> its difference group (WorldModel::difference_group), from its first definition.
+  std::map<std::string, std::vector<size_t>> difference_groups;
   // A function's first definition -> its parameters' kinds, as the model reads them from the
   // declaration (types, names where they count): what verify fills each argument with.
   std::map<std::string, std::vector<Kind>> parameter_kinds;
@@ -232,6 +234,11 @@ class WorldModel {
   // rotation (a 3x3 cast, a basis row or column, a copy whose translation is then cleared), or a
   // position's direction (normalize, here or in a function of the file it is passed to).
   bool only_harmless_uses(int var, int depth = 0) const;
+  // The point parameters (float3/float4) of function `fn` (its definition node) that it uses only
+  // in differences with one another, each moved at most by offsets that are no points (`Center +
+  // Extent - Point`): passing every one of them translated by the same amount leaves what the
+  // function computes as it was. Their indices, in order; empty where fewer than two qualify.
+  std::vector<size_t> difference_group(int fn) const;
   // Some use of a variable (or of a copy, or of the parameter of a function of this file it is
   // passed to) lets its float32 rounding reach a result: a difference with a position, a point
   // it transforms, its translation read. Without one there is no evidence of a hazard.

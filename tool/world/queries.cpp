@@ -327,6 +327,86 @@ std::vector<int> WorldModel::uses(int variable) const {
   return variable >= 0 && variable < static_cast<int>(uses_.size()) ? uses_[variable] : std::vector<int>{};
 }
 
+std::vector<size_t> WorldModel::difference_group(int fn) const {
+  std::vector<int> params;
+  for (int i = 0; i < static_cast<int>(variables_.size()); ++i)
+    if (variables_[i].role == Variable::Role::parameter && variables_[i].function == fn) params.push_back(i);
+  std::set<int> group;
+  // A parameter named as a size, direction or other vector (`BoxExtent`) is no point.
+  for (int p : params)
+    if (!variables_[p].output && (variables_[p].type == "float3" || variables_[p].type == "float4") &&
+        data_.named_kind(variables_[p].name, Kind::absolute) == Kind::absolute)
+      group.insert(p);
+  auto in_group = [&](int node) { return tree_.is(node, "identifier") && group.count(variable_at(node)); };
+  // An offset: no member of the group in it, and nothing the model knows as a point.
+  auto offset = [&](int node) {
+    Kind k = kind(node);
+    if (k == Kind::absolute || k == Kind::translated || k == Kind::camera_offset) return false;
+    std::vector<int> stack{node};
+    while (!stack.empty()) {
+      int m = stack.back();
+      stack.pop_back();
+      if (in_group(m)) return false;
+      for (int c : tree_.named_children(m)) stack.push_back(c);
+    }
+    return true;
+  };
+  // The largest expression around a use that is still its point, moved by offsets.
+  auto climb = [&](int n) {
+    for (;;) {
+      int p = tree_.at(n).parent;
+      if (p < 0) return n;
+      if (tree_.is(p, "parenthesized_expression") ||
+          (tree_.is(p, "field_expression") && tree_.child_by_field(p, "argument") == n && tree_.text(tree_.child_by_field(p, "field")) == "xyz")) {
+        n = p;
+        continue;
+      }
+      if (!tree_.is(p, "binary_expression")) return n;
+      std::string_view op = tree_.text(tree_.child_by_field(p, "operator"));
+      int left = tree_.child_by_field(p, "left"), right = tree_.child_by_field(p, "right");
+      if ((op == "+" && offset(left == n ? right : left)) || (op == "-" && left == n && offset(right))) {
+        n = p;
+        continue;
+      }
+      return n;
+    }
+  };
+  // First the parameters that are no points of a difference at all (an extent added to a point),
+  // then those whose differences are not with another member; either way until nothing changes.
+  for (bool strict : {false, true})
+  for (bool changed = true; changed && group.size() >= 2;) {
+    changed = false;
+    for (int p : std::set<int>(group)) {
+      bool ok = !uses(p).empty();
+      for (int use : uses(p)) {
+        int point = climb(use), parent = tree_.at(point).parent;
+        ok = ok && tree_.is(parent, "binary_expression") && tree_.text(tree_.child_by_field(parent, "operator")) == "-";
+        if (!ok || !strict) continue;
+        int other = tree_.child_by_field(parent, "left") == point ? tree_.child_by_field(parent, "right") : tree_.child_by_field(parent, "left");
+        // The other side is one other member's point, moved by offsets.
+        int found = -1, count = 0;
+        std::vector<int> stack{other};
+        while (!stack.empty()) {
+          int m = stack.back();
+          stack.pop_back();
+          if (in_group(m)) found = m, ++count;
+          for (int c : tree_.named_children(m)) stack.push_back(c);
+        }
+        ok = count == 1 && variable_at(found) != p && climb(found) == other;
+      }
+      if (!ok) {
+        group.erase(p);
+        changed = true;
+      }
+    }
+  }
+  std::vector<size_t> out;
+  if (group.size() < 2) return out;
+  for (size_t i = 0; i < params.size(); ++i)
+    if (group.count(params[i])) out.push_back(i);
+  return out;
+}
+
 void FileSummary::merge(const FileSummary& from, bool engine) {
   globals.insert(from.globals.begin(), from.globals.end());
   function_returns.insert(from.function_returns.begin(), from.function_returns.end());
@@ -339,6 +419,7 @@ void FileSummary::merge(const FileSummary& from, bool engine) {
       for (ParameterUse& u : it->second) u.engine = true;
   }
   parameter_kinds.insert(from.parameter_kinds.begin(), from.parameter_kinds.end());
+  difference_groups.insert(from.difference_groups.begin(), from.difference_groups.end());
 }
 
 std::string WorldModel::function_return_type(const std::string& name) const {
@@ -367,6 +448,8 @@ FileSummary WorldModel::summary() const {
       for (int p : params) kinds.push_back(variables_[p].kind);
     auto& entry = s.parameter_uses[key];
     bool first = seen.insert(key).second;
+    if (first)
+      if (std::vector<size_t> group = difference_group(fn); !group.empty()) s.difference_groups[key] = std::move(group);
     entry.resize(params.size());
     for (size_t k = 0; k < params.size(); ++k) {
       const std::string& type = variables_[params[k]].type;

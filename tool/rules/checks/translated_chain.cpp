@@ -144,7 +144,7 @@ std::string TranslatedChain::translate_value(const CheckContext& ctx, const Decl
   return {};
 }
 
-std::string TranslatedChain::host_twin(const CheckContext& ctx, const DeclaredNames& names, int node, RewritePlan& plan, bool takes_point) const {
+std::string TranslatedChain::host_twin(const CheckContext& ctx, const DeclaredNames& names, int node, RewritePlan& plan, bool by_use) const {
   const SyntaxTree& t = ctx.tree;
   while (t.is(node, "parenthesized_expression")) node = t.named_child(node);
   int name = node;
@@ -157,8 +157,17 @@ std::string TranslatedChain::host_twin(const CheckContext& ctx, const DeclaredNa
   if (var < 0) return {};
   const Variable& v = ctx.world.variables()[var];
   Kind kind = ctx.world.kind(name);
-  bool from_world = kind == Kind::from_world_matrix || (takes_point && kind == Kind::unknown && (v.type == "float4x4" || v.type == "float3x4"));
-  bool to_world = kind == Kind::world_matrix;
+  bool matrix_type = v.type == "float4x4" || v.type == "float3x4";
+  // A vector met in a difference may be an offset as well as a point: only a name that says point
+  // (`VolumeCenter`, `TouchPosition`) makes it one.
+  auto says_point = [](std::string_view n) {
+    for (std::string_view w : {"Pos", "Center", "Centre", "Origin", "Location", "Point"})
+      if (n.find(w) != std::string_view::npos) return true;
+    return false;
+  };
+  if (by_use && kind == Kind::unknown)
+    kind = matrix_type ? Kind::from_world_matrix : (v.type == "float3" || !suffix.empty()) && says_point(v.name) ? Kind::absolute : Kind::unknown;
+  bool from_world = kind == Kind::from_world_matrix, to_world = kind == Kind::world_matrix;
   if (v.role != Variable::Role::global || !v.uniform || v.private_global || (kind != Kind::absolute && !from_world && !to_world)) return {};
   for (std::string_view word : leading_words(t, v.declaration))
     if (word == "static" || word == "const" || word == "groupshared") return {};
@@ -379,7 +388,7 @@ void TranslatedChain::follow_use(const CheckContext& ctx, const DeclaredNames& n
     plan.edits.push_back({t.span(partner), m});
     return;
   }
-  if (std::string m = partner >= 0 ? host_twin(ctx, names, partner, plan) : ""; !m.empty()) {
+  if (std::string m = partner >= 0 ? host_twin(ctx, names, partner, plan, true) : ""; !m.empty()) {
     renamed();
     plan.edits.push_back({t.span(partner), m});
     return;
@@ -434,6 +443,10 @@ void TranslatedChain::follow_use(const CheckContext& ctx, const DeclaredNames& n
     }
     plan.blocker = fmt::format("it is passed to `{}` (line {}), which takes a translated point already: passing one changes what the call "
                                "computes (lwc-translated-parameter offers it there)", call_name(t, call), line_of(t, call));
+    return;
+  }
+  if (depth < 4 && follow_into_difference_group(ctx, names, expr, plan, depth)) {
+    renamed();
     return;
   }
   if (depth < 4 && expr == use && follow_into_helper(ctx, names, use, plan, depth)) {
@@ -524,6 +537,41 @@ std::string TranslatedChain::translate_function_of_use(const CheckContext& ctx, 
   plan.moving_functions.push_back(fn);
   rename_with_callers(ctx, names, fn, new_name, plan, depth);
   return plan.blocker;
+}
+
+bool TranslatedChain::follow_into_difference_group(const CheckContext& ctx, const DeclaredNames& names, int use, RewritePlan& plan,
+                                                   int depth) const {
+  const SyntaxTree& t = ctx.tree;
+  int list = t.at(use).parent;
+  if (!t.is(list, "argument_list")) return false;
+  int call = t.at(list).parent;
+  std::string_view name = call_name(t, call);
+  std::vector<int> args = call_arguments(t, call);
+  size_t index = std::find(args.begin(), args.end(), use) - args.begin();
+  if (name.empty() || index == args.size()) return false;
+  std::vector<size_t> group;
+  if (int fn = defined_function(t, name, args.size()); fn >= 0) {
+    group = ctx.world.difference_group(fn);
+  } else if (const FileSummary* inc = ctx.world.includes()) {
+    auto it = inc->difference_groups.find(std::string(name) + "/" + std::to_string(args.size()));
+    if (it != inc->difference_groups.end()) group = it->second;
+  }
+  if (std::find(group.begin(), group.end(), index) == group.end()) return false;
+  PlanMark before = mark(plan);
+  for (size_t other : group) {
+    if (other == index || other >= args.size()) continue;
+    PlanMark before_value = mark(plan);
+    if (translate_value(ctx, names, args[other], plan, depth + 1).empty() && plan.blocker.empty()) continue;
+    // A uniform of no known kind met there is a world point too: the host sets a translated one.
+    roll_back(plan, before_value);
+    if (std::string twin = host_twin(ctx, names, args[other], plan, true); !twin.empty()) {
+      plan.edits.push_back({t.span(args[other]), twin});
+      continue;
+    }
+    roll_back(plan, before);
+    return false;
+  }
+  return true;
 }
 
 bool TranslatedChain::follow_into_helper(const CheckContext& ctx, const DeclaredNames& names, int use, RewritePlan& plan, int depth) const {

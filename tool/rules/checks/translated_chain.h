@@ -62,9 +62,10 @@ class TranslatedChain {
   // holding an absolute position, or a transform from world: its translated form is a new uniform
   // declared beside it, which the host must set (the plan's note says to what), as Epic's own passes
   // did; the uniform's other uses keep the absolute one. The text for `node`, or "" where none.
-  // `takes_point`: the node is the matrix of a transform of a world point the chain moves, so a
-  // matrix uniform of no known kind takes world points (`LocalLightFunctionMatrix`).
-  std::string host_twin(const CheckContext& ctx, const DeclaredNames& names, int node, RewritePlan& plan, bool takes_point = false) const;
+  // `by_use`: the chain knows from where the node stands that a uniform of no known kind is a world
+  // point (the other side of a difference with one) or, a matrix, takes world points (it
+  // transforms one: `LocalLightFunctionMatrix`).
+  std::string host_twin(const CheckContext& ctx, const DeclaredNames& names, int node, RewritePlan& plan, bool by_use = false) const;
 
   // An absolute value's translated form, as edits: a transform whose matrix has a translated
   // twin or is a primitive's, or a translated value minus the pre-view translation (which goes).
@@ -116,6 +117,11 @@ class TranslatedChain {
   // only the name and the callers change.
   std::string translate_function_of_use(const CheckContext& ctx, int fn, const std::string& new_name, const DeclaredNames& names,
                                         RewritePlan& plan, int depth) const;
+
+  // A use passed whole to a function (of this file or an included one) that uses its point
+  // parameters only in differences with one another (WorldModel::difference_group): the other
+  // points it is passed move to translated world too, and the function stays as it is.
+  bool follow_into_difference_group(const CheckContext& ctx, const DeclaredNames& names, int use, RewritePlan& plan, int depth) const;
 
   // A use passed whole to a function defined in this file, called only with values being made
   // translated: its parameter follows. The parameter's own finding is then fixed by this one.
