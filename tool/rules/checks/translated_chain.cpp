@@ -171,9 +171,10 @@ std::string TranslatedChain::host_twin(const CheckContext& ctx, const DeclaredNa
   if (v.role != Variable::Role::global || !v.uniform || v.private_global || (kind != Kind::absolute && !from_world && !to_world)) return {};
   for (std::string_view word : leading_words(t, v.declaration))
     if (word == "static" || word == "const" || word == "groupshared") return {};
-  // One declarator per declaration: the new one is a copy of it under the new name.
+  // One declarator per declaration, and no register or binding of its own: the new one is a copy
+  // of it under the new name (a copied `register(c4)` would clash).
   std::string declaration(t.text(v.declaration));
-  if (declaration.find(',') != std::string::npos) return {};
+  if (declaration.find_first_of(",:[") != std::string::npos) return {};
   std::string twin = translated_name(v.name);
   if (twin == v.name || names.taken(twin, -1)) return {};
   uint32_t at = t.at(v.declaration).end, line = t.at(v.declaration).begin;
