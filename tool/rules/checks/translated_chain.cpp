@@ -431,11 +431,10 @@ void TranslatedChain::follow_use(const CheckContext& ctx, const DeclaredNames& n
       return;
     }
   }
-  // An engine function that takes its position in translated world (UE5's lighting, the global
-  // distance field): the translated point is what it wants.
-  // Only UE4 code hands such a function what it always meant; a function that takes translated
-  // world by its own declaration, or UE5 code, gets a different point: the call's own finding
-  // (lwc-translated-parameter) offers that, as a change of behaviour.
+  // An engine function that takes its position in translated world from UE5 (its lighting, the
+  // global distance field): UE4 code handing it the translated point hands it what it always meant.
+  // A function translated by its own declaration, or UE5 code, gets a different point than before:
+  // the call's own finding (lwc-translated-parameter) offers that, as a change of behaviour.
   bool declared = false;
   if (int call = ctx.unreal && ctx.unreal->era != UnrealEra::ue4 ? translated_parameter_call(ctx, expr, nullptr, &declared) : -1; call >= 0) {
     if (!declared && ctx.world.code_era() == UnrealEra::ue4) {

@@ -1,5 +1,6 @@
 #include "rules/checks/util.h"
 
+#include <optional>
 #include <algorithm>
 #include <cctype>
 #include <iterator>
@@ -163,30 +164,40 @@ bool declared_translated(const CheckContext& ctx, int call, int argument) {
 }
 }  // namespace
 
+namespace {
+// The engine's function of the table, at one of its translated parameters, in the era the code
+// moves to; a definition of the project's own keeps its contract, the engine's is the one the
+// table reads. The first era that takes it so, or none.
+std::optional<UnrealEra> engine_translated(const CheckContext& ctx, int call, int argument) {
+  const SyntaxTree& t = ctx.tree;
+  std::string_view name = call_name(t, call);
+  const auto& table = ctx.world.data().engine_translated_parameters;
+  auto entry = table.find(std::string(name));
+  if (entry == table.end()) return std::nullopt;
+  std::vector<int> args = call_arguments(t, call);
+  const std::vector<size_t>& indices = entry->second.indices;
+  if (std::none_of(indices.begin(), indices.end(), [&](size_t i) { return i < args.size() && args[i] == argument; })) return std::nullopt;
+  UnrealEra target = !ctx.unreal || ctx.unreal->era == UnrealEra::ue4 ? UnrealEra::ue5_4 : ctx.unreal->era;
+  if (static_cast<int>(target) < static_cast<int>(entry->second.from)) return std::nullopt;
+  if (defines_function(t, name)) return std::nullopt;
+  if (auto included = ctx.world.included_parameter_use(call, argument); included && !included->engine) return std::nullopt;
+  return entry->second.from;
+}
+}  // namespace
+
 int translated_parameter_call(const CheckContext& ctx, int argument, UnrealEra* from, bool* declared) {
   const SyntaxTree& t = ctx.tree;
   int list = t.at(argument).parent;
   if (!t.is(list, "argument_list")) return -1;
   int call = t.at(list).parent;
-  std::string_view name = call_name(t, call);
   if (declared) *declared = false;
-  if (name.empty()) return -1;
-  if (declared_translated(ctx, call, argument)) {
-    if (declared) *declared = true;
+  if (call_name(t, call).empty()) return -1;
+  if (std::optional<UnrealEra> era = engine_translated(ctx, call, argument)) {
+    if (from) *from = *era;
     return call;
   }
-  const auto& table = ctx.world.data().engine_translated_parameters;
-  auto entry = table.find(std::string(name));
-  if (entry == table.end()) return -1;
-  std::vector<int> args = call_arguments(t, call);
-  const std::vector<size_t>& indices = entry->second.indices;
-  if (std::none_of(indices.begin(), indices.end(), [&](size_t i) { return i < args.size() && args[i] == argument; })) return -1;
-  UnrealEra target = !ctx.unreal || ctx.unreal->era == UnrealEra::ue4 ? UnrealEra::ue5_4 : ctx.unreal->era;
-  if (static_cast<int>(target) < static_cast<int>(entry->second.from)) return -1;
-  // A definition of the project's own keeps its contract; the engine's is the one the table reads.
-  if (defines_function(t, name)) return -1;
-  if (auto included = ctx.world.included_parameter_use(call, argument); included && !included->engine) return -1;
-  if (from) *from = entry->second.from;
+  if (!declared_translated(ctx, call, argument)) return -1;
+  if (declared) *declared = true;
   return call;
 }
 

@@ -64,12 +64,12 @@ std::string translated_twin(const CheckContext& ctx, int node);
 // code built against UE 5.0 or later, where the twins exist.
 std::string engine_translated_twin(const CheckContext& ctx, int node);
 
-// An argument a function takes in translated world: one whose declaration (in this file or an
-// included one) names the parameter as translated (`declared` set), or an engine function that
-// takes it so where UE4 took absolute world (rules/world-space.json engine "translated-parameters"),
-// in the era the code moves to (UE4 code: UE 5.4). The call, or -1. A function the file or the
-// project's own headers define otherwise takes what its declaration says, so it is not the engine's.
-// `from` gets the first era the engine takes it so.
+// An argument a function takes in translated world: an engine function that takes it so where UE4
+// took absolute world (rules/world-space.json engine "translated-parameters"), in the era the code
+// moves to (UE4 code: UE 5.4), `from` getting the first era that does; else one whose own
+// declaration (in this file or an included one) names the parameter as translated (`declared`
+// set). The call, or -1. A function the file or the project's own headers define takes what its
+// declaration says, so it is never the engine's.
 int translated_parameter_call(const CheckContext& ctx, int argument, UnrealEra* from = nullptr, bool* declared = nullptr);
 
 // A world-position rewrite of one variable: its edits, or why it is withheld.
