@@ -201,6 +201,13 @@ TEST(VerifyCli, InputRolesComeFromTheModelAndExplainSaysSo) {
   EXPECT_NE(r.out.find("SunAndFog.frag: main: original (float32) pass"), std::string::npos) << r.out;
   test::Run plain = test::run(test::binary() + " verify " + corpus + "glsl/SunAndFog.frag --fail-on none 2>&1");
   EXPECT_EQ(plain.out.find("  input `"), std::string::npos) << plain.out;  // only with --explain
+  // A uniform only the rewrite reads (one the host must set beside the absolute one) is explained
+  // too, and said to be the rewrite's.
+  test::Run host = test::run(test::binary() + " verify " + corpus + "ue4/PostProcessDistanceBlur.usf --explain --fail-on none 2>&1");
+  EXPECT_NE(host.out.find("  input `FocusTranslatedWorldPosition` (float3): the object's point relative to the camera; by the "
+                          "world-space model (kind translated-position) (read by fixed only)"), std::string::npos) << host.out;
+  EXPECT_EQ(host.out.find("  input `FocusWorldPosition` (float3): an absolute world position (the object's point); by the world-space "
+                          "model (kind absolute-position) (read by"), std::string::npos) << host.out;
 }
 
 // A struct of 2,000 members once overflowed the stack (the verifier read text with std::regex,

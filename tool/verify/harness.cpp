@@ -1099,10 +1099,13 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
   };
 
   // Each input of a kernel, its role and how it is filled (verify --explain).
-  auto explain_inputs = [&](const HarnessKernel& k, const std::optional<ErrorFreeCall>& call) {
+  // Each path once over the variants (`explained`); `whose` says which variant alone reads it.
+  std::set<std::string> explained;
+  auto explain_inputs = [&](const HarnessKernel& k, const std::optional<ErrorFreeCall>& call, const std::string& whose = "") {
     std::vector<std::string> lines;
     for (size_t l = 0; l < k.inputs.size(); ++l) {
       const Leaf& leaf = k.inputs[l];
+      if (!explained.insert(leaf.path).second) continue;
       std::string name = fmt::format("`{}` ({})", leaf.path, leaf.type);
       if (leaf.path.starts_with("lwc_texel_")) {
         name = fmt::format("a texel of `{}` ({})", leaf.path.substr(10), leaf.type);
@@ -1131,7 +1134,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
                               : half == Half::high                             ? ", its high half (float)"
                               : half == Half::low                              ? ", its low half (the rest)"
                                                                                : "";
-      lines.push_back(fmt::format("{}: {}{}; {}", name, what, form, source));
+      lines.push_back(fmt::format("{}: {}{}; {}{}", name, what, form, source, whose));
     }
     return lines;
   };
@@ -1398,7 +1401,11 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     vr.label = v.label;
     vr.writable = v.writable;
     Kernel k = build(v, false);
-    if (&v == &variants.front()) result.inputs = explain_inputs(k.code, error_free);
+    // The first variant's inputs, then any a rewrite reads that the original does not (a uniform
+    // the host must set beside an absolute one).
+    std::vector<std::string> lines =
+        &v == &variants.front() ? explain_inputs(k.code, error_free) : explain_inputs(k.code, std::nullopt, fmt::format(" (read by {} only)", v.label));
+    result.inputs.insert(result.inputs.end(), lines.begin(), lines.end());
     if (!k.problem.empty()) {
       vr.status = k.problem;
       result.variants.push_back(vr);
