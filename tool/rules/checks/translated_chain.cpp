@@ -98,6 +98,13 @@ std::string TranslatedChain::translate_value(const CheckContext& ctx, const Decl
     value = base;
   if (std::string p = position_of_homogeneous(t, value); !p.empty() && call_arguments(t, value).size() == 2)
     return translate_value(ctx, names, call_arguments(t, value)[0], plan, depth);
+  // A point between two points (`lerp(A, B, t)`): the same weights of the two translated points.
+  if (t.is(value, "call_expression") && call_name(t, value) == "lerp")
+    if (auto args = call_arguments(t, value); args.size() == 3) {
+      for (int point : {args[0], args[1]})
+        if (std::string why = translate_value(ctx, names, point, plan, depth); !why.empty()) return why;
+      return {};
+    }
   // A wrapper that only changes how the value is computed (`INVARIANT(P)`): its operand moves.
   if (t.is(value, "call_expression") && matches_any(wrappers_, call_name(t, value)))
     if (auto args = call_arguments(t, value); args.size() == 1) return translate_value(ctx, names, args[0], plan, depth);
@@ -444,6 +451,21 @@ void TranslatedChain::follow_use(const CheckContext& ctx, const DeclaredNames& n
     plan.blocker = fmt::format("it is passed to `{}` (line {}), which takes a translated point already: passing one changes what the call "
                                "computes (lwc-translated-parameter offers it there)", call_name(t, call), line_of(t, call));
     return;
+  }
+  // A point between this one and another (`float3 O = lerp(P, Q, t);`): the other point moves too,
+  // and the local holding the result follows.
+  if (int list = t.at(expr).parent; depth < 4 && t.is(list, "argument_list") && call_name(t, t.at(list).parent) == "lerp") {
+    int call = t.at(list).parent;
+    auto args = call_arguments(t, call);
+    if (args.size() == 3 && (args[0] == expr || args[1] == expr)) {
+      PlanMark before = mark(plan);
+      if (translate_value(ctx, names, args[0] == expr ? args[1] : args[0], plan, depth + 1).empty() && plan.blocker.empty() &&
+          follow_into_local(ctx, names, call, plan, depth)) {
+        renamed();
+        return;
+      }
+      roll_back(plan, before);
+    }
   }
   if (depth < 4 && follow_into_difference_group(ctx, names, expr, plan, depth)) {
     renamed();
