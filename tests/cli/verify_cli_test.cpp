@@ -205,7 +205,7 @@ TEST(VerifyCli, InputRolesComeFromTheModelAndExplainSaysSo) {
   // too, and said to be the rewrite's.
   test::Run host = test::run(test::binary() + " verify " + corpus + "ue4/PostProcessDistanceBlur.usf --explain --fail-on none 2>&1");
   EXPECT_NE(host.out.find("  input `FocusTranslatedWorldPosition` (float3): the object's point relative to the camera; by the "
-                          "world-space model (kind translated-position) (read by fixed only)"), std::string::npos) << host.out;
+                          "world-space model (kind translated-position) (read by the fixed variant, not the original)"), std::string::npos) << host.out;
   EXPECT_EQ(host.out.find("  input `FocusWorldPosition` (float3): an absolute world position (the object's point); by the world-space "
                           "model (kind absolute-position) (read by"), std::string::npos) << host.out;
 }

@@ -1099,7 +1099,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
   };
 
   // Each input of a kernel, its role and how it is filled (verify --explain).
-  // Each path once over the variants (`explained`); `whose` says which variant alone reads it.
+  // Each path once over the variants (`explained`); `whose` says which variant reads it first.
   std::set<std::string> explained;
   auto explain_inputs = [&](const HarnessKernel& k, const std::optional<ErrorFreeCall>& call, const std::string& whose = "") {
     std::vector<std::string> lines;
@@ -1404,7 +1404,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     // The first variant's inputs, then any a rewrite reads that the original does not (a uniform
     // the host must set beside an absolute one).
     std::vector<std::string> lines =
-        &v == &variants.front() ? explain_inputs(k.code, error_free) : explain_inputs(k.code, std::nullopt, fmt::format(" (read by {} only)", v.label));
+        &v == &variants.front() ? explain_inputs(k.code, error_free) : explain_inputs(k.code, std::nullopt, fmt::format(" (read by the {} variant, not the original)", v.label));
     result.inputs.insert(result.inputs.end(), lines.begin(), lines.end());
     if (!k.problem.empty()) {
       vr.status = k.problem;
