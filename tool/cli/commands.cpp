@@ -45,6 +45,7 @@
 #include "lang/lexer.h"
 #include "lang/tokens.h"
 #include "shaderlib/shaderlib.h"
+#include "verify/build_environment.h"
 #include "verify/harness.h"
 #include "verify/kernel_builder.h"
 #include "verify/library_accuracy.h"
@@ -625,50 +626,18 @@ FileVariant fixed_variant(const std::string& label, const FixOutcome& fixed, Lan
   return v;
 }
 
-// The engine headers lwcport's Unreal stub stands for when the engine's own folder is a virtual
-// root: the platform layer (written for DXC and each platform's compiler), the LWC libraries
-// (the stub carries lwcport's, with the same names) and the view the shader compiler generates. The engine's other headers are read as
-// they are, and a kernel takes from them only what its function needs.
-bool stands_for_engine_header(const std::string& name, const fs::path& resolved, const ProjectConfig& config) {
-  bool engine = name.rfind("/Engine/", 0) == 0;
-  for (const auto& [prefix, folder] : config.virtual_roots)
-    if (prefix == "/Engine/") {
-      std::string rel = resolved.lexically_normal().lexically_relative(folder.lexically_normal()).generic_string();
-      engine |= !rel.empty() && !rel.starts_with("..");
-    }
-  static const std::set<std::string> stubbed = {"Platform.ush", "LargeWorldCoordinates.ush", "DoubleFloat.ush", "LWCOperations.ush",
-                                                "InstancedStereo.ush", "SceneData.ush"};
-  return engine && (stubbed.count(resolved.filename().string()) || name.rfind("/Engine/Generated/", 0) == 0);
-}
-
 HarnessSetup harness_setup(const InputFile& file, const LoadedFile& f, Lang lang, IncludeSummaries& includes) {
   HarnessSetup setup;
   setup.lang = lang;
   setup.display = file.display;
-  setup.unreal = file.display.ends_with(".usf") || file.display.ends_with(".ush");
   setup.stage = lang == Lang::glsl ? stage_from_extension(file.display).value_or(Stage::fragment) : Stage::fragment;
   setup.scene = f.options.scene;
-  std::shared_ptr<const ProjectConfig> config = file.config;
-  setup.defines = config->defines_for(file.path);
-  setup.force_includes = config->force_includes;
-  // An include is named by its real path (relative to the working folder when under it), so an
-  // include inside it resolves from its own folder and errors show where it really is.
-  setup.include = [&includes, target = file.path, display = file.display, config, lang](
-                      const std::string& name, const std::string& from) -> std::optional<IncludedFile> {
-    if (name == library_file_name(lang)) return IncludedFile{name, full_library_text(lang)};
-    fs::path includer = from.empty() || from == display ? target : fs::path(from);
-    std::optional<fs::path> p = includes.resolve(name, includer, *config);
-    if (p && stands_for_engine_header(name, *p, *config)) return IncludedFile{name, unreal_engine_header_text(true)};
-    if (p) {
-      ReadResult r = read_file(*p, config->max_file_bytes);
-      std::error_code ec;
-      fs::path shown = p->lexically_normal();
-      if (fs::path near = fs::proximate(shown, ec); !ec && !near.empty() && *near.begin() != "..") shown = near;
-      if (r.error.empty()) return IncludedFile{shown.string(), std::move(r.text)};
-    }
-    if (name.rfind("/Engine/", 0) == 0) return IncludedFile{name, unreal_engine_header_text(false)};  // with the stub, the engine
-    return std::nullopt;
-  };
+  BuildEnvironment env = build_environment(file.path, file.display, lang, file.config, includes);
+  setup.unreal = env.unreal;
+  setup.engine = env.engine;
+  setup.include = std::move(env.include);
+  setup.defines = std::move(env.defines);
+  setup.force_includes = std::move(env.force_includes);
   return setup;
 }
 
@@ -753,14 +722,19 @@ BuildCheck check_build(const InputFile& file, const LoadedFile& f, Lang lang, co
   FileBuild target{lang, file.display, std::nullopt, false, setup.include, setup.defines, setup.force_includes};
   std::string where = "glslang";
   std::optional<UnrealEra> written;
-  if (setup.unreal) {
+  if (setup.engine) {
+    written = infer_unreal_era(original);
+    where += fmt::format(", against the engine's headers ({}; lwcport stands in for what the shader compiler generates)", era_name(*setup.engine));
+  } else if (setup.unreal) {
     written = infer_unreal_era(original);
     UnrealEra era = f.options.unreal.value_or(*written);
     target.unreal_version = static_cast<int>(era);
     where += fmt::format(", against lwcport's {} stub", era_name(era));
   }
-  auto first_error = [](const CompileResult& r) {
-    return r.messages.empty() ? std::string("no message") : fmt::format("line {}: {}", r.messages.front().line, r.messages.front().text);
+  auto first_error = [&](const CompileResult& r) {
+    if (r.messages.empty()) return std::string("no message");
+    const CompileMessage& m = r.messages.front();
+    return fmt::format("{}line {}: {}", m.source == file.display ? "" : m.source + ", ", m.line, m.text);
   };
   CompileResult was = compile_file(target, original);
   if (!was.ok && lang == Lang::glsl) {
@@ -768,20 +742,37 @@ BuildCheck check_build(const InputFile& file, const LoadedFile& f, Lang lang, co
     if (CompileResult vulkan = compile_file(target, original); vulkan.ok) was = vulkan;
     else target.vulkan = false;
   }
-  if (!was.ok && written && static_cast<int>(*written) != *target.unreal_version) {
+  if (!was.ok && !setup.engine && written && static_cast<int>(*written) != *target.unreal_version) {
     FileBuild own = target;
     own.unreal_version = static_cast<int>(*written);
     if (compile_file(own, original).ok) was.ok = true;
   }
   if (!was.crashed.empty()) return {BuildCheck::Outcome::unchecked, was.crashed + " on the original", true};
-  if (!was.ok) return {BuildCheck::Outcome::unchecked, first_error(was)};
+  // Code written for an older engine than the one the project builds against need not compile
+  // against its headers: that is what the port is for, so the fixed file is still checked.
+  bool older = setup.engine && written && *written != *setup.engine;
+  if (!was.ok && !older) return {BuildCheck::Outcome::unchecked, setup.engine ? where + ": " + first_error(was) : first_error(was)};
   if (lang == Lang::glsl) where += target.vulkan ? ", for Vulkan" : ", for OpenGL";
   CompileResult now = compile_file(target, fixed.text);
   if (!now.crashed.empty()) return {BuildCheck::Outcome::unchecked, now.crashed + " on the fixed file", true};
-  if (now.ok) return {BuildCheck::Outcome::compiles, where};
+  if (now.ok) return {BuildCheck::Outcome::compiles, was.ok ? where : where + fmt::format(", which the original ({} code) did not", era_name(*written))};
+  // An include the harness cannot find (a header the engine generates that lwcport does not
+  // stand in for) says nothing of the fix.
+  for (const CompileMessage& m : now.messages)
+    if (m.text.find("Could not process include directive") != std::string::npos)
+      return {BuildCheck::Outcome::unchecked, where + ": " + first_error(CompileResult{false, "", {m}, {}})};
+  // A first error in a header (later ones may follow from it): the original's did not compile
+  // either (the harness cannot build this file), or the fix broke what the headers expect of it.
+  if (now.messages.empty() || now.messages.front().source != file.display)
+    return {was.ok ? BuildCheck::Outcome::breaks : BuildCheck::Outcome::unchecked, where + ": " + first_error(now)};
   std::map<int, std::string> by_hand = fixed_variant("fixed", fixed, lang).hand_fixes;
   for (const CompileMessage& m : now.messages)
-    if (m.source == file.display && !by_hand.count(m.line)) return {BuildCheck::Outcome::breaks, where + ": " + first_error(now)};
+    if (m.source == file.display && !by_hand.count(m.line)) {
+      if (!was.ok)  // nothing compiled before the fix either: the port is unfinished, not broken
+        return {BuildCheck::Outcome::incomplete, fmt::format("{}: {}; the original ({} code) does not compile against them either", where,
+                                                             first_error(now), era_name(*written))};
+      return {BuildCheck::Outcome::breaks, where + ": " + first_error(now)};
+    }
   int line = now.messages.front().line;
   return {BuildCheck::Outcome::incomplete,
           fmt::format("{}: line {} is in code lwcport could not port ({})", where, line, by_hand.count(line) ? by_hand[line] : "")};
@@ -873,7 +864,7 @@ FixedFile fix_file(const InputFile& file, const Options& o, IncludeSummaries& in
     std::string note = check.outcome == BuildCheck::Outcome::compiles     ? "build checked: the fixed file compiles as the original did (" + check.detail + ")"
                        : check.outcome == BuildCheck::Outcome::incomplete ? "build checked: the fixed file compiles except where lwcport could not port the code (" + check.detail + "); port that by hand"
                        : check.compiler_failed ? "build not checked: " + check.detail
-                                                                          : "build not checked: the original does not compile on its own with glslang (" + check.detail + ")";
+                                                                          : "build not checked: the original does not compile where lwcport builds it (" + check.detail + ")";
     out.report.findings.push_back(locate(result, input_finding(Severity::note, 0, note, "")));
   }
   if (lang && fixed.text.find("\"" + library_file_name(*lang) + "\"") != std::string::npos) {
@@ -1023,7 +1014,7 @@ int fix(const Options& o, std::ostream& out, std::ostream& err) {
                           "and `fix --verify` applies only those that pass.", applied == 1 ? "It was" : "They were");
   if (o.check_build)
     err << fmt::format("Build check: {} fixed file(s) compile as their originals did, {} compile except in code left to port by hand, "
-                       "{} held back (the fix broke the build), {} not checked (the original does not compile on its own).\n",
+                       "{} held back (the fix broke the build), {} not checked (the original does not compile where lwcport builds it).\n",
                        builds[BuildCheck::Outcome::compiles], builds[BuildCheck::Outcome::incomplete],
                        builds[BuildCheck::Outcome::breaks], builds[BuildCheck::Outcome::unchecked]);
   if (o.diff) {

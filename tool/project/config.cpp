@@ -1,5 +1,7 @@
 #include "project/config.h"
 
+#include "shaderlib/engine_standins.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -89,7 +91,7 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
     if (!find_rule(id)) fail(fmt::format("unknown rule id \"{}\"", id));
   };
   for (const auto& item : j.items()) {
-    static const char* known[] = {"severity", "select", "ignore", "include-dirs", "virtual-roots", "exclude", "world-sources", "max-file-bytes", "max-parse-seconds", "macros", "unreal", "library-definitions", "extensions", "defines", "overrides", "force-includes", "help-uri-base", "host"};
+    static const char* known[] = {"severity", "select", "ignore", "include-dirs", "virtual-roots", "exclude", "world-sources", "max-file-bytes", "max-parse-seconds", "macros", "unreal", "library-definitions", "extensions", "defines", "overrides", "force-includes", "help-uri-base", "host", "engine-shaders"};
     const std::string& key = item.key();
     if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) == std::end(known))
       fail(fmt::format("unknown key \"{}\"", key));
@@ -196,6 +198,25 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
     const auto& u = j.at("unreal");
     c.unreal = u.is_string() ? parse_unreal_era(u.get<std::string>()) : std::nullopt;
     if (!c.unreal) fail("\"unreal\" must name the engine version the project builds against: \"4\", \"5.0\" (to 5.3) or \"5.4\" (and later)");
+  }
+  if (j.contains("engine-shaders")) {
+    const auto& e = j.at("engine-shaders");
+    if (!e.is_string() || e.get<std::string>().empty()) fail("\"engine-shaders\" must name the engine's Shaders folder (\"../../Engine/Shaders\")");
+    c.engine_shaders = c.dir / e.get<std::string>();
+    std::string shown = c.engine_shaders->lexically_normal().string();
+    c.engine_era = engine_shaders_era(*c.engine_shaders);
+    if (!c.engine_era)
+      c.warnings.push_back(fmt::format("\"engine-shaders\" is not an engine Shaders folder here ({} holds no Private/Common.ush); "
+                                       "builds are checked against lwcport's stub instead", shown));
+    else if (std::string why = machine_specific(e.get<std::string>()); !why.empty())
+      c.warnings.push_back(fmt::format("\"engine-shaders\" {}", why));
+    if (c.engine_era && c.unreal && *c.unreal != *c.engine_era)
+      c.warnings.push_back(fmt::format("\"engine-shaders\" holds {}'s headers but \"unreal\" says {}: builds are checked against the "
+                                       "headers, findings follow \"unreal\"", era_name(*c.engine_era), era_name(*c.unreal)));
+    if (c.engine_era && !c.unreal) c.unreal = c.engine_era;  // the engine says what the project builds against
+    // Its includes resolve as the engine's do, unless the project maps /Engine/ itself.
+    bool mapped = std::any_of(c.virtual_roots.begin(), c.virtual_roots.end(), [](const auto& r) { return r.first == "/Engine/"; });
+    if (c.engine_era && !mapped) c.virtual_roots.emplace_back("/Engine/", *c.engine_shaders);
   }
   if (j.contains("extensions")) {
     if (!j.at("extensions").is_object()) fail("\"extensions\" must map extensions such as \".fxh\" to hlsl, glsl, glsl-in-js or none");

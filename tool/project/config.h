@@ -30,6 +30,11 @@ struct ProjectConfig {
   std::vector<std::string> warnings;  // settings that are valid but look wrong, each a sentence
   MacroTable macros;  // macros used as syntax, by use (lang/macros.h)
   std::optional<UnrealEra> unreal;  // the engine the project builds against (else inferred per file)
+  // The engine's own Shaders folder ("engine-shaders"), and the era its headers hold: verify and
+  // --check-build then compile against its headers, lwcport standing in for what the shader
+  // compiler generates (shaderlib/engine_standins.h). Unset, or no era when it is not one.
+  std::optional<std::filesystem::path> engine_shaders;
+  std::optional<UnrealEra> engine_era;
   FormatTable formats = FormatTable::defaults();  // which extensions are shaders, and how
   bool lint_library = false;        // report inside the LWC libraries' own definitions
   std::string help_uri_base;  // where the rule pages are published (ends in '/'); "" for the installed pages

@@ -19,6 +19,7 @@
 #include <deque>
 #include <map>
 #include <mutex>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -76,6 +77,7 @@ class Includer : public glslang::TShader::Includer {
     std::optional<IncludedFile> found = input_.include(name, from ? from : "");
     if (!found) return nullptr;
     found->text.erase(0, found->text.size() - without_bom(found->text).size());
+    if (input_.lang == Lang::hlsl) found->text = with_single_argument_variadics(std::move(found->text));
     // glslang ignores `#pragma once` (Unreal's headers rely on it): a second include of such a
     // file is empty here, else the engine's include graph is read again on every path into it.
     if (included_once_.count(found->name)) found->text.clear();
@@ -275,6 +277,25 @@ std::string define_lines(const std::vector<std::pair<std::string, std::string>>&
   std::string out;
   for (const auto& [name, value] : defines) out += "#define " + name + (value.empty() ? "" : " " + value) + "\n";
   return out;
+}
+
+std::string with_single_argument_variadics(std::string text) {
+  static const std::regex variadic(R"(^([ \t]*#[ \t]*define[ \t]+\w+\([^)]*)\.\.\.\))", std::regex::multiline);
+  if (text.find("...)") == std::string::npos) return text;
+  std::string out;
+  size_t done = 0;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), variadic); it != std::sregex_iterator(); ++it) {
+    size_t begin = static_cast<size_t>(it->position(0));
+    size_t end = text.find('\n', begin);  // the definition's line, and its continuations
+    while (end != std::string::npos && end > 0 && text[end - 1] == '\\') end = text.find('\n', end + 1);
+    if (end == std::string::npos) end = text.size();
+    std::string definition = (*it)[1].str() + "LWCPORT_VA_ARGS)" + text.substr(begin + it->length(0), end - begin - it->length(0));
+    for (size_t at = definition.find("__VA_ARGS__"); at != std::string::npos; at = definition.find("__VA_ARGS__", at))
+      definition.replace(at, 11, "LWCPORT_VA_ARGS");
+    out += text.substr(done, begin - done) + definition;
+    done = end;
+  }
+  return out + text.substr(done);
 }
 
 std::string_view without_bom(std::string_view text) { return text.starts_with("\xEF\xBB\xBF") ? text.substr(3) : text; }

@@ -75,6 +75,11 @@ std::optional<Stage> stage_from_extension(const std::string& path);
 // editors write one in some headers).
 std::string_view without_bom(std::string_view text);
 
+// glslang's HLSL preprocessor has no variadic macros (`#define M(...) __VA_ARGS__`), which engine
+// headers define (Unreal 5.0's platform layer, on every path): each becomes a macro of one
+// argument, which covers a call whose arguments hold no top-level comma.
+std::string with_single_argument_variadics(std::string text);
+
 // A whole file compiled on its own, as `fix --check-build` and the corpus tests check it: HLSL
 // through a do-nothing entry point appended after it (every function is type-checked; line
 // numbers unchanged), Unreal code after the engine stub of an era (LWCPORT_UE_VERSION 427, 500,

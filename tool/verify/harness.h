@@ -60,6 +60,9 @@ struct HarnessSetup {
   std::string display;   // the file, for messages
   Stage stage = Stage::fragment;
   bool unreal = false;
+  // Unreal code compiled against the engine's own headers ("engine-shaders"), of this era, rather
+  // than lwcport's stub.
+  std::optional<UnrealEra> engine;
   IncludeResolver include;
   std::vector<std::pair<std::string, std::string>> defines;  // the build's macros (.lwcport.json)
   std::vector<std::string> force_includes;                    // HLSL: included ahead of the file (.lwcport.json)
