@@ -72,6 +72,16 @@ class PrimaryView : public Check {
       ctx.fix(f, r.fix, vars, r.edits);
       return;
     }
+    // One coordinate of a position (a height, a clamp): the absolute value is what the code
+    // wants, as Epic's own port keeps it, so the era's marker gives the float value UE4 had.
+    int field = t.is(parent, "field_expression") ? t.child_by_field(parent, "field") : -1;
+    bool coordinate = field >= 0 && is_swizzle(t.text(field)) && t.text(field) != "xyz" && t.text(field).size() <= 2;
+    if (coordinate && matches_any(positions_, member)) {
+      vars["marker"] = era == UnrealEra::ue5_0 ? "LWCHackToFloat" : "DFHackToFloat";
+      vars["use"] = shortened(t.text(parent));
+      ctx.fix(f, "hack-marker", vars, {{t.span(id), vars["marker"] + "(PrimaryView." + member + ")"}});
+      return;
+    }
     f.withheld.push_back("in UE 5.4 `PrimaryView." + member + "` is a DoubleFloat value and this use (`" +
                          shortened(t.text(parent)) + "`) needs a float: the surrounding computation must move " +
                          "to translated world or DoubleFloat first (lwc-float-world-position)");
