@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
       std::cout << argv[i] << "\tunreadable\t" << text.error << "\n";
       continue;
     }
-    BuildEnvironment env = build_environment(path, argv[i], Lang::hlsl, config, includes);
+    BuildEnvironment env = build_environment(path, argv[i], text.text, Lang::hlsl, config, includes);
     FileBuild build{Lang::hlsl, argv[i], std::nullopt, false, env.include, env.defines, env.force_includes};
     CompileResult r = compile_file(build, text.text);
     std::cout << argv[i] << (r.ok ? "\tcompiles" : "\tfails");

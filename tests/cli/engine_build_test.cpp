@@ -77,6 +77,18 @@ TEST(EngineBuild, TheShaderCompilersMacrosAreStoodInForAndCanBeOverridden) {
   EXPECT_EQ(test::read(dir + "/Fog.usf").find("View.PreViewTranslation"), std::string::npos);  // not a break: the port is written
 }
 
+// The material template is the engine's own, its blanks filled as for a material with no
+// expressions; a material helper is compiled after it, as its includers compile it.
+TEST(EngineBuild, TheMaterialTemplateIsTheEnginesFilledInForADefaultMaterial) {
+  std::string dir = engine_project("engine-material-template");
+  test::write(dir + "/Wind.ush",
+              "float3 WindOffset(FMaterialPixelParameters Parameters, float Time)\n{\n"
+              "\tfloat3 WorldPosition = Parameters.TranslatedWorldPosition - View.PreViewTranslation;\n"
+              "\treturn sin(WorldPosition * 0.01f + Time) * GetMaterialCustomData0(Parameters);\n}\n");
+  std::string out = fix_with_build_check(dir, "Wind.ush");
+  EXPECT_NE(out.find("build checked: the fixed file compiles"), std::string::npos) << out;
+}
+
 TEST(EngineBuild, TheEngineFolderSetsTheEraAndIsCheckedAgainstTheProjects) {
   std::string dir = engine_project("engine-era");
   test::write(dir + "/a.usf", "float3 F(float3 P)\n{\n\treturn P - View.WorldCameraOrigin;\n}\n");

@@ -632,7 +632,7 @@ HarnessSetup harness_setup(const InputFile& file, const LoadedFile& f, Lang lang
   setup.display = file.display;
   setup.stage = lang == Lang::glsl ? stage_from_extension(file.display).value_or(Stage::fragment) : Stage::fragment;
   setup.scene = f.options.scene;
-  BuildEnvironment env = build_environment(file.path, file.display, lang, file.config, includes);
+  BuildEnvironment env = build_environment(file.path, file.display, f.source->text(), lang, file.config, includes);
   setup.unreal = env.unreal;
   setup.engine = env.engine;
   setup.include = std::move(env.include);

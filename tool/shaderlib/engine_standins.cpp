@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -76,18 +77,79 @@ const std::vector<BufferMember>& buffer_members() {
   return members;
 }
 
-// The other global uniform buffers of an era, each a struct and a static instance of it.
-std::string other_buffers(UnrealEra era) {
-  std::map<std::string, std::string> bodies;
-  for (const BufferMember& m : buffer_members())
-    if (std::find(m.eras.begin(), m.eras.end(), static_cast<int>(era)) != m.eras.end())
-      bodies[m.buffer] += fmt::format("\t{} {};\n", m.type, m.name);
-  std::string out;
-  for (const auto& [buffer, body] : bodies)
-    out += fmt::format("#ifndef __UniformBuffer_{0}_Definition__\n#define __UniformBuffer_{0}_Definition__\nstruct FLwcport{0}\n{{\n{1}}};\n"
-                       "static FLwcport{0} {0};\n#endif\n", buffer, body);
-  return out;
-}
+// A uniform buffer's members as a tree: a path A.B is member B of a nested struct A.
+struct MemberNode {
+  std::string type;  // a leaf's HLSL type, or "struct:Buffer"
+  std::vector<std::pair<std::string, MemberNode>> children;  // in the table's order
+  MemberNode& child(const std::string& name) {
+    for (auto& [n, node] : children)
+      if (n == name) return node;
+    return children.emplace_back(name, MemberNode{}).second;
+  }
+};
+
+// Writes the struct declarations of the other global uniform buffers of an era, each followed by
+// a static instance: a buffer another one embeds (`struct:Name`) first, nested structs before
+// the struct holding them; a `struct:Name` with no table of its own is left out.
+class BufferWriter {
+ public:
+  explicit BufferWriter(UnrealEra era) {
+    for (const BufferMember& m : buffer_members()) {
+      if (std::find(m.eras.begin(), m.eras.end(), static_cast<int>(era)) == m.eras.end()) continue;
+      if (m.type == "include") {
+        includes_[m.buffer].push_back(m.name);
+        continue;
+      }
+      MemberNode* node = &buffers_[m.buffer];
+      for (size_t begin = 0, dot;; begin = dot + 1) {
+        dot = m.name.find('.', begin);
+        node = &node->child(m.name.substr(begin, dot == std::string::npos ? dot : dot - begin));
+        if (dot == std::string::npos) break;
+      }
+      node->type = m.type;
+    }
+  }
+  // Every buffer of the era, or one.
+  std::string text(const std::string& only = "") {
+    for (const auto& [buffer, node] : buffers_)
+      if (only.empty() || buffer == only) write_buffer(buffer);
+    return out_;
+  }
+  bool has(const std::string& buffer) const { return buffers_.count(buffer) > 0; }
+
+ private:
+  void write_buffer(const std::string& buffer) {
+    if (!written_.insert(buffer).second) return;
+    // Guarded as the engine's generated buffers are: a buffer a file includes on its own
+    // (/Engine/Generated/UniformBuffers/<Name>.ush) and again through the list is declared once.
+    std::string type = "FLwcport" + buffer;
+    out_ += fmt::format("#ifndef __UniformBuffer_{0}_Definition__\n#define __UniformBuffer_{0}_Definition__\n", buffer);
+    for (const std::string& header : includes_[buffer]) out_ += fmt::format("#include \"{}\"\n", header);
+    write_struct(type, buffers_.at(buffer));
+    out_ += fmt::format("static {} {};\n#endif\n", type, buffer);
+  }
+  void write_struct(const std::string& type, const MemberNode& node) {
+    std::string body;
+    for (const auto& [name, child] : node.children) {
+      std::string member_type = child.type;
+      if (!child.children.empty()) {
+        member_type = type + "_" + name.substr(0, name.find('['));
+        write_struct(member_type, child);
+      } else if (child.type.starts_with("struct:")) {
+        std::string embedded = child.type.substr(7);
+        if (!buffers_.count(embedded)) continue;
+        write_buffer(embedded);
+        member_type = "FLwcport" + embedded;
+      }
+      body += fmt::format("\t{} {};\n", member_type, name);
+    }
+    out_ += fmt::format("struct {}\n{{\n{}}};\n", type, body);
+  }
+  std::map<std::string, MemberNode> buffers_;
+  std::map<std::string, std::vector<std::string>> includes_;  // headers declaring structs a buffer holds
+  std::set<std::string> written_;
+  std::string out_;
+};
 
 std::vector<const ViewMember*> members_of(UnrealEra era, bool derived) {
   std::vector<const ViewMember*> out;
@@ -123,10 +185,17 @@ std::string instanced_view_buffer(UnrealEra era) {
 // and the accessors that copy a view into it.
 std::string instanced_stereo(UnrealEra era) {
   std::string out = standin_head("ViewState, GetPrimaryView and GetInstancedView (GeneratedInstancedStereo.ush)", era);
+  // A derived member `Group.Member` is a member of a struct the view state holds (TileOffset).
+  std::map<std::string, std::string> groups;
+  for (const ViewMember* m : members_of(era, true))
+    if (size_t dot = m->name.find('.'); dot != std::string::npos)
+      groups[m->name.substr(0, dot)] += fmt::format("\t{} {};\n", m->type, m->name.substr(dot + 1));
+  for (const auto& [group, body] : groups) out += fmt::format("struct FLwcportViewState_{}\n{{\n{}}};\n", group, body);
   out += "struct ViewState\n{\n";
   for (bool derived : {false, true})
     for (const ViewMember* m : members_of(era, derived))
-      if (!m->opaque()) out += fmt::format("\t{} {};\n", m->type, m->name);
+      if (!m->opaque() && m->name.find('.') == std::string::npos) out += fmt::format("\t{} {};\n", m->type, m->name);
+  for (const auto& [group, body] : groups) out += fmt::format("\tFLwcportViewState_{0} {0};\n", group);
   out += "};\n";
   bool finalize = era != UnrealEra::ue4;
   if (finalize) out += "void FinalizeViewState(inout ViewState InOutView);  // InstancedStereo.ush\n";
@@ -152,10 +221,15 @@ std::optional<UnrealEra> engine_shaders_era(const fs::path& folder) {
 }
 
 std::vector<std::pair<std::string, std::string>> engine_compile_defines(UnrealEra era) {
-  std::vector<std::pair<std::string, std::string>> out = {{"SM5_PROFILE", "1"}, {"COMPILER_HLSL", "1"}};
+  // Shader Model 5 on D3D, rendered by the deferred renderer (the scene textures are bound).
+  std::vector<std::pair<std::string, std::string>> out = {{"SM5_PROFILE", "1"}, {"COMPILER_HLSL", "1"}, {"SHADING_PATH_DEFERRED", "1"},
+                                                           // A material's settings, at their defaults.
+                                                           {"USE_DITHERED_LOD_TRANSITION_FROM_MATERIAL", "0"}};
   if (era == UnrealEra::ue5_4) {
     // A project's rendering settings, at their defaults: Substrate off, the working colour space sRGB.
-    out.insert(out.end(), {{"SUBSTRATE_ENABLED", "0"}, {"WORKING_COLOR_SPACE_IS_SRGB", "1"}});
+    out.insert(out.end(), {{"SUBSTRATE_ENABLED", "0"}, {"WORKING_COLOR_SPACE_IS_SRGB", "1"},
+                           // Materials' world-space vectors in DoubleFloat, the 5.4 era's type.
+                           {"WSVECTOR_IS_DOUBLEFLOAT", "1"}});
   }
   if (era != UnrealEra::ue4) {
     // The render tile of the tile/offset types (2^21 cm), which the engine's C++ hands its shaders.
@@ -164,7 +238,9 @@ std::vector<std::pair<std::string, std::string>> engine_compile_defines(UnrealEr
                            {"UE_LWC_RENDER_TILE_SIZE_RSQRT", "0.000690533966002527907"},
                            {"UE_LWC_RENDER_TILE_SIZE_RCP", "4.76837158203125e-07"},
                            {"UE_LWC_RENDER_TILE_SIZE_FMOD_PI", "0.0"},
-                           {"UE_LWC_RENDER_TILE_SIZE_FMOD_2PI", "0.0"}});
+                           {"UE_LWC_RENDER_TILE_SIZE_FMOD_2PI", "0.0"},
+                           // A material's large-world setting, on by default.
+                           {"MATERIAL_LWC_ENABLED", "1"}});
   }
   return out;
 }
@@ -173,19 +249,72 @@ std::optional<std::string> generated_standin(std::string_view name, UnrealEra er
   if (name == "GeneratedUniformBuffers.ush")
     return standin_head("the global uniform buffers a shader may use (View, InstancedView and those the common headers read)", era) +
            "#include \"/Engine/Generated/UniformBuffers/View.ush\"\n#include \"/Engine/Generated/UniformBuffers/InstancedView.ush\"\n" +
-           other_buffers(era);
+           BufferWriter(era).text();
   if (name == "UniformBuffers/View.ush") return view_buffer(era);
   if (name == "UniformBuffers/InstancedView.ush") return instanced_view_buffer(era);
   if (name == "GeneratedInstancedStereo.ush") return instanced_stereo(era);
+  if (name == "VertexFactory.ush")  // the permutation of a static mesh
+    return standin_head("the vertex factory a shader is compiled with: the local (static mesh) one", era) +
+           "#include \"/Engine/Private/LocalVertexFactory.ush\"\n";
+  if (name.starts_with("UniformBuffers/") && name.ends_with(".ush")) {
+    std::string buffer(name.substr(15, name.size() - 19));
+    BufferWriter writer(era);
+    if (writer.has(buffer)) return standin_head("a uniform buffer the engine declares in C++", era) + writer.text(buffer);
+  }
   return std::nullopt;
 }
 
-std::string generated_not_stood_in(std::string_view name) {
-  if (generated_standin(name, UnrealEra::ue5_4)) return "";
-  if (name == "Material.ush") return "the material template, which the engine fills in per material";
-  if (name == "VertexFactory.ush") return "the vertex factory a permutation compiles with";
-  if (name.starts_with("UniformBuffers/")) return "a uniform buffer declared in the engine's C++, which lwcport has no table for";
-  return "a header the engine generates, which lwcport has no table for";
+std::string material_standin(std::string_view material_template, UnrealEra era) {
+  // The pixel material inputs and attributes a default material has (its output pins), widest
+  // type first where eras differ: a use of fewer components still compiles.
+  static const char* const kPixelInputs =
+      "\tMaterialFloat3 EmissiveColor;\n\tMaterialFloat Opacity;\n\tMaterialFloat OpacityMask;\n\tMaterialFloat3 BaseColor;\n"
+      "\tMaterialFloat Metallic;\n\tMaterialFloat Specular;\n\tMaterialFloat Roughness;\n\tMaterialFloat Anisotropy;\n"
+      "\tMaterialFloat3 Normal;\n\tMaterialFloat3 Tangent;\n\tMaterialFloat4 Subsurface;\n\tMaterialFloat AmbientOcclusion;\n"
+      "\tMaterialFloat3 Refraction;\n\tMaterialFloat PixelDepthOffset;\n\tuint ShadingModel;\n\tMaterialFloat Displacement;\n"
+      "\tMaterialFloat3 ObjectNormal;\n";
+  std::string out = standin_head("the material template filled in for a material with no expressions (/Engine/Generated/Material.ush)", era);
+  out += "#line 1 \"/Engine/Private/MaterialTemplate.ush\"\n";
+  std::string_view text = material_template;
+  int line = 1;
+  size_t done = 0;
+  for (size_t at = text.find('%'); at != std::string_view::npos; at = text.find('%', at + 1)) {
+    size_t end = at + 1;
+    if (end < text.size() && text[end] == '{') end = text.find('}', end);
+    else if (end >= text.size() || (text[end] != 's' && text[end] != 'd')) continue;  // a `%` that is not a blank (a modulo)
+    if (end == std::string_view::npos) break;
+    line += static_cast<int>(std::count(text.begin() + static_cast<std::ptrdiff_t>(done), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+    size_t line_begin = text.rfind('\n', at);
+    line_begin = line_begin == std::string_view::npos ? 0 : line_begin + 1;
+    std::string_view head = text.substr(line_begin, at - line_begin);
+    size_t next = text.find_first_not_of(" \t", end + 1);
+    // What lies since the last statement or block: a struct's head when the blank is its members.
+    size_t stop = text.find_last_of(";}", at);
+    std::string_view above = stop == std::string_view::npos ? text.substr(0, at) : text.substr(stop + 1, at - stop - 1);
+    std::string fill;
+    if (head.find("#line") != std::string_view::npos) {
+      fill = std::to_string(line + 1);  // the template's next line keeps its own number
+    } else if (head.find("#define") != std::string_view::npos) {
+      bool texcoords = head.find("TEXCOORDS") != std::string_view::npos || head.find("TEX_COORD") != std::string_view::npos;
+      fill = texcoords ? "1" : "0";
+    } else if (next != std::string_view::npos && text[next] == ';') {
+      fill = "return 0";
+    } else if (above.find("struct FPixelMaterialInputs") != std::string_view::npos ||
+               above.find("struct FMaterialAttributes") != std::string_view::npos) {
+      fill = kPixelInputs;
+    } else if (text.substr(at, end + 1 - at) == "%{material_declarations}") {
+      // From 5.4 the material's attributes struct comes with its declarations.
+      fill = std::string("struct FMaterialAttributes\n{\n") + kPixelInputs + "};\n";
+    }
+    out.append(text.substr(done, at - done));
+    out += fill;
+    // Lines a blank's code adds are not the template's: later messages keep its line numbers.
+    if (fill.find('\n') != std::string::npos) out += fmt::format("#line {}", line + 1);
+    done = end + 1;
+  }
+  out.append(text.substr(done));
+  return out;
 }
+
 
 }  // namespace lwc

@@ -25,11 +25,14 @@ std::optional<UnrealEra> engine_shaders_era(const std::filesystem::path& folder)
 std::vector<std::pair<std::string, std::string>> engine_compile_defines(UnrealEra era);
 
 // The text of `/Engine/Generated/<name>` where lwcport stands in for it (the generated uniform
-// buffer list, the View and InstancedView uniform buffers, the view state and its accessors);
-// none for what it does not (the material and vertex factory templates, other uniform buffers).
+// buffer list, the uniform buffers of its tables, the view state and its accessors, the vertex
+// factory as the local one); none for what it does not (a pass's own uniform buffers).
 std::optional<std::string> generated_standin(std::string_view name, UnrealEra era);
 
-// Generated headers lwcport does not stand in for, and why, for messages: "" when it does.
-std::string generated_not_stood_in(std::string_view name);
+// `/Engine/Generated/Material.ush` for a material with no expressions: the engine's own material
+// template (`template`, its Private/MaterialTemplate.ush) with each of the blanks the shader
+// compiler fills per material filled as a default material would: counts of texture coordinates,
+// the pixel inputs' members (lwcport's table), `return 0` for a value, nothing for code.
+std::string material_standin(std::string_view material_template, UnrealEra era);
 
 }  // namespace lwc

@@ -33,7 +33,7 @@ bool stands_for_engine_header(const std::string& name, const fs::path& resolved,
 
 }  // namespace
 
-BuildEnvironment build_environment(const fs::path& path, const std::string& display, Lang lang,
+BuildEnvironment build_environment(const fs::path& path, const std::string& display, std::string_view text, Lang lang,
                                    std::shared_ptr<const ProjectConfig> config, IncludeSummaries& includes) {
   BuildEnvironment env;
   env.unreal = display.ends_with(".usf") || display.ends_with(".ush");
@@ -47,14 +47,27 @@ BuildEnvironment build_environment(const fs::path& path, const std::string& disp
       return std::any_of(env.defines.begin(), env.defines.end(), [&](const auto& own) { return own.first == d.first; });
     });
     env.defines.insert(env.defines.begin(), defines.begin(), defines.end());
-    // An engine header is compiled after Common.ush, as every shader that includes it is.
-    if (env.force_includes.empty() && display.ends_with(".ush")) env.force_includes.push_back("/Engine/Private/Common.ush");
+    // An engine header is compiled after Common.ush, as every shader that includes it is, and a
+    // vertex factory's or a material's helper after the material template it takes its types from.
+    if (env.force_includes.empty() && display.ends_with(".ush")) {
+      env.force_includes.push_back("/Engine/Private/Common.ush");
+      bool material_types = text.find("FMaterialVertexParameters") != std::string_view::npos ||
+                            text.find("FMaterialPixelParameters") != std::string_view::npos;
+      if (material_types && text.find("struct FMaterialPixelParameters") == std::string_view::npos)
+        env.force_includes.push_back("/Engine/Generated/Material.ush");
+    }
   }
   // An include is named by its real path (relative to the working folder when under it), so an
   // include inside it resolves from its own folder and errors show where it really is.
   std::optional<UnrealEra> engine = env.engine;
   env.include = [&includes, path, display, config, lang, engine](const std::string& name, const std::string& from) -> std::optional<IncludedFile> {
     if (name == library_file_name(lang)) return IncludedFile{name, full_library_text(lang)};
+    if (engine && name == "/Engine/Generated/Material.ush") {  // the engine's template, filled in
+      std::optional<fs::path> p = includes.resolve("/Engine/Private/MaterialTemplate.ush", path, *config);
+      ReadResult r = p ? read_file(*p, config->max_file_bytes) : ReadResult{};
+      if (!p || !r.error.empty()) return std::nullopt;
+      return IncludedFile{name, material_standin(r.text, *engine)};
+    }
     if (engine && name.starts_with("/Engine/Generated/")) {
       std::optional<std::string> standin = generated_standin(std::string_view(name).substr(18), *engine);
       if (!standin) return std::nullopt;

@@ -3,6 +3,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -27,7 +28,8 @@ struct BuildEnvironment {
   std::vector<std::pair<std::string, std::string>> defines;
   std::vector<std::string> force_includes;
 };
-BuildEnvironment build_environment(const std::filesystem::path& path, const std::string& display, Lang lang,
+// `text`: the file's own text, which says what context a header expects from its includers.
+BuildEnvironment build_environment(const std::filesystem::path& path, const std::string& display, std::string_view text, Lang lang,
                                    std::shared_ptr<const ProjectConfig> config, IncludeSummaries& includes);
 
 }  // namespace lwc

@@ -77,7 +77,8 @@ class Includer : public glslang::TShader::Includer {
     std::optional<IncludedFile> found = input_.include(name, from ? from : "");
     if (!found) return nullptr;
     found->text.erase(0, found->text.size() - without_bom(found->text).size());
-    if (input_.lang == Lang::hlsl) found->text = with_single_argument_variadics(std::move(found->text));
+    if (input_.lang == Lang::hlsl)
+      found->text = with_signed_constant_macros(with_distinct_buffer_overloads(with_single_argument_variadics(std::move(found->text))));
     // glslang ignores `#pragma once` (Unreal's headers rely on it): a second include of such a
     // file is empty here, else the engine's include graph is read again on every path into it.
     if (included_once_.count(found->name)) found->text.clear();
@@ -294,6 +295,43 @@ std::string with_single_argument_variadics(std::string text) {
       definition.replace(at, 11, "LWCPORT_VA_ARGS");
     out += text.substr(done, begin - done) + definition;
     done = end;
+  }
+  return out + text.substr(done);
+}
+
+std::string with_distinct_buffer_overloads(std::string text) {
+  if (text.find("RWByteAddressBuffer") == std::string::npos) return text;
+  static const std::regex head(R"(\b([A-Za-z_]\w*)\s*\(([^;{}()]*(?:\([^;{}()]*\)[^;{}()]*)*)\)\s*\{)");
+  static const std::regex read_only(R"((^|[^\w])ByteAddressBuffer\b)");
+  std::set<std::string> read_only_overloads;
+  std::vector<std::pair<size_t, std::string>> writable;  // where a definition's name starts, and the name
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), head); it != std::sregex_iterator(); ++it) {
+    std::string params = (*it)[2].str();
+    if (params.find("RWByteAddressBuffer") != std::string::npos) writable.emplace_back(static_cast<size_t>(it->position(1)), (*it)[1].str());
+    else if (std::regex_search(params, read_only)) read_only_overloads.insert((*it)[1].str());
+  }
+  // From the end, so earlier positions stay right.
+  for (auto w = writable.rbegin(); w != writable.rend(); ++w)
+    if (read_only_overloads.count(w->second)) text.insert(w->first + w->second.size(), "_LwcportWritable");
+  return text;
+}
+
+std::string with_signed_constant_macros(std::string text) {
+  // A #define whose whole body is an integer expression with unsigned literals below 2^31.
+  static const std::regex define(R"(^([ \t]*#[ \t]*define[ \t]+\w+[ \t]+)([-+*/%<>&|^~() \t0-9a-fA-FxXuU]*[0-9][uU][-+*/%<>&|^~() \t0-9a-fA-FxXuU]*)$)",
+                                 std::regex::multiline);
+  static const std::regex literal(R"(\b(0[xX][0-9a-fA-F]+|[0-9]+)[uU]\b)");
+  if (text.find("u") == std::string::npos) return text;
+  std::string out;
+  size_t done = 0;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), define); it != std::sregex_iterator(); ++it) {
+    std::string body = (*it)[2].str();
+    bool small = true;
+    for (auto l = std::sregex_iterator(body.begin(), body.end(), literal); l != std::sregex_iterator(); ++l)
+      small &= std::stoull((*l)[1].str(), nullptr, 0) < (1ull << 31);
+    if (!small) continue;
+    out += text.substr(done, static_cast<size_t>(it->position(2)) - done) + std::regex_replace(body, literal, "$1");
+    done = static_cast<size_t>(it->position(2) + it->length(2));
   }
   return out + text.substr(done);
 }

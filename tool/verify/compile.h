@@ -79,6 +79,13 @@ std::string_view without_bom(std::string_view text);
 // headers define (Unreal 5.0's platform layer, on every path): each becomes a macro of one
 // argument, which covers a call whose arguments hold no top-level comma.
 std::string with_single_argument_variadics(std::string text);
+// Nor can glslang tell a ByteAddressBuffer parameter from a RWByteAddressBuffer one: an overload
+// pair differing only there (Unreal 5.4's hair strands readers, under every material) is a
+// redefinition to it. The writable one is renamed; a call with either buffer takes the other.
+std::string with_distinct_buffer_overloads(std::string text);
+// Nor evaluate an unsigned literal (`1u`) in an `#if`: a macro whose body is an integer
+// expression of such literals, each below 2^31, loses the suffixes (the value is the same).
+std::string with_signed_constant_macros(std::string text);
 
 // A whole file compiled on its own, as `fix --check-build` and the corpus tests check it: HLSL
 // through a do-nothing entry point appended after it (every function is type-checked; line
