@@ -15,18 +15,15 @@ namespace fs = std::filesystem;
 namespace lwc {
 namespace {
 
-std::string_view embedded_text(std::string_view name) {
-  for (const EmbeddedFile& f : embedded_shaderlib_files())
-    if (f.name == name) return f.text;
-  throw std::logic_error("shader library file not embedded: " + std::string(name));
-}
-
-// One row of unreal_view_members.txt: a member of the View uniform buffer, or one the engine's
-// InstancedStereo.ush derives into the view state from those (FinalizeViewState, UE 5.x).
-struct ViewMember {
-  bool derived = false;
-  std::string type, name;  // name may carry an array size: "Name[2]"
+// One row of lwcport's era tables (tool/shaderlib/src/unreal_*.txt): who holds the member (in
+// unreal_view_members.txt `member` of the View uniform buffer, or `derived` by the engine's
+// InstancedStereo.ush into the view state in UE 5; in unreal_uniform_buffers.txt the uniform
+// buffer), its HLSL type, its name (with an array size, "Name[2]"; a path "A.B" for a member of a
+// nested struct) and the eras that have it.
+struct TableRow {
+  std::string holder, type, name;
   std::vector<int> eras;
+  bool in(UnrealEra era) const { return std::find(eras.begin(), eras.end(), static_cast<int>(era)) != eras.end(); }
   bool opaque() const {  // a resource: the view state holds none (the engine casts 0 to it)
     return type.find("Texture") != std::string::npos || type.find("Sampler") != std::string::npos ||
            type.find("Buffer") != std::string::npos;
@@ -34,47 +31,32 @@ struct ViewMember {
   std::string bare_name() const { return name.substr(0, name.find('[')); }
 };
 
-const std::vector<ViewMember>& view_members() {
-  static const std::vector<ViewMember> members = [] {
-    std::vector<ViewMember> out;
-    std::istringstream lines{std::string(embedded_text("unreal_view_members.txt"))};
-    for (std::string line; std::getline(lines, line);) {
-      if (line.empty() || line[0] == '#') continue;
-      std::istringstream words(line);
-      std::string kind;
-      ViewMember m;
-      words >> kind >> m.type >> m.name;
-      if (kind != "member" && kind != "derived") throw std::logic_error("unreal_view_members.txt: bad row: " + line);
-      m.derived = kind == "derived";
-      for (int era; words >> era;) m.eras.push_back(era);
-      out.push_back(std::move(m));
-    }
-    return out;
-  }();
-  return members;
+std::vector<TableRow> read_table(std::string_view file) {
+  std::string_view text;
+  for (const EmbeddedFile& f : embedded_shaderlib_files())
+    if (f.name == file) text = f.text;
+  std::vector<TableRow> out;
+  std::istringstream lines{std::string(text)};
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream words(line);
+    TableRow row;
+    words >> row.holder >> row.type >> row.name;
+    for (int era; words >> era;) row.eras.push_back(era);
+    if (row.name.empty() || row.eras.empty()) throw std::logic_error(fmt::format("{}: bad row: {}", file, line));
+    out.push_back(std::move(row));
+  }
+  return out;
 }
 
-// One row of unreal_uniform_buffers.txt: a member of another global uniform buffer.
-struct BufferMember {
-  std::string buffer, type, name;
-  std::vector<int> eras;
-};
+const std::vector<TableRow>& view_members() {
+  static const std::vector<TableRow> rows = read_table("unreal_view_members.txt");
+  return rows;
+}
 
-const std::vector<BufferMember>& buffer_members() {
-  static const std::vector<BufferMember> members = [] {
-    std::vector<BufferMember> out;
-    std::istringstream lines{std::string(embedded_text("unreal_uniform_buffers.txt"))};
-    for (std::string line; std::getline(lines, line);) {
-      if (line.empty() || line[0] == '#') continue;
-      std::istringstream words(line);
-      BufferMember m;
-      words >> m.buffer >> m.type >> m.name;
-      for (int era; words >> era;) m.eras.push_back(era);
-      out.push_back(std::move(m));
-    }
-    return out;
-  }();
-  return members;
+const std::vector<TableRow>& buffer_members() {
+  static const std::vector<TableRow> rows = read_table("unreal_uniform_buffers.txt");
+  return rows;
 }
 
 // A uniform buffer's members as a tree: a path A.B is member B of a nested struct A.
@@ -94,13 +76,13 @@ struct MemberNode {
 class BufferWriter {
  public:
   explicit BufferWriter(UnrealEra era) {
-    for (const BufferMember& m : buffer_members()) {
-      if (std::find(m.eras.begin(), m.eras.end(), static_cast<int>(era)) == m.eras.end()) continue;
+    for (const TableRow& m : buffer_members()) {
+      if (!m.in(era)) continue;
       if (m.type == "include") {
-        includes_[m.buffer].push_back(m.name);
+        includes_[m.holder].push_back(m.name);
         continue;
       }
-      MemberNode* node = &buffers_[m.buffer];
+      MemberNode* node = &buffers_[m.holder];
       for (size_t begin = 0, dot;; begin = dot + 1) {
         dot = m.name.find('.', begin);
         node = &node->child(m.name.substr(begin, dot == std::string::npos ? dot : dot - begin));
@@ -151,10 +133,10 @@ class BufferWriter {
   std::string out_;
 };
 
-std::vector<const ViewMember*> members_of(UnrealEra era, bool derived) {
-  std::vector<const ViewMember*> out;
-  for (const ViewMember& m : view_members())
-    if (m.derived == derived && std::find(m.eras.begin(), m.eras.end(), static_cast<int>(era)) != m.eras.end()) out.push_back(&m);
+std::vector<const TableRow*> members_of(UnrealEra era, bool derived) {
+  std::vector<const TableRow*> out;
+  for (const TableRow& m : view_members())
+    if ((m.holder == "derived") == derived && m.in(era)) out.push_back(&m);
   return out;
 }
 
@@ -170,7 +152,7 @@ std::string standin_head(std::string_view what, UnrealEra era) {
 std::string view_buffer(UnrealEra era) {
   std::string out = standin_head("the View uniform buffer (/Engine/Generated/UniformBuffers/View.ush)", era);
   out += "#ifndef __UniformBuffer_View_Definition__\n#define __UniformBuffer_View_Definition__\nstruct FLwcportViewUniformBuffer\n{\n";
-  for (const ViewMember* m : members_of(era, false)) out += fmt::format("\t{} {};\n", m->type, m->name);
+  for (const TableRow* m : members_of(era, false)) out += fmt::format("\t{} {};\n", m->type, m->name);
   return out + "};\nstatic FLwcportViewUniformBuffer View;\n#endif\n";
 }
 
@@ -187,13 +169,13 @@ std::string instanced_stereo(UnrealEra era) {
   std::string out = standin_head("ViewState, GetPrimaryView and GetInstancedView (GeneratedInstancedStereo.ush)", era);
   // A derived member `Group.Member` is a member of a struct the view state holds (TileOffset).
   std::map<std::string, std::string> groups;
-  for (const ViewMember* m : members_of(era, true))
+  for (const TableRow* m : members_of(era, true))
     if (size_t dot = m->name.find('.'); dot != std::string::npos)
       groups[m->name.substr(0, dot)] += fmt::format("\t{} {};\n", m->type, m->name.substr(dot + 1));
   for (const auto& [group, body] : groups) out += fmt::format("struct FLwcportViewState_{}\n{{\n{}}};\n", group, body);
   out += "struct ViewState\n{\n";
   for (bool derived : {false, true})
-    for (const ViewMember* m : members_of(era, derived))
+    for (const TableRow* m : members_of(era, derived))
       if (!m->opaque() && m->name.find('.') == std::string::npos) out += fmt::format("\t{} {};\n", m->type, m->name);
   for (const auto& [group, body] : groups) out += fmt::format("\tFLwcportViewState_{0} {0};\n", group);
   out += "};\n";
@@ -203,7 +185,7 @@ std::string instanced_stereo(UnrealEra era) {
     bool primary = source == "View";
     std::string signature = primary ? "GetPrimaryView()" : era == UnrealEra::ue5_4 ? "GetInstancedView(uint ViewIndex)" : "GetInstancedView()";
     out += fmt::format("ViewState {}\n{{\n\tViewState Result;\n", signature);
-    for (const ViewMember* m : members_of(era, false))
+    for (const TableRow* m : members_of(era, false))
       if (!m->opaque()) out += fmt::format("\tResult.{0} = {1}.{0};\n", m->bare_name(), source);
     out += finalize ? "\tFinalizeViewState(Result);\n\treturn Result;\n}\n" : "\treturn Result;\n}\n";
   }
@@ -296,7 +278,7 @@ std::string material_standin(std::string_view material_template, UnrealEra era) 
       fill = std::to_string(line + 1);  // the template's next line keeps its own number
     } else if (head.find("#define") != std::string_view::npos) {
       bool texcoords = head.find("TEXCOORDS") != std::string_view::npos || head.find("TEX_COORD") != std::string_view::npos;
-      fill = texcoords ? "1" : "0";
+      fill = std::to_string(texcoords ? 1 : 0);
     } else if (next != std::string_view::npos && text[next] == ';') {
       fill = "return 0";
     } else if (above.find("struct FPixelMaterialInputs") != std::string_view::npos ||

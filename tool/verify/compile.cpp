@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <chrono>
@@ -321,7 +322,15 @@ std::string with_signed_constant_macros(std::string text) {
   static const std::regex define(R"(^([ \t]*#[ \t]*define[ \t]+\w+[ \t]+)([-+*/%<>&|^~() \t0-9a-fA-FxXuU]*[0-9][uU][-+*/%<>&|^~() \t0-9a-fA-FxXuU]*)$)",
                                  std::regex::multiline);
   static const std::regex literal(R"(\b(0[xX][0-9a-fA-F]+|[0-9]+)[uU]\b)");
-  if (text.find("u") == std::string::npos) return text;
+  // Most headers have no such macro: the regular expression only runs where a #define line holds
+  // a digit followed by `u`.
+  bool candidate = false;
+  for (size_t at = text.find("#define"); at != std::string::npos && !candidate; at = text.find("#define", at + 7)) {
+    size_t end = std::min(text.find('\n', at), text.size());
+    for (size_t i = at + 8; i + 1 < end && !candidate; ++i)
+      candidate = std::isdigit(static_cast<unsigned char>(text[i])) && (text[i + 1] == 'u' || text[i + 1] == 'U');
+  }
+  if (!candidate) return text;
   std::string out;
   size_t done = 0;
   for (auto it = std::sregex_iterator(text.begin(), text.end(), define); it != std::sregex_iterator(); ++it) {
