@@ -125,5 +125,22 @@ TEST(SyntaxErrors, ParseAndLintCountTheSameErrors) {
   EXPECT_EQ(lint_note(dir, "a.usf").first, 5);
 }
 
+// A D3D9 effect file: its technique and sampler_state blocks are not parsed, and the note says so
+// rather than sending the user to declare a macro; the shader functions around them are read.
+TEST(SyntaxErrors, EffectFrameworkBlocksAreNamedAsTheCause) {
+  std::string dir = test::scratch("effect-framework");
+  test::write(dir + "/Mesh.fx",
+              "float4x4 WorldViewProjection;\ntexture DiffuseMap;\n"
+              "sampler DiffuseSampler = sampler_state { Texture = <DiffuseMap>; MinFilter = Linear; };\n"
+              "float4 MeshVS(float3 Position : POSITION) : POSITION { return mul(float4(Position, 1), WorldViewProjection); }\n"
+              "float4 MeshPS(float2 UV : TEXCOORD0) : COLOR0 { return tex2D(DiffuseSampler, UV); }\n"
+              "technique Mesh\n{\n\tpass P0\n\t{\n\t\tVertexShader = compile vs_3_0 MeshVS();\n"
+              "\t\tPixelShader = compile ps_3_0 MeshPS();\n\t}\n}\n");
+  auto r = test::run("cd " + dir + " && " + test::binary() + " lint Mesh.fx --color never 2>&1");
+  EXPECT_NE(r.out.find("syntax error(s) the parser could not place"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("the file holds Direct3D effect-framework blocks"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("a macro used as syntax"), std::string::npos) << r.out;
+}
+
 }  // namespace
 }  // namespace lwc

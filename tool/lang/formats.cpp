@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "lang/syntax.h"
+#include "lang/tokens.h"
 
 namespace lwc {
 
@@ -45,6 +46,32 @@ bool reads_as_hlsl(std::string_view text) {
   for (size_t at = text.find("SV_"); at != std::string_view::npos; at = text.find("SV_", at + 3)) {
     size_t before = text.find_last_not_of(" \t", at - 1);
     if (at > 0 && before != std::string_view::npos && text[before] == ':') return true;
+  }
+  return false;
+}
+
+bool holds_effect_framework(std::string_view text) {
+  auto word_at = [&](size_t at, std::string_view word) {
+    return (at == 0 || !ident_char(text[at - 1])) && (at + word.size() == text.size() || !ident_char(text[at + word.size()]));
+  };
+  // The keyword opens a block (`technique Name {`, `sampler_state {`), not a word in a comment.
+  auto opens_block = [&](size_t after) {
+    size_t next = text.find_first_not_of(" \t\r\n", after);
+    if (next != std::string_view::npos && ident_char(text[next])) {
+      while (next < text.size() && ident_char(text[next])) ++next;
+      next = text.find_first_not_of(" \t\r\n", next);
+    }
+    return next != std::string_view::npos && text[next] == '{';
+  };
+  for (std::string_view word : {"sampler_state", "technique", "technique10", "technique11"})
+    for (size_t at = text.find(word); at != std::string_view::npos; at = text.find(word, at + 1))
+      if (word_at(at, word) && opens_block(at + word.size())) return true;
+  // A pass's `compile vs_3_0 Main()` (vs, ps, gs, hs, ds, cs).
+  for (size_t at = text.find("compile"); at != std::string_view::npos; at = text.find("compile", at + 1)) {
+    size_t profile = text.find_first_not_of(" \t", at + 7);
+    if (word_at(at, "compile") && profile != std::string_view::npos && profile + 2 < text.size() &&
+        std::string_view("vpghdc").find(text[profile]) != std::string_view::npos && text[profile + 1] == 's' && text[profile + 2] == '_')
+      return true;
   }
   return false;
 }

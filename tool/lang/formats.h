@@ -22,6 +22,10 @@ struct FileFormat {
 // a colon (HLSL under a GLSL extension, as Vulkan's samples name their HLSL stages .vert and .frag).
 bool reads_as_hlsl(std::string_view text);
 
+// Direct3D effect-framework blocks (.fx files of D3D9 to D3D11): a `technique`, `technique10` or
+// `technique11` block, a pass's `compile vs_3_0 ...`, a `sampler_state { ... }` initialiser.
+bool holds_effect_framework(std::string_view text);
+
 // Which files are shaders, by extension (the longest matching one, case-insensitive: `.glsl.js`
 // before `.js`). The defaults cover what engines ship; a project's `.lwcport.json` "extensions"
 // adds to them or overrides them.

@@ -558,6 +558,10 @@ void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, co
     std::string hint = lang == Lang::glsl && reads_as_hlsl(text)
                            ? "this file reads as HLSL (`cbuffer`, `register(..)`, `SV_` semantics) but its extension says GLSL: map "
                              "the extension in .lwcport.json \"extensions\" (for example {\".frag\": \"hlsl\"}) or pass --lang hlsl"
+                       : holds_effect_framework(text)
+                           ? "the file holds Direct3D effect-framework blocks (`technique`/`pass`, `sampler_state`), which lwcport "
+                             "does not parse; the functions around them are read as usual, and the blocks themselves only bind "
+                             "shaders, textures and states (`lwcport parse --verbose` shows where each error lies)"
                            : "run `lwcport parse --verbose` on this file to see where; a macro used as syntax can cause "
                              "this (declare it in .lwcport.json \"macros\"); no fixes are offered in the declarations "
                              "that hold an error";
