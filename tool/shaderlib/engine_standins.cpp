@@ -61,12 +61,14 @@ const std::vector<TableRow>& buffer_members() {
 
 // A uniform buffer's members as a tree: a path A.B is member B of a nested struct A.
 struct MemberNode {
+  std::string name;
   std::string type;  // a leaf's HLSL type, or "struct:Buffer"
-  std::vector<std::pair<std::string, MemberNode>> children;  // in the table's order
-  MemberNode& child(const std::string& name) {
-    for (auto& [n, node] : children)
-      if (n == name) return node;
-    return children.emplace_back(name, MemberNode{}).second;
+  std::vector<MemberNode> children;  // in the table's order
+  MemberNode& child(const std::string& child_name) {
+    for (MemberNode& node : children)
+      if (node.name == child_name) return node;
+    children.push_back(MemberNode{child_name, "", {}});
+    return children.back();
   }
 };
 
@@ -112,7 +114,8 @@ class BufferWriter {
   }
   void write_struct(const std::string& type, const MemberNode& node) {
     std::string body;
-    for (const auto& [name, child] : node.children) {
+    for (const MemberNode& child : node.children) {
+      const std::string& name = child.name;
       std::string member_type = child.type;
       if (!child.children.empty()) {
         member_type = type + "_" + name.substr(0, name.find('['));
