@@ -143,24 +143,27 @@ std::vector<const TableRow*> members_of(UnrealEra era, bool derived) {
   return out;
 }
 
-std::string standin_head(std::string_view what, UnrealEra era) {
-  return fmt::format("// lwcport's stand-in for {}, which Unreal's shader compiler generates ({}); from lwcport's\n"
-                     "// table of the era (tool/shaderlib/src/unreal_view_members.txt), not the engine's text.\n",
-                     what, era_name(era));
+// The first lines of a stand-in: what it stands for, and where lwcport took it from.
+std::string standin_head(std::string_view what, UnrealEra era, std::string_view from) {
+  return fmt::format("// lwcport's stand-in for {}, which Unreal's shader compiler generates ({});\n// {}.\n", what,
+                     era_name(era), from);
 }
+constexpr std::string_view kViewTable = "from lwcport's table of the era (tool/shaderlib/src/unreal_view_members.txt), not the engine's text";
+constexpr std::string_view kBufferTable =
+    "from lwcport's table of the era (tool/shaderlib/src/unreal_uniform_buffers.txt), not the engine's text";
 
 // The View uniform buffer as a struct: its members with the names shaders use (`View.Member`).
 // Static, not a cbuffer: glslang's error recovery crashes on a missing member of a uniform struct
 // that holds textures, and a build check only needs the names and types.
 std::string view_buffer(UnrealEra era) {
-  std::string out = standin_head("the View uniform buffer (/Engine/Generated/UniformBuffers/View.ush)", era);
+  std::string out = standin_head("the View uniform buffer (/Engine/Generated/UniformBuffers/View.ush)", era, kViewTable);
   out += "#ifndef __UniformBuffer_View_Definition__\n#define __UniformBuffer_View_Definition__\nstruct FLwcportViewUniformBuffer\n{\n";
   for (const TableRow* m : members_of(era, false)) out += fmt::format("\t{} {};\n", m->type, m->name);
   return out + "};\nstatic FLwcportViewUniformBuffer View;\n#endif\n";
 }
 
 std::string instanced_view_buffer(UnrealEra era) {
-  return standin_head("the InstancedView uniform buffer (the second eye's view, members as View's)", era) +
+  return standin_head("the InstancedView uniform buffer (the second eye's view, members as View's)", era, kViewTable) +
          "#include \"/Engine/Generated/UniformBuffers/View.ush\"\n"
          "#ifndef __UniformBuffer_InstancedView_Definition__\n#define __UniformBuffer_InstancedView_Definition__\n"
          "static FLwcportViewUniformBuffer InstancedView;\n#endif\n";
@@ -169,7 +172,7 @@ std::string instanced_view_buffer(UnrealEra era) {
 // ViewState (every member of View but its resources, plus what FinalizeViewState derives in UE 5)
 // and the accessors that copy a view into it.
 std::string instanced_stereo(UnrealEra era) {
-  std::string out = standin_head("ViewState, GetPrimaryView and GetInstancedView (GeneratedInstancedStereo.ush)", era);
+  std::string out = standin_head("ViewState, GetPrimaryView and GetInstancedView (GeneratedInstancedStereo.ush)", era, kViewTable);
   // A derived member `Group.Member` is a member of a struct the view state holds (TileOffset).
   std::map<std::string, std::string> groups;
   for (const TableRow* m : members_of(era, true))
@@ -232,19 +235,19 @@ std::vector<std::pair<std::string, std::string>> engine_compile_defines(UnrealEr
 
 std::optional<std::string> generated_standin(std::string_view name, UnrealEra era) {
   if (name == "GeneratedUniformBuffers.ush")
-    return standin_head("the global uniform buffers a shader may use (View, InstancedView and those the common headers read)", era) +
+    return standin_head("the global uniform buffers a shader may use (View, InstancedView and those the common headers read)", era, kBufferTable) +
            "#include \"/Engine/Generated/UniformBuffers/View.ush\"\n#include \"/Engine/Generated/UniformBuffers/InstancedView.ush\"\n" +
            BufferWriter(era).text();
   if (name == "UniformBuffers/View.ush") return view_buffer(era);
   if (name == "UniformBuffers/InstancedView.ush") return instanced_view_buffer(era);
   if (name == "GeneratedInstancedStereo.ush") return instanced_stereo(era);
   if (name == "VertexFactory.ush")  // the permutation of a static mesh
-    return standin_head("the vertex factory a shader is compiled with: the local (static mesh) one", era) +
+    return standin_head("the vertex factory a shader is compiled with", era, "the engine's own local (static mesh) vertex factory") +
            "#include \"/Engine/Private/LocalVertexFactory.ush\"\n";
   if (name.starts_with("UniformBuffers/") && name.ends_with(".ush")) {
     std::string buffer(name.substr(15, name.size() - 19));
     BufferWriter writer(era);
-    if (writer.has(buffer)) return standin_head("a uniform buffer the engine declares in C++", era) + writer.text(buffer);
+    if (writer.has(buffer)) return standin_head("a uniform buffer the engine declares in C++", era, kBufferTable) + writer.text(buffer);
   }
   return std::nullopt;
 }
@@ -258,7 +261,7 @@ std::string material_standin(std::string_view material_template, UnrealEra era) 
       "\tMaterialFloat3 Normal;\n\tMaterialFloat3 Tangent;\n\tMaterialFloat4 Subsurface;\n\tMaterialFloat AmbientOcclusion;\n"
       "\tMaterialFloat3 Refraction;\n\tMaterialFloat PixelDepthOffset;\n\tuint ShadingModel;\n\tMaterialFloat Displacement;\n"
       "\tMaterialFloat3 ObjectNormal;\n";
-  std::string out = standin_head("the material template filled in for a material with no expressions (/Engine/Generated/Material.ush)", era);
+  std::string out = standin_head("a material's shader code (/Engine/Generated/Material.ush)", era, "the engine's own material template, its blanks filled in by lwcport for a material with no expressions");
   out += "#line 1 \"/Engine/Private/MaterialTemplate.ush\"\n";
   std::string_view text = material_template;
   int line = 1;
