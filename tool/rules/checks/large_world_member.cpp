@@ -213,10 +213,7 @@ class LargeWorldMember : public Check {
     }
     // One coordinate of a position (a height, a clamp): the absolute value is what the code
     // wants, as Epic's own port keeps it, so the era's marker demotes it, as UE4 did.
-    int parent = t.at(id).parent;
-    int field = t.is(parent, "field_expression") ? t.child_by_field(parent, "field") : -1;
-    bool coordinate = field >= 0 && is_swizzle(t.text(field)) && t.text(field) != "xyz" && t.text(field).size() <= 2;
-    if (coordinate && (kind == Kind::absolute || kind == Kind::camera_offset)) {
+    if (read_as_coordinates(t, id) && (kind == Kind::absolute || kind == Kind::camera_offset)) {
       ctx.fix(f, "marker", vars, {{t.span(id), vars["marker"] + "(" + value.text + ")"}});
       return;
     }

@@ -74,9 +74,7 @@ class PrimaryView : public Check {
     }
     // One coordinate of a position (a height, a clamp): the absolute value is what the code
     // wants, as Epic's own port keeps it, so the era's marker gives the float value UE4 had.
-    int field = t.is(parent, "field_expression") ? t.child_by_field(parent, "field") : -1;
-    bool coordinate = field >= 0 && is_swizzle(t.text(field)) && t.text(field) != "xyz" && t.text(field).size() <= 2;
-    if (coordinate && matches_any(positions_, member)) {
+    if (read_as_coordinates(t, id) && matches_any(positions_, member)) {
       vars["marker"] = era == UnrealEra::ue5_0 ? "LWCHackToFloat" : "DFHackToFloat";
       vars["use"] = shortened(t.text(parent));
       ctx.fix(f, "hack-marker", vars, {{t.span(id), vars["marker"] + "(PrimaryView." + member + ")"}});

@@ -63,6 +63,12 @@ bool is_field_of(const SyntaxTree& tree, int node, int base, std::string_view na
   return field >= 0 && tree.text(field) == name;
 }
 
+bool read_as_coordinates(const SyntaxTree& tree, int node) {
+  int parent = tree.at(node).parent;
+  int field = tree.is(parent, "field_expression") && tree.child_by_field(parent, "argument") == node ? tree.child_by_field(parent, "field") : -1;
+  return field >= 0 && is_swizzle(tree.text(field)) && tree.text(field) != "xyz" && tree.text(field).size() <= 2;
+}
+
 bool is_definition_name(const SyntaxTree& tree, int identifier) {
   int parent = tree.at(identifier).parent;
   if (parent < 0) return false;
