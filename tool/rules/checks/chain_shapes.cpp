@@ -216,6 +216,16 @@ int parameter_of(const CheckContext& ctx, int argument) {
   return parameter_variable(ctx, fn, index);
 }
 
+bool stores_into(const CheckContext& ctx, int use) {
+  const SyntaxTree& t = ctx.tree;
+  int node = use, parent = t.at(use).parent;
+  while ((t.is(parent, "field_expression") || t.is(parent, "subscript_expression")) && t.child_by_field(parent, "argument") == node)
+    node = parent, parent = t.at(node).parent;
+  if ((t.is(parent, "assignment_expression") && t.child_by_field(parent, "left") == node) || t.is(parent, "update_expression")) return true;
+  int p = parameter_of(ctx, use);
+  return p >= 0 && ctx.world.variables()[static_cast<size_t>(p)].output;
+}
+
 // The `out` parameter (not `inout`: that reads the value too) an argument is passed to, or -1.
 int out_parameter_of(const CheckContext& ctx, int argument) {
   int param = parameter_of(ctx, argument);

@@ -54,6 +54,9 @@ bool whole_program(const SyntaxTree& t);
 
 // The parameter of a function of this file that an argument is passed to, or -1.
 int parameter_of(const CheckContext& ctx, int argument);
+// A use that stores into its variable: assigned (whole or a part: `P.z += ..`), stepped, or
+// passed to an `out`/`inout` parameter of this file.
+bool stores_into(const CheckContext& ctx, int use);
 
 // The `out` parameter (not `inout`: that reads the value too) an argument is passed to, or -1.
 int out_parameter_of(const CheckContext& ctx, int argument);

@@ -64,9 +64,9 @@ class FloatWorldPosition : public Check {
     // A local with no value of its own may be written by a helper's `out` parameter.
     bool written = v.role == Variable::Role::local && v.init < 0;
     RewritePlan translated = local || written ? chain_.plan_translated(ctx, var, names) : withheld("not a local with a value");
+    worth_moving(translated);
     if (translated.blocker.empty()) {
-      Vars fix_vars{{"name", v.name}, {"new-name", translated_name(v.name)}, {"helpers", helper_list(translated)}};
-      Fix* fix = ctx.fix(f, translated_kind(translated, "translated"), fix_vars, translated.edits);
+      Fix* fix = ctx.fix(f, translated_kind(translated, "translated"), chain_vars(v.name, translated), translated.edits);
       if (fix) fix->notes = translated.notes;
     }
     // Without Unreal's view and primitive data, plain code gets the High/Low design instead.
@@ -118,13 +118,14 @@ class FloatWorldPosition : public Check {
     int var = ctx.world.variable_declared_at(h.site);
     if (var < 0) return;
     RewritePlan plan;
-    if (std::string why = move(var, plan); !why.empty()) {
+    std::string why = move(var, plan);
+    if (why.empty()) worth_moving(plan), why = plan.blocker;
+    if (!why.empty()) {
       f.withheld.push_back("translated world: " + why);
       return;
     }
     const Variable& v = ctx.world.variables()[var];
-    Fix* made = ctx.fix(f, translated_kind(plan, fix), {{"name", v.name}, {"new-name", translated_name(v.name)}, {"helpers", helper_list(plan)}},
-                        plan.edits);
+    Fix* made = ctx.fix(f, translated_kind(plan, fix), chain_vars(v.name, plan), plan.edits);
     if (made) made->notes = plan.notes;
   }
 
@@ -132,6 +133,22 @@ class FloatWorldPosition : public Check {
   // callers in other files must follow) or what the host must set (the notes say what).
   static const char* translated_kind(const RewritePlan& plan, const char* kind) {
     return !plan.helpers.empty() ? "translated-helpers" : !plan.notes.empty() ? "translated-host" : kind;
+  }
+
+  // A chain whose every use needs the absolute point back gains nothing from moving.
+  static void worth_moving(RewritePlan& plan) {
+    if (plan.blocker.empty() && plan.bridged > 0 && plan.followed == 0)
+      plan.blocker = "every use of it needs the absolute position (nothing downstream takes a translated one)";
+  }
+
+  // The words of a translated fix: the names, the header functions it changes, the bridges.
+  static Vars chain_vars(const std::string& name, const RewritePlan& plan) {
+    std::string bridges;
+    if (plan.bridged > 0)
+      bridges = fmt::format("; {} use{} that need{} the absolute position read{} it back from the translated one, rounded once as before "
+                            "(`DFSubtractDemote`, `LWCSubtract` in UE 5.0-5.3)",
+                            plan.bridged, plan.bridged == 1 ? "" : "s", plan.bridged == 1 ? "s" : "", plan.bridged == 1 ? "s" : "");
+    return {{"name", name}, {"new-name", translated_name(name)}, {"helpers", helper_list(plan)}, {"bridges", bridges}};
   }
 
   static std::string helper_list(const RewritePlan& plan) {
@@ -149,11 +166,13 @@ class FloatWorldPosition : public Check {
     if (fn < 0) return;
     RewritePlan plan;
     std::string new_name = translated_name(h.name);
-    if (std::string why = chain_.translate_function(ctx, fn, new_name, names, plan, 0); !why.empty()) {
+    std::string why = chain_.translate_function(ctx, fn, new_name, names, plan, 0);
+    if (why.empty()) worth_moving(plan), why = plan.blocker;
+    if (!why.empty()) {
       f.withheld.push_back("translated world: " + why);
       return;
     }
-    Fix* fix = ctx.fix(f, translated_kind(plan, "translated"), {{"name", h.name}, {"new-name", new_name}, {"helpers", helper_list(plan)}}, plan.edits);
+    Fix* fix = ctx.fix(f, translated_kind(plan, "translated"), chain_vars(h.name, plan), plan.edits);
     if (fix) fix->notes = plan.notes;
   }
 

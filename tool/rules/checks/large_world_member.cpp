@@ -17,7 +17,8 @@ class LargeWorldMember : public Check {
  public:
   explicit LargeWorldMember(const RuleInfo& rule)
       : lwc_calls_(string_list(rule.data, "lwc-calls")),
-        float_calls_(string_list(rule.data, "float-calls")) {}
+        float_calls_(string_list(rule.data, "float-calls")),
+        translated_planes_(string_list(rule.data, "translated-planes")) {}
 
   void run(const CheckContext& ctx) const override {
     if (!ctx.unreal) return;
@@ -182,6 +183,17 @@ class LargeWorldMember : public Check {
       offer_row_fix(ctx, f, id, *row, era, value.text, vars);
       return;
     }
+    if (auto [sum, text] = translated_transform(ctx, id, era); sum >= 0) {
+      vars["translated"] = shortened(text);
+      ctx.fix(f, "translated-transform", vars, {{t.span(sum), text}});
+      return;
+    }
+    if (auto [point, plane] = plane_point(ctx, use); point >= 0) {
+      vars["point"] = shortened(t.text(point));
+      vars["plane"] = plane;
+      ctx.fix(f, "translated-plane", vars, {{t.span(use.parent), std::string(t.text(point))}});
+      return;
+    }
     // Beside another float32 absolute position the library gains nothing (library_rewrite.h): the
     // line compiles with the value UE4 read, marked for the ledger, until both move together.
     int other = kind == Kind::absolute || kind == Kind::camera_offset ? absolute_partner(ctx, use.node, kind) : -1;
@@ -220,6 +232,63 @@ class LargeWorldMember : public Check {
     f.withheld.push_back(!r.blocker.empty() ? r.blocker
                                             : fmt::format("`{}` is an `{}` and is {} here: the computation around it must move to translated world "
                                                           "or to the large-world library first", t.text(id), vars["type"], vars["use"]));
+  }
+
+  // `mul(float4(P, 1), Primitive.LocalToWorld).xyz + ResolvedView.PreViewTranslation`, from either
+  // member: UE4's translated point, made in float32 from an absolute one. UE5 makes it from the
+  // large-world transform and translation in one call (`DFTransformLocalToTranslatedWorld`; in UE
+  // 5.0-5.3 the tile/offset sum). The sum and its rewrite; else -1.
+  std::pair<int, std::string> translated_transform(const CheckContext& ctx, int id, UnrealEra era) const {
+    const SyntaxTree& t = ctx.tree;
+    auto climb = [&](int n) {  // through parentheses and a 3-vector's `.xyz`
+      for (int p = t.at(n).parent; t.is(p, "parenthesized_expression") || is_field_of(t, p, n, "xyz"); p = t.at(n).parent) n = p;
+      return n;
+    };
+    int sum = -1;
+    if (int list = t.at(id).parent; t.is(list, "argument_list") && mul_call(t, t.at(list).parent) == t.at(list).parent) {
+      sum = t.at(climb(t.at(list).parent)).parent;  // the matrix of the transform
+    } else {
+      sum = t.at(climb(id)).parent;  // the translation
+    }
+    if (!t.is(sum, "binary_expression") || t.text(t.child_by_field(sum, "operator")) != "+") return {-1, ""};
+    int transform = -1, translation = -1;
+    for (int side : {t.child_by_field(sum, "left"), t.child_by_field(sum, "right")}) {
+      int inner = side;
+      while (t.is(inner, "parenthesized_expression")) inner = t.named_child(inner);
+      if (int mul = mul_call(t, inner); mul >= 0) transform = mul;
+      Member m = member_of(t, is_field_of(t, inner, t.child_by_field(inner, "argument"), "xyz") ? t.child_by_field(inner, "argument") : inner);
+      if (m.member == "PreViewTranslation") translation = is_field_of(t, inner, t.child_by_field(inner, "argument"), "xyz") ? t.child_by_field(inner, "argument") : inner;
+    }
+    if (transform < 0 || translation < 0) return {-1, ""};
+    auto args = call_arguments(t, transform);
+    std::string point = position_of_homogeneous(t, args[0]);
+    int matrix = args[1];
+    if (point.empty() || ctx.world.kind(matrix) != Kind::world_matrix || !large_world_matrix(ctx, matrix, era)) return {-1, ""};
+    std::string m = ue5_spelling(ctx, matrix), v = ue5_spelling(ctx, translation);
+    if (v.starts_with("View.")) v = "Primary" + v;
+    return {sum, era == UnrealEra::ue5_0 ? fmt::format("LWCToFloat(LWCAdd(LWCMultiply({}, {}), {}))", point, m, v)
+                                         : fmt::format("DFTransformLocalToTranslatedWorld({}, {}, {})", point, m, v)};
+  }
+
+  // `dot(View.GlobalClippingPlane, float4(P - View.PreViewTranslation, 1))`: a translated point
+  // made absolute only to meet a plane that UE 5.0 hands over translated under the same name
+  // (rule data "translated-planes"). The point and the plane, where the use is that subtraction;
+  // else -1.
+  std::pair<int, std::string> plane_point(const CheckContext& ctx, const Use& use) const {
+    const SyntaxTree& t = ctx.tree;
+    int difference = use.parent;
+    if (!t.is(difference, "binary_expression") || t.text(t.child_by_field(difference, "operator")) != "-" ||
+        t.child_by_field(difference, "right") != use.node || !ctx.unreal || ctx.unreal->era == UnrealEra::ue4)
+      return {-1, ""};
+    int homogeneous = t.at(difference).parent;
+    if (!t.is(homogeneous, "argument_list") || position_of_homogeneous(t, t.at(homogeneous).parent).empty()) return {-1, ""};
+    int list = t.at(t.at(homogeneous).parent).parent;
+    if (!t.is(list, "argument_list") || call_name(t, t.at(list).parent) != "dot") return {-1, ""};
+    for (int other : call_arguments(t, t.at(list).parent)) {
+      Member m = member_of(t, other);
+      if (!m.empty() && matches_any(translated_planes_, m.member)) return {t.child_by_field(difference, "left"), m.object + "." + m.member};
+    }
+    return {-1, ""};
   }
 
   // A translation row rebased one coordinate at a time (translation_row.h): UE5 builds the
@@ -285,6 +354,7 @@ class LargeWorldMember : public Check {
   }
 
   std::vector<std::string> lwc_calls_, float_calls_;
+  std::vector<std::string> translated_planes_;  // planes UE 5.0 hands over translated, same name
 };
 
 }  // namespace

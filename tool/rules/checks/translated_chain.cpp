@@ -362,25 +362,40 @@ bool TranslatedChain::follow_partner_call(const CheckContext& ctx, const Declare
 void TranslatedChain::follow_translated(const CheckContext& ctx, const DeclaredNames& names, int var, const std::string& new_name, RewritePlan& plan, int depth) const {
   const SyntaxTree& t = ctx.tree;
   uint32_t translated_from = UINT32_MAX;
+  size_t followed = plan.followed, bridged = plan.bridged;
   for (int use : ctx.world.uses(var)) {
     if (!plan.blocker.empty()) return;
     if (t.at(use).begin >= translated_from) {
       plan.edits.push_back({t.span(use), new_name});
+      ++plan.followed;
     } else if (int statement = rebase_statement(ctx, use); statement >= 0) {
       plan.edits.push_back({whole_lines(t, statement), ""});
       translated_from = t.at(statement).end;
+      ++plan.followed;
     } else {
       follow_use(ctx, names, use, new_name, plan, depth);
     }
   }
+  // Moved only to read the absolute value back at every use: it stays as it was, and the value
+  // handed to it is read back instead.
+  if (plan.blocker.empty() && plan.followed == followed && plan.bridged > bridged)
+    plan.blocker = fmt::format("every use of `{}` needs the absolute position", ctx.world.variables()[static_cast<size_t>(var)].name);
 }
 
 void TranslatedChain::follow_use(const CheckContext& ctx, const DeclaredNames& names, int use, const std::string& text, RewritePlan& plan, int depth) const {
   const SyntaxTree& t = ctx.tree;
-  auto renamed = [&] { plan.edits.push_back({t.span(use), text}); };
+  auto renamed = [&] {
+    plan.edits.push_back({t.span(use), text});
+    ++plan.followed;
+  };
   // Passed to a parameter that this plan moves (written through an `out` one, or read by a
   // helper that now takes a translated position): the helper takes it translated.
   if (int p = parameter_of(ctx, use); p >= 0 && moving(plan, p)) {
+    renamed();
+    return;
+  }
+  // Passed to a parameter of this file that nothing reads: any value will do.
+  if (int p = parameter_of(ctx, use); p >= 0 && ctx.world.uses(p).empty()) {
     renamed();
     return;
   }
@@ -496,16 +511,45 @@ void TranslatedChain::follow_use(const CheckContext& ctx, const DeclaredNames& n
     }
     int name = fn >= 0 ? function_name(t, fn) : -1;
     if (name >= 0) {
+      PlanMark before = mark(plan);
       std::string why = translate_function_of_use(ctx, fn, translated_name(std::string(t.text(name))), names, plan, depth);
       if (why.empty()) {
         renamed();
         return;
       }
+      roll_back(plan, before);
+      if (bridge(ctx, use, text, plan)) return;
       if (plan.blocker.empty()) plan.blocker = why;
       return;
     }
   }
+  if (bridge(ctx, use, text, plan)) return;
   if (plan.blocker.empty()) plan.blocker = escape(t, use);
+}
+
+bool TranslatedChain::bridge(const CheckContext& ctx, int use, const std::string& text, RewritePlan& plan) {
+  const SyntaxTree& t = ctx.tree;
+  if (!ctx.unreal || ctx.unreal->era == UnrealEra::ue4 || !plan.blocker.empty()) return false;
+  // Only a read: a store into the point (`P = ..`, `P.z += ..`, `P++`, an `out` argument) must
+  // store a translated value, which is the chain's work, not a bridge's.
+  if (stores_into(ctx, use)) return false;
+  // The library subtracts 3-vectors: a homogeneous point is read back through its xyz.
+  std::string type;
+  if (int var = ctx.world.variable_at(use); var >= 0) type = ctx.world.variables()[static_cast<size_t>(var)].type;
+  else if (t.is(use, "call_expression")) type = ctx.world.function_return_type(std::string(call_name(t, use)));
+  int replaced = use;
+  std::string point = text;
+  if (type == "float4" && is_field_of(t, t.at(use).parent, use, "xyz")) {
+    replaced = t.at(use).parent;
+    point += ".xyz";
+  } else if (type != "float3") {
+    return false;
+  }
+  std::string absolute = ctx.unreal->era == UnrealEra::ue5_0 ? fmt::format("LWCToFloat(LWCSubtract({}, PrimaryView.PreViewTranslation))", point)
+                                                             : fmt::format("DFSubtractDemote({}, PrimaryView.PreViewTranslation)", point);
+  plan.edits.push_back({t.span(replaced), absolute});
+  ++plan.bridged;
+  return true;
 }
 
 bool TranslatedChain::follow_into_local(const CheckContext& ctx, const DeclaredNames& names, int expr, RewritePlan& plan, int depth) const {

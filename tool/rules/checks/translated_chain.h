@@ -75,6 +75,13 @@ class TranslatedChain {
   // Why a function of this file cannot take `new_name` with its callers following, or "".
   static std::string movable(const SyntaxTree& t, const DeclaredNames& names, int fn, const std::string& new_name);
 
+  // A use that needs the absolute point (an engine function that takes one, a height, a value
+  // returned as absolute) reads it back from the translated one, rounded once
+  // (`DFSubtractDemote(TranslatedP, PrimaryView.PreViewTranslation)`): the same float the code
+  // read before, while the rest of the chain keeps its precision. False where the use stores into
+  // the point, or the target has no large-world library (UE4).
+  static bool bridge(const CheckContext& ctx, int use, const std::string& text, RewritePlan& plan);
+
   // The function `fn` is renamed `new_name`, and every call of it follows as a translated value.
   void rename_with_callers(const CheckContext& ctx, const DeclaredNames& names, int fn, const std::string& new_name, RewritePlan& plan, int depth) const;
 

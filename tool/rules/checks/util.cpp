@@ -1,5 +1,7 @@
 #include "rules/checks/util.h"
 
+#include "rules/checks/chain_shapes.h"
+
 #include <optional>
 #include <algorithm>
 #include <cctype>
@@ -86,9 +88,52 @@ Member member_of(const SyntaxTree& tree, int node) {
   return {call ? std::string(call_name(tree, object)) + "(..)" : std::string(tree.text(object)), std::string(tree.text(field))};
 }
 
+namespace {
+// A variable stored into anywhere but its declaration: assigned (whole or a part), stepped, or
+// passed to an `out` or `inout` parameter of this file.
+bool stored_again(const CheckContext& ctx, int var) {
+  const std::vector<int>& uses = ctx.world.uses(var);
+  return std::any_of(uses.begin(), uses.end(), [&](int use) { return stores_into(ctx, use); });
+}
+
+// A point minus the pre-view translation (`TranslatedP - View.PreViewTranslation`,
+// `DFSubtractDemote(TranslatedP, ..)`), or a local that holds one, neither of them stored again:
+// the point's text, which is the value's translated form wherever it is read.
+std::string translated_source(const CheckContext& ctx, int node) {
+  const SyntaxTree& t = ctx.tree;
+  int value = node;
+  bool local = false;
+  if (int var = t.is(node, "identifier") ? ctx.world.variable_at(node) : -1; var >= 0) {
+    const Variable& v = ctx.world.variables()[static_cast<size_t>(var)];
+    if (v.role != Variable::Role::local || v.init < 0 || stored_again(ctx, var)) return {};
+    value = v.init;
+    local = true;
+  }
+  while (t.is(value, "parenthesized_expression")) value = t.named_child(value);
+  int left = -1, right = -1;
+  if (t.is(value, "binary_expression") && t.text(t.child_by_field(value, "operator")) == "-") {
+    left = t.child_by_field(value, "left"), right = t.child_by_field(value, "right");
+  } else if (t.is(value, "call_expression") && (call_name(t, value) == "DFSubtractDemote" || call_name(t, value) == "DFFastSubtractDemote") &&
+             call_arguments(t, value).size() == 2) {
+    left = call_arguments(t, value)[0], right = call_arguments(t, value)[1];
+  }
+  if (left < 0 || right < 0) return {};
+  right = undemoted(t, right);
+  if (int base = t.child_by_field(right, "argument"); is_field_of(t, right, base, "xyz")) right = base;
+  if (member_of(t, right).member != "PreViewTranslation") return {};
+  int point = left;
+  if (int base = t.child_by_field(point, "argument"); is_field_of(t, point, base, "xyz")) point = base;
+  // Read later through the local, the point must still hold what it held then.
+  int source = t.is(point, "identifier") ? ctx.world.variable_at(point) : -1;
+  if (source < 0 || (local && stored_again(ctx, source))) return {};
+  return std::string(t.text(left));
+}
+}  // namespace
+
 std::string translated_twin(const CheckContext& ctx, int node) {
   if (node < 0) return {};  // a part the parser left out
   const SyntaxTree& t = ctx.tree;
+  if (std::string source = translated_source(ctx, node); !source.empty()) return source;
   const WorldData::Twins& twins = ctx.world.data().twins;
   // A demotion or marker of a value with a twin (`DFHackToFloat(View.WorldCameraOrigin)`): the
   // twin is a float already.
@@ -215,7 +260,8 @@ RewritePlan withheld(std::string why) {
 
 PlanMark mark(const RewritePlan& plan) {
   return {plan.edits.size(),     plan.helpers.size(),          plan.notes.size(),           plan.library.size(),
-          plan.interface.size(), plan.moving_functions.size(), plan.moving_variables.size(), plan.blocker};
+          plan.interface.size(), plan.moving_functions.size(), plan.moving_variables.size(), plan.followed,
+          plan.bridged,          plan.blocker};
 }
 
 void roll_back(RewritePlan& plan, const PlanMark& mark) {
@@ -226,6 +272,8 @@ void roll_back(RewritePlan& plan, const PlanMark& mark) {
   plan.interface.resize(mark.interface);
   plan.moving_functions.resize(mark.functions);
   plan.moving_variables.resize(mark.variables);
+  plan.followed = mark.followed;
+  plan.bridged = mark.bridged;
   plan.blocker = mark.blocker;
 }
 

@@ -85,13 +85,15 @@ struct RewritePlan {
   std::vector<std::string> interface; // stage inputs/outputs renamed: the other stage must follow
   std::vector<int> moving_functions;  // functions whose return becomes translated in this plan
   std::vector<int> moving_variables;  // locals that become translated in this plan
+  size_t followed = 0;  // uses that took the translated value as it is
+  size_t bridged = 0;   // uses that need the absolute value, recovered from the translated one
 };
 RewritePlan withheld(std::string why);
 // A plan's size at one moment, to try a step on the plan itself and take it back if it fails:
 // every step only appends (or rewrites what it appended), so the plan up to the mark is kept. A
 // copy of the plan per try costs its whole size, and a chain tries once per caller.
 struct PlanMark {
-  size_t edits, helpers, notes, library, interface, functions, variables;
+  size_t edits, helpers, notes, library, interface, functions, variables, followed, bridged;
   std::string blocker;
 };
 PlanMark mark(const RewritePlan& plan);
