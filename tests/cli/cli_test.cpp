@@ -212,6 +212,28 @@ TEST(Cli, AnEngineFunctionKeepsItsUe5ContractWhereTheEngineFolderDefinesIt) {
   EXPECT_EQ(got, (std::vector<std::string>{"5:35", "5:108", "5:111"})) << doc.dump(2);
 }
 
+// The engine's own file defines the engine's function: in UE4 its `WorldPosition` held an absolute
+// point (whatever it is called), so porting the engine's shaders moves it to translated world
+// with its uses. A project's own copy of the function takes what it declares, and is left alone.
+TEST(Cli, TheEnginesOwnDefinitionOfAnEngineFunctionTakesItsUe4Contract) {
+  std::string dir = test::scratch("engine-definitions");
+  test::write(dir + "/.lwcport.json", R"({"unreal": "5.4"})");
+  std::string lights =
+      "float GetLocalLightAttenuation(float3 WorldPosition, float3 LightPosition, float InvRadius)\n"
+      "{\n\treturn saturate(1 - length(LightPosition - WorldPosition) * InvRadius) * length(WorldPosition - View.WorldCameraOrigin);\n}\n";
+  test::write(dir + "/Engine/Shaders/Private/Lights.ush", lights);
+  test::write(dir + "/Plugin/Shaders/Lights.ush", lights);
+  auto doc = nlohmann::json::parse(lint(dir, "Engine/Shaders/Private/Lights.ush Plugin/Shaders/Lights.ush --format json --fail-on none").out);
+  std::vector<std::string> got;
+  for (const auto& f : doc["findings"])
+    if (f["rule"] == "lwc-float-world-position")
+      got.push_back(f["path"].get<std::string>() + ":" + std::to_string(f["start"]["line"].get<int>()) + " " +
+                    (f.contains("fix") ? f["fix"]["title"].get<std::string>() : "no fix"));
+  EXPECT_EQ(got, (std::vector<std::string>{"Engine/Shaders/Private/Lights.ush:1 compute `TranslatedWorldPosition` in translated world "
+                                           "(camera-relative) and follow its uses, into `GetLocalLightAttenuation`"}))
+      << doc.dump(2);
+}
+
 // A file that is both a lint target and an include is parsed once, and its summary is the same
 // whichever way it was made: linting the includer alone or with its includes gives the same.
 TEST(Cli, AnIncludeThatIsAlsoATargetTeachesWhatItTeachesAlone) {

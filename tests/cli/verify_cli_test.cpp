@@ -306,6 +306,10 @@ TEST(VerifyCli, TheWholeCorpusIsVerified) {
       // UE4's `mul(Position, Primitive.LocalToWorld)` has no rewrite (its function keeps a finding).
       if (f["function"] == "CalcWorldPosition" && v["variant"] == "fixed")
         EXPECT_EQ(status.rfind("incomplete: line 22 is in code lwcport could not port", 0), 0u) << status;
+      // The view's clipping plane is absolute in UE4 and translated in UE 5: each variant reads it
+      // in the space of the engine it is built for, so the port that drops the subtraction clips
+      // where UE4 did, only closer (a plane filled alike for both would put it off by the camera).
+      if (f["function"] == "ClippedVS" && v["variant"] == "fixed") EXPECT_LT(v["maxUlps"].get<double>(), 1e6) << v.dump();
       // Culling returns a decision: counted, never measured in ULPs.
       if (f["function"] == "IsInstanceVisible" && v["measured"].get<bool>()) EXPECT_EQ(v["maxUlps"].get<double>(), 0.0);
     }

@@ -141,6 +141,7 @@ LoadedFile load(const InputFile& file, const Options& o, IncludeSummaries& inclu
   a.strategy = o.strategy;
   if (o.scene) a.scene = o.scene->for_path(file.display);
   out.source.emplace(file.display, std::move(r.text));
+  a.engine_file = engine_file(includes.canonical(file.path), config);
   if (out.source->text().find("include") != std::string::npos) {
     out.includes = std::make_unique<FileSummary>(includes.for_file(file.path, out.source->text(), config));
     a.includes = out.includes.get();
@@ -1265,6 +1266,7 @@ std::vector<HistoryPoint> report_history(const Options& o, ConfigFinder& configs
       if (o.scene) a.scene = o.scene->for_path(path);
       Source source(path, texts.count(blob) ? texts.at(blob) : std::string());
       FileSummary summary;  // the includes as the working tree has them
+      a.engine_file = engine_file(includes.canonical(top / path), *config);
       if (source.text().find("include") != std::string::npos) {
         summary = includes.for_file(top / path, source.text(), *config);
         a.includes = &summary;

@@ -364,6 +364,7 @@ class Server {
       }
     }
     options.includes = d.summary.get();
+    options.engine_file = d.path.is_absolute() && engine_file(includes_->canonical(d.path), *config);
     return options;
   }
 

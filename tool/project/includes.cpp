@@ -48,9 +48,8 @@ std::optional<fs::path> find_include(const std::string& include, const fs::path&
   return std::nullopt;
 }
 
-// One of Unreal's own shaders: under the folder a project maps `/Engine/` to, or in a `Shaders`
-// folder laid out as the engine's (under `Engine/`, or holding `Private/Common.ush`; a plugin's
-// are in `Plugins/<name>/Shaders` and hold no Common.ush of their own).
+}  // namespace
+
 bool engine_file(const fs::path& file, const ProjectConfig& config) {
   auto under = [&](const fs::path& dir) {
     std::error_code ec;
@@ -66,7 +65,6 @@ bool engine_file(const fs::path& file, const ProjectConfig& config) {
       return true;
   return false;
 }
-}  // namespace
 
 std::optional<fs::path> IncludeSummaries::resolve(const std::string& include, const fs::path& from,
                                                   const ProjectConfig& config) {

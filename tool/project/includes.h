@@ -20,6 +20,11 @@ namespace lwc {
 // lwcport never needs them to lint, they only add context. Thread-safe; each file is read and
 // parsed once per run, each include resolved once per folder, and each file's transitive
 // include list worked out once.
+// One of Unreal's own shaders: under the folder a project maps `/Engine/` to, or in a `Shaders`
+// folder laid out as the engine's (under `Engine/`, or holding `Private/Common.ush`; a plugin's
+// are in `Plugins/<name>/Shaders` and hold no Common.ush of their own).
+bool engine_file(const std::filesystem::path& file, const ProjectConfig& config);
+
 class IncludeSummaries {
  public:
   // Where `#include "include"` in `from` leads: virtual roots, the including folder, include dirs.

@@ -75,10 +75,12 @@ std::string file_era(const Source& source, const AnalyzeOptions& options) {
   return std::string(era_name(infer_unreal_era(source.text())));
 }
 
-ModelContext model_context(const Source& source, Lang lang, const FileSummary* includes) {
+ModelContext model_context(const Source& source, Lang lang, const FileSummary* includes, bool engine_file) {
   std::optional<UnrealEra> era;
   if (lang == Lang::hlsl && is_unreal_source(source.path(), source.text())) era = infer_unreal_era(source.text());
-  return {includes, !era || *era == UnrealEra::ue4, !era, era};
+  ModelContext context{includes, !era || *era == UnrealEra::ue4, !era, era};
+  context.engine_file = engine_file;
+  return context;
 }
 
 MacroTable macro_table(Lang lang, const MacroTable* included, const MacroTable& project) {
@@ -490,7 +492,7 @@ void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, co
     return;
   }
   MacroTable macros = macro_table(lang, options);
-  ModelContext context = model_context(code, lang, options.includes);
+  ModelContext context = model_context(code, lang, options.includes, options.engine_file);
   std::optional<UnrealTarget> unreal;
   if (context.era) unreal = options.unreal ? UnrealTarget{*options.unreal, false} : UnrealTarget{*context.era, true};
   const WorldData& data = world_data(lang, options.world_sources);
@@ -691,7 +693,7 @@ std::optional<ValueDescription> describe_value(const Source& source, const Analy
   MacroTable macros = macro_table(format->lang, options);
   SyntaxTree tree = parse(source, format->lang, {&macros, 0, options.max_parse_seconds, options.reuse});
   if (tree.timed_out) return std::nullopt;
-  ModelContext context = model_context(source, format->lang, options.includes);
+  ModelContext context = model_context(source, format->lang, options.includes, options.engine_file);
   if (options.reuse) context.reuse = options.model_reuse;  // the parse moved on: so does the model
   WorldModel world(tree, world_data(format->lang, options.world_sources), context);
   int node = value_node_at(world, offset);

@@ -27,6 +27,9 @@ struct AnalyzeOptions {
   std::map<std::string, Severity> severity;  // per-rule overrides
   nlohmann::json world_sources = nlohmann::json::array();  // the project's extra sources
   const FileSummary* includes = nullptr;  // what the file's #includes declare
+  // One of the engine's own shaders (project/includes.h engine_file): its definitions of engine
+  // functions are the engine's, with the engine's contracts.
+  bool engine_file = false;
   // When set, filled with what the file tells the files that include it (include_summary of its
   // first parse): a lint target's parse serves as its include summary too.
   std::optional<FileSummary>* summary_for_includers = nullptr;
@@ -79,7 +82,7 @@ const WorldData& world_data(Lang lang, const nlohmann::json& extra_sources);
 // (inferred once from its text). Naming conventions count as evidence in plain code and in
 // Unreal code written for UE4 (whatever engine it now builds against): UE5-era code says what is
 // large through the engine's large-world types.
-ModelContext model_context(const Source& source, Lang lang, const FileSummary* includes);
+ModelContext model_context(const Source& source, Lang lang, const FileSummary* includes, bool engine_file = false);
 // What a file's code is written for: "UE4", "UE 5.0-5.3" or "UE 5.4+" for Unreal code (inferred
 // from the code, whatever engine the project builds against), else "HLSL" or "GLSL"; "" when
 // it is not a shader lwcport knows.

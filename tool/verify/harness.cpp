@@ -353,7 +353,11 @@ enum class Role { camera, translated_camera, pre_view_translation, world_positio
                   light, translated_light,
                   local_position, direction, model, translated_model, world_to_local, model_normal, rotation_scale,
                   view, translated_view, view_projection, translated_view_projection, world_view_projection, projection,
-                  other };
+                  world_plane, translated_plane, other };
+
+// Planes the engine hands over in translated world from UE 5.0 under their UE4 name (rule data
+// "translated-planes" of lwc-large-world-member): a variant built for UE 5 reads them translated.
+bool plane_translated_in(const std::string& name, int ue_version) { return ue_version >= 500 && name == "GlobalClippingPlane"; }
 
 Role role_of(const std::string& raw, int components) {
   std::string n = lower(raw);
@@ -373,6 +377,8 @@ Role role_of(const std::string& raw, int components) {
     return Role::other;
   }
   if (has(n, "previewtranslation")) return Role::pre_view_translation;
+  // A plane (normal, distance) that points are dotted with as float4(P, 1).
+  if (components == 4 && has(n, "plane")) return has(n, "translated") ? Role::translated_plane : Role::world_plane;
   if (camera_word(n)) return has(n, "translated") ? Role::translated_camera : Role::camera;
   if (has(n, "light") && (has(n, "pos") || has(n, "location"))) return has(n, "translated") ? Role::translated_light : Role::light;
   if (has(n, "translation")) return Role::object_origin;
@@ -505,6 +511,8 @@ std::string_view role_text(Role role) {
     case Role::translated_view_projection: return "the translated-world-to-clip matrix";
     case Role::world_view_projection: return "the local-to-clip matrix";
     case Role::projection: return "the projection (90 degrees)";
+    case Role::world_plane: return "a plane through the object's origin, in absolute world (normal, distance)";
+    case Role::translated_plane: return "that plane in translated world (a variant built for UE 5 reads the view's clipping plane so)";
     case Role::other: break;
   }
   return "a value in [0.25, 1], fixed per name";
@@ -565,6 +573,14 @@ std::vector<double> role_value(Role role, int components, const State& s, uint64
     case Role::translated_view_projection: return mat(multiply(projection(), rotation_only()));
     case Role::world_view_projection: return mat(multiply(projection(), multiply(view(), model())));
     case Role::projection: return mat(projection());
+    // Through the object's origin, facing the fixed direction: the same plane in either space.
+    case Role::world_plane:
+    case Role::translated_plane: {
+      Vec at = role == Role::world_plane ? s.origin : sub(s.origin, s.camera);
+      double length = std::sqrt(s.direction[0] * s.direction[0] + s.direction[1] * s.direction[1] + s.direction[2] * s.direction[2]);
+      Vec normal = {s.direction[0] / length, s.direction[1] / length, s.direction[2] / length};
+      return vec(normal, -(normal[0] * at[0] + normal[1] * at[1] + normal[2] * at[2]));
+    }
     case Role::other: break;
   }
   // Anything else (fog parameters, colours): a value in [0.25, 1] by name, the same in every variant.
@@ -1034,7 +1050,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
   // Fills the input records of a kernel from the states. Leaves marked in `as_float32` get what a
   // float32 kernel of the same type would see (the reference on a variant's inherited inputs), and
   // `rounding` gets, per leaf, the most that made a drawn value move.
-  auto inputs_for = [&](const HarnessKernel& k, bool float64, const std::vector<bool>& as_float32 = {},
+  auto inputs_for = [&](const HarnessKernel& k, int ue_version, bool float64, const std::vector<bool>& as_float32 = {},
                         std::vector<double>* rounding = nullptr) {
     std::vector<double> record(k.in_stride), scratch(k.in_stride);
     // The records, written in place: a float64 kernel reads doubles, a float32 one floats.
@@ -1046,7 +1062,11 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
       Half half;
     };
     std::vector<LeafRole> roles;  // per leaf, once: names are slow to read
-    for (const Leaf& leaf : k.inputs) roles.push_back({input_role(leaf), fnv1a(leaf.name), split_half(leaf.name, leaf.encoding).second});
+    for (const Leaf& leaf : k.inputs) {
+      Role role = input_role(leaf);
+      if (role == Role::world_plane && plane_translated_in(leaf.name, ue_version)) role = Role::translated_plane;
+      roles.push_back({role, fnv1a(leaf.name), split_half(leaf.name, leaf.encoding).second});
+    }
     if (rounding) rounding->assign(k.inputs.size(), 0.0);
     std::vector<int> operand_of(k.inputs.size(), -1);
     if (std::optional<ErrorFreeCall> call = operands.empty() ? std::nullopt : error_free_call(setup.facts, function, k))
@@ -1143,7 +1163,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
   Kernel reference = build(variants.front(), true);
   std::optional<ErrorFreeCall> error_free = reference.problem.empty() ? error_free_call(setup.facts, function, reference.code) : std::nullopt;
   Run ref_run;
-  if (reference.problem.empty() && !error_free) ref_run = run(reference, true, inputs_for(reference.code, true));
+  if (reference.problem.empty() && !error_free) ref_run = run(reference, true, inputs_for(reference.code, variants.front().ue_version, true));
   if (error_free) {
     result.reference = fmt::format("exact: high + low against the operands' exact {} (a double-double on the CPU), the pair canonical",
                                    error_free->operation == "split" ? "value" : error_free->operation == "product" ? "product" : "sum");
@@ -1176,7 +1196,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     auto it = oracles.find(inherited);
     if (it == oracles.end()) {
       Oracle o;
-      o.run = run(reference, true, inputs_for(reference.code, true, inherited, &o.rounding));
+      o.run = run(reference, true, inputs_for(reference.code, variants.front().ue_version, true, inherited, &o.rounding));
       it = oracles.emplace(inherited, std::move(o)).first;
     }
     return it->second.run.problem.empty() ? &it->second : nullptr;
@@ -1440,7 +1460,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     vr.spirv_hash = fnv1a(k.compiled.spirv);
     vr.contraction_losses = contraction_losses(spirv);
     uint64_t kept = 0;
-    Run r = run(k, false, inputs_for(k.code, false), &kept);
+    Run r = run(k, false, inputs_for(k.code, v.ue_version, false), &kept);
     if (!r.problem.empty()) {
       vr.status = "did not run: " + r.problem;
       result.variants.push_back(vr);

@@ -389,11 +389,30 @@ void Analyzer::run() {
 }
 
 void Analyzer::engine_contract_parameters() {
-  std::set<std::string_view> defined;  // a function the file defines itself takes what it declares
+  // A function the file defines itself takes what it declares; the engine's own file defines the
+  // engine's function, whose parameter held an absolute point in UE4 whatever it is called.
+  std::map<std::string_view, std::vector<int>> defined;
   for (int fn : function_order_)
-    if (int name = t_.declarator_name(t_.child_by_field(fn, "declarator")); name >= 0) defined.insert(t_.text(name));
+    if (int name = t_.declarator_name(t_.child_by_field(fn, "declarator")); name >= 0) defined[t_.text(name)].push_back(fn);
+  auto contract = [&](int var) {
+    const Variable& v = m_.variables_[var];
+    if (v.role != Variable::Role::parameter || v.output || v.kind != Kind::unknown || (v.type != "float3" && v.type != "float4") ||
+        d_.named_kind(v.name, Kind::absolute) != Kind::absolute)
+      return;
+    hold(var, Kind::absolute, v.decl);
+  };
   for (const auto& [name, entry] : d_.engine_translated_parameters) {
-    if (defined.count(name)) continue;
+    if (auto own = defined.find(name); own != defined.end()) {
+      if (!context_.engine_file) continue;
+      for (int fn : own->second) {
+        std::vector<int> params;  // in declaration order
+        for (int var = 0; var < static_cast<int>(m_.variables_.size()); ++var)
+          if (m_.variables_[var].role == Variable::Role::parameter && m_.variables_[var].function == fn) params.push_back(var);
+        for (size_t index : entry.indices)
+          if (index < params.size()) contract(params[index]);
+      }
+      continue;
+    }
     for (int call : t_.calls_named(name)) {
       std::vector<int> args = t_.named_children(t_.child_by_field(call, "arguments"));
       std::erase_if(args, [&](int n) { return t_.is(n, "comment"); });
@@ -403,12 +422,7 @@ void Analyzer::engine_contract_parameters() {
       }
       for (size_t index : entry.indices) {
         int var = index < args.size() && t_.is(args[index], "identifier") ? m_.variable_at(args[index]) : -1;
-        if (var < 0) continue;
-        const Variable& v = m_.variables_[var];
-        if (v.role != Variable::Role::parameter || v.output || v.kind != Kind::unknown || (v.type != "float3" && v.type != "float4") ||
-            d_.named_kind(v.name, Kind::absolute) != Kind::absolute)
-          continue;
-        hold(var, Kind::absolute, v.decl);
+        if (var >= 0) contract(var);
       }
     }
   }

@@ -203,6 +203,9 @@ struct ModelContext {
   bool plain_names = true;
   // Unreal code: the engine era its own code is written for (rules/world-space.json "engine").
   std::optional<UnrealEra> era;
+  // One of the engine's own shaders: its definitions of engine functions keep the engine's
+  // contracts (a UE4 lighting function's `WorldPosition` holds an absolute point).
+  bool engine_file = false;
   // The document's last models (of trees this tree's parse edited), and this tree's variant.
   ModelReuse* reuse = nullptr;
   int variant = 0;

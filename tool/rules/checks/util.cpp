@@ -134,6 +134,21 @@ std::string translated_twin(const CheckContext& ctx, int node) {
   if (node < 0) return {};  // a part the parser left out
   const SyntaxTree& t = ctx.tree;
   if (std::string source = translated_source(ctx, node); !source.empty()) return source;
+  // An offset from a point with a twin (`ShadowP * SKY_UNIT_TO_CM + View.SkyPlanetCenterAndViewHeight.xyz`,
+  // `Ray * Depth + View.WorldCameraOrigin`): the same offset from the twin. The other term must be
+  // no position: a sum of two positions is none, and one with the pre-view translation is translated.
+  if (t.is(node, "binary_expression") && t.text(t.child_by_field(node, "operator")) == "+") {
+    int left = t.child_by_field(node, "left"), right = t.child_by_field(node, "right");
+    for (auto [offset, point] : {std::pair{left, right}, std::pair{right, left}}) {
+      Kind k = ctx.world.kind(offset);
+      if (holds_absolute(k) || k == Kind::camera_offset || is_matrix(k)) continue;
+      std::string twin = translated_twin(ctx, point);
+      if (twin.empty()) continue;
+      std::string text(t.text(node));
+      size_t begin = t.at(point).begin - t.at(node).begin;
+      return text.replace(begin, t.at(point).end - t.at(point).begin, twin);
+    }
+  }
   const WorldData::Twins& twins = ctx.world.data().twins;
   // A demotion or marker of a value with a twin (`DFHackToFloat(View.WorldCameraOrigin)`): the
   // twin is a float already.
