@@ -64,7 +64,7 @@ class FloatWorldPosition : public Check {
     // A local with no value of its own may be written by a helper's `out` parameter.
     bool written = v.role == Variable::Role::local && v.init < 0;
     RewritePlan translated = local || written ? chain_.plan_translated(ctx, var, names) : withheld("not a local with a value");
-    worth_moving(translated);
+    review_plan(translated);
     if (translated.blocker.empty()) {
       Fix* fix = ctx.fix(f, translated_kind(translated, "translated"), chain_vars(v.name, translated), translated.edits);
       if (fix) fix->notes = translated.notes;
@@ -119,7 +119,7 @@ class FloatWorldPosition : public Check {
     if (var < 0) return;
     RewritePlan plan;
     std::string why = move(var, plan);
-    if (why.empty()) worth_moving(plan), why = plan.blocker;
+    if (why.empty()) review_plan(plan), why = plan.blocker;
     if (!why.empty()) {
       f.withheld.push_back("translated world: " + why);
       return;
@@ -135,10 +135,15 @@ class FloatWorldPosition : public Check {
     return !plan.helpers.empty() ? "translated-helpers" : !plan.notes.empty() ? "translated-host" : kind;
   }
 
-  // A chain whose every use needs the absolute point back gains nothing from moving.
-  static void worth_moving(RewritePlan& plan) {
+  // A chain whose every use needs the absolute point back gains nothing from moving. One that
+  // reads the pass's uniforms translated and reads absolute values back ties the two to one
+  // pre-view translation, the view's: the note says so.
+  static void review_plan(RewritePlan& plan) {
     if (plan.blocker.empty() && plan.bridged > 0 && plan.followed == 0)
       plan.blocker = "every use of it needs the absolute position (nothing downstream takes a translated one)";
+    if (plan.blocker.empty() && plan.bridged > 0 && !plan.notes.empty())
+      plan.notes.push_back("the absolute values read back subtract `PrimaryView.PreViewTranslation`: the pass must bind the View uniform "
+                           "buffer and set its translated uniforms with that view's pre-view translation");
   }
 
   // The words of a translated fix: the names, the header functions it changes, the bridges.
@@ -167,7 +172,7 @@ class FloatWorldPosition : public Check {
     RewritePlan plan;
     std::string new_name = translated_name(h.name);
     std::string why = chain_.translate_function(ctx, fn, new_name, names, plan, 0);
-    if (why.empty()) worth_moving(plan), why = plan.blocker;
+    if (why.empty()) review_plan(plan), why = plan.blocker;
     if (!why.empty()) {
       f.withheld.push_back("translated world: " + why);
       return;
