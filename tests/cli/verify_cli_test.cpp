@@ -310,6 +310,10 @@ TEST(VerifyCli, TheWholeCorpusIsVerified) {
       // in the space of the engine it is built for, so the port that drops the subtraction clips
       // where UE4 did, only closer (a plane filled alike for both would put it off by the camera).
       if (f["function"] == "ClippedVS" && v["variant"] == "fixed") EXPECT_LT(v["maxUlps"].get<double>(), 1e6) << v.dump();
+      // So is the translucency volume's corner: the port that leaves the voxel's point as it is
+      // (translated in UE 5) measures its light vector where UE4 did, only closer (filled alike, it
+      // is off by the camera's position: 2.6e7 ULPs).
+      if (f["function"] == "InjectDirectionalPS" && v["variant"] == "fixed") EXPECT_LT(v["maxUlps"].get<double>(), 1e5) << v.dump();
       // Culling returns a decision: counted, never measured in ULPs.
       if (f["function"] == "IsInstanceVisible" && v["measured"].get<bool>()) EXPECT_EQ(v["maxUlps"].get<double>(), 0.0);
     }

@@ -355,9 +355,15 @@ enum class Role { camera, translated_camera, pre_view_translation, world_positio
                   view, translated_view, view_projection, translated_view_projection, world_view_projection, projection,
                   world_plane, translated_plane, other };
 
-// Planes the engine hands over in translated world from UE 5.0 under their UE4 name (rule data
-// "translated-planes" of lwc-large-world-member): a variant built for UE 5 reads them translated.
-bool plane_translated_in(const std::string& name, int ue_version) { return ue_version >= 500 && name == "GlobalClippingPlane"; }
+// View members the engine hands over in translated world from UE 5.0 under their UE4 name
+// (rules/world-space.json engine "view-members-translated-in-place"): their role in a variant
+// built for `ue_version`, absolute before UE 5.0 and translated from it; none for another name.
+std::optional<Role> in_place_role(const std::string& name, int ue_version) {
+  bool ue5 = ue_version >= 500;
+  if (name == "GlobalClippingPlane") return ue5 ? Role::translated_plane : Role::world_plane;
+  if (name == "TranslucencyLightingVolumeMin") return ue5 ? Role::translated_position : Role::world_position;
+  return std::nullopt;
+}
 
 Role role_of(const std::string& raw, int components) {
   std::string n = lower(raw);
@@ -1064,7 +1070,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     std::vector<LeafRole> roles;  // per leaf, once: names are slow to read
     for (const Leaf& leaf : k.inputs) {
       Role role = input_role(leaf);
-      if (role == Role::world_plane && plane_translated_in(leaf.name, ue_version)) role = Role::translated_plane;
+      if (std::optional<Role> in_place = in_place_role(leaf.name.substr(0, leaf.name.find('[')), ue_version)) role = *in_place;
       roles.push_back({role, fnv1a(leaf.name), split_half(leaf.name, leaf.encoding).second});
     }
     if (rounding) rounding->assign(k.inputs.size(), 0.0);

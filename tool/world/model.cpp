@@ -252,6 +252,11 @@ WorldData WorldData::load(const nlohmann::json& ws, const nlohmann::json& extra_
     std::vector<size_t> indices = e.at(0).is_array() ? e.at(0).get<std::vector<size_t>>() : std::vector<size_t>{e.at(0).get<size_t>()};
     d.engine_translated_parameters[name] = {std::move(indices), *from};
   }
+  for (const auto& [name, e] : ws.at("engine").at("view-members-translated-in-place").items()) {
+    std::optional<UnrealEra> from = parse_unreal_era(e.at(1).get<std::string>());
+    if (!from) throw std::runtime_error("world-space.json: view-members-translated-in-place: bad era for " + name);
+    d.view_translated_in_place[name] = {e.at(0).get<std::string>() == "plane", *from};
+  }
   d.engine_objects = ws.at("engine").at("objects").get<std::map<std::string, std::string>>();
   d.uniform_buffer = ws.at("engine").at("uniform-buffer").get<std::array<std::string, 2>>();
   const auto& names = ws.at("holder-names");

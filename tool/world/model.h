@@ -96,6 +96,12 @@ struct WorldData {
     UnrealEra from;  // the first era that takes it so
   };
   std::map<std::string, TranslatedParameter> engine_translated_parameters;
+  // View members UE5 hands over in translated world under their UE4 name (a plane or a position).
+  struct TranslatedInPlace {
+    bool plane;
+    UnrealEra from;
+  };
+  std::map<std::string, TranslatedInPlace> view_translated_in_place;
   std::array<std::string, 2> uniform_buffer;  // UE4's primitive uniform buffer, and the call UE5 reads it through
   const EngineMember* engine_member(std::string_view owner, std::string_view member) const;
 

@@ -135,15 +135,10 @@ class FloatWorldPosition : public Check {
     return !plan.helpers.empty() ? "translated-helpers" : !plan.notes.empty() ? "translated-host" : kind;
   }
 
-  // A chain whose every use needs the absolute point back gains nothing from moving. One that
-  // reads the pass's uniforms translated and reads absolute values back ties the two to one
-  // pre-view translation, the view's: the note says so.
+  // A chain whose every use needs the absolute point back gains nothing from moving.
   static void review_plan(RewritePlan& plan) {
     if (plan.blocker.empty() && plan.bridged > 0 && plan.followed == 0)
       plan.blocker = "every use of it needs the absolute position (nothing downstream takes a translated one)";
-    if (plan.blocker.empty() && plan.bridged > 0 && !plan.notes.empty())
-      plan.notes.push_back("the absolute values read back subtract `PrimaryView.PreViewTranslation`: the pass must bind the View uniform "
-                           "buffer and set its translated uniforms with that view's pre-view translation");
   }
 
   // The words of a translated fix: the names, the header functions it changes, the bridges.

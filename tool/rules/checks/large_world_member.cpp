@@ -17,8 +17,7 @@ class LargeWorldMember : public Check {
  public:
   explicit LargeWorldMember(const RuleInfo& rule)
       : lwc_calls_(string_list(rule.data, "lwc-calls")),
-        float_calls_(string_list(rule.data, "float-calls")),
-        translated_planes_(string_list(rule.data, "translated-planes")) {}
+        float_calls_(string_list(rule.data, "float-calls")) {}
 
   void run(const CheckContext& ctx) const override {
     if (!ctx.unreal) return;
@@ -272,7 +271,7 @@ class LargeWorldMember : public Check {
 
   // `dot(View.GlobalClippingPlane, float4(P - View.PreViewTranslation, 1))`: a translated point
   // made absolute only to meet a plane that UE 5.0 hands over translated under the same name
-  // (rule data "translated-planes"). The point and the plane, where the use is that subtraction;
+  // (rules/world-space.json engine "view-members-translated-in-place"). The point and the plane, where the use is that subtraction;
   // else -1.
   std::pair<int, std::string> plane_point(const CheckContext& ctx, const Use& use) const {
     const SyntaxTree& t = ctx.tree;
@@ -286,7 +285,7 @@ class LargeWorldMember : public Check {
     if (!t.is(list, "argument_list") || call_name(t, t.at(list).parent) != "dot") return {-1, ""};
     for (int other : call_arguments(t, t.at(list).parent)) {
       Member m = member_of(t, other);
-      if (!m.empty() && matches_any(translated_planes_, m.member)) return {t.child_by_field(difference, "left"), m.object + "." + m.member};
+      if (const auto* e = view_member_translated_in_place(ctx, other); e && e->plane) return {t.child_by_field(difference, "left"), m.object + "." + m.member};
     }
     return {-1, ""};
   }
@@ -354,7 +353,6 @@ class LargeWorldMember : public Check {
   }
 
   std::vector<std::string> lwc_calls_, float_calls_;
-  std::vector<std::string> translated_planes_;  // planes UE 5.0 hands over translated, same name
 };
 
 }  // namespace

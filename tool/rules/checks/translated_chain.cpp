@@ -51,6 +51,8 @@ std::string TranslatedChain::move_local(const CheckContext& ctx, const DeclaredN
 std::string TranslatedChain::translate_value(const CheckContext& ctx, const DeclaredNames& names, int value, RewritePlan& plan, int depth) const {
   const SyntaxTree& t = ctx.tree;
   while (t.is(value, "parenthesized_expression")) value = t.named_child(value);
+  // Built from a view member UE5 hands over translated: translated already in the target era.
+  if (translated_in_target(ctx, value)) return {};
   // A camera position or engine function with a translated twin.
   if (std::string twin = translated_twin(ctx, value); !twin.empty() && ctx.world.kind(value) == Kind::absolute) {
     plan.edits.push_back({t.span(value), twin});

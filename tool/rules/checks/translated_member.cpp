@@ -72,6 +72,12 @@ class TranslatedMember : public Check {
       int other = t.child_by_field(parent, "left") == use ? t.child_by_field(parent, "right") : t.child_by_field(parent, "left");
       Kind kind = ctx.world.kind(other);
       if (kind == Kind::unknown && t.is(other, "identifier")) kind = ctx.world.data().named_kind(t.text(other), Kind::absolute) == Kind::translated ? Kind::translated : kind;
+      // Built from a view member UE5 hands over translated under its UE4 name: UE4 had both sides
+      // absolute, UE5 has both translated.
+      if (translated_in_target(ctx, other)) {
+        ctx.fix(f, "twin-in-place", vars, {{t.span(id), twin}});
+        return;
+      }
       if (kind == Kind::translated) {
         ctx.fix(f, "twin", vars, {{t.span(id), twin}});
         return;

@@ -27,6 +27,9 @@ class TranslatedParameter : public Check {
         // called. A function whose own declaration says translated is judged by what is known.
         Kind kind = ctx.world.kind(argument);
         if (kind != Kind::absolute && !(ue4_code && !declared && kind == Kind::unknown && !named_otherwise(ctx, argument))) continue;
+        // Built from a view member UE5 hands over translated (`View.TranslucencyLightingVolumeMin`):
+        // in the target era the point is translated already, as the function then takes it.
+        if (ue4_code && translated_in_target(ctx, argument)) continue;
         std::string argument_text = shortened(t.text(argument));
         Vars vars{{"callee", std::string(call_name(t, call))},
                   {"argument", argument_text},

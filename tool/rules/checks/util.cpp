@@ -130,6 +130,42 @@ std::string translated_source(const CheckContext& ctx, int node) {
 }
 }  // namespace
 
+const WorldData::TranslatedInPlace* view_member_translated_in_place(const CheckContext& ctx, int node) {
+  if (!ctx.unreal || ctx.unreal->era == UnrealEra::ue4 || ctx.world.code_era() != UnrealEra::ue4) return nullptr;
+  const SyntaxTree& t = ctx.tree;
+  while (t.is(node, "subscript_expression")) node = t.child_by_field(node, "argument");  // `Min[CascadeIndex]`
+  Member m = member_of(t, node);
+  if (m.object != "View" && m.object != "ResolvedView" && m.object != "PrimaryView") return nullptr;
+  const auto& table = ctx.world.data().view_translated_in_place;
+  auto it = table.find(m.member);
+  if (it == table.end() || static_cast<int>(ctx.unreal->era) < static_cast<int>(it->second.from)) return nullptr;
+  return &it->second;
+}
+
+bool translated_in_target(const CheckContext& ctx, int node, int depth) {
+  const SyntaxTree& t = ctx.tree;
+  if (node < 0 || depth > 3) return false;
+  for (int id = node; id < static_cast<int>(t.nodes.size()) && t.at(id).begin < t.at(node).end; ++id) {
+    if (t.is(id, "field_expression"))
+      if (const auto* e = view_member_translated_in_place(ctx, id); e && !e->plane) return true;
+    if (!t.is(id, "identifier") || (id != node && t.at(id).parent >= 0 && t.is(t.at(id).parent, "field_expression") &&
+                                    t.child_by_field(t.at(id).parent, "field") == id))
+      continue;
+    // A local: what it was given, and what is stored into it.
+    int var = ctx.world.variable_at(id);
+    if (var < 0 || ctx.world.variables()[static_cast<size_t>(var)].role != Variable::Role::local) continue;
+    const Variable& v = ctx.world.variables()[static_cast<size_t>(var)];
+    if (v.init >= 0 && translated_in_target(ctx, v.init, depth + 1)) return true;
+    for (int use : ctx.world.uses(var)) {
+      int parent = t.at(use).parent;
+      if (t.is(parent, "assignment_expression") && t.child_by_field(parent, "left") == use &&
+          translated_in_target(ctx, t.child_by_field(parent, "right"), depth + 1))
+        return true;
+    }
+  }
+  return false;
+}
+
 std::string translated_twin(const CheckContext& ctx, int node) {
   if (node < 0) return {};  // a part the parser left out
   const SyntaxTree& t = ctx.tree;

@@ -61,6 +61,13 @@ const WorldData::EngineMember* engine_member_at(const CheckContext& ctx, int nod
 // (`View.WorldCameraOrigin` -> `PrimaryView.TranslatedWorldCameraOrigin`,
 // `GetWorldPosition(P)` -> `GetTranslatedWorldPosition(P)`), or "" when it has none.
 std::string translated_twin(const CheckContext& ctx, int node);
+// A view member UE5 hands over in translated world under its UE4 name (rules/world-space.json
+// engine "view-members-translated-in-place"), read by UE4 code that moves to an era where it is
+// so; else null.
+const WorldData::TranslatedInPlace* view_member_translated_in_place(const CheckContext& ctx, int node);
+// A value that UE4 code builds from such a member's position (directly, or through locals): in
+// the target era it is a translated point already, as the engine's functions there take it.
+bool translated_in_target(const CheckContext& ctx, int node, int depth = 0);
 // An engine member or global that UE 5.0 replaced by its translated-world twin (a light's
 // position, a shadow matrix), read under its UE4 name: the twin as text
 // (`DeferredLightUniforms.TranslatedWorldPosition`), or "". translated_twin() offers these only in
