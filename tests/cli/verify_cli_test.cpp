@@ -69,6 +69,28 @@ TEST(VerifyCli, APathWithNoShaderCodeIsAnError) {
   EXPECT_NE(empty.out.find("verify-nothing: no shader file in it"), std::string::npos) << empty.out;
 }
 
+// An absolute position written out in float32 is as far from its reference as its own spacing, at
+// its own size, whatever the camera distance: the miss says so, and the exact port is no worse in
+// ULPs than the UE4 original it replaces.
+TEST(VerifyCli, AnAbsoluteResultIsJudgedAtTheSpacingOfItsOwnSize) {
+  std::string dir = test::scratch("verify-absolute-result");
+  test::write(dir + "/.lwcport.json", R"({"unreal": "5.4"})");
+  test::write(dir + "/a.usf",
+              "#include \"/Engine/Private/Common.ush\"\n"
+              "void AbsVS(float3 LocalPosition : ATTRIBUTE0, out float4 OutPosition : SV_POSITION, out float3 OutAbsolute : TEXCOORD0)\n{\n"
+              "\tfloat3 TranslatedWorldPosition = LocalPosition + ResolvedView.TranslatedWorldCameraOrigin;\n"
+              "\tOutAbsolute = TranslatedWorldPosition - ResolvedView.PreViewTranslation;\n"
+              "\tOutPosition = mul(float4(TranslatedWorldPosition, 1), ResolvedView.TranslatedWorldToClip);\n}\n");
+  test::Run text = test::run(test::binary() + " verify " + dir + "/a.usf --fail-on none 2>&1");
+  EXPECT_NE(text.out.find("; the result itself is "), std::string::npos) << text.out;
+  nlohmann::json j = nlohmann::json::parse(test::run(test::binary() + " verify " + dir + "/a.usf --format json --fail-on none").out);
+  ASSERT_EQ(j["functions"].size(), 1u) << j.dump();
+  std::map<std::string, nlohmann::json> by;
+  for (const auto& v : j["functions"][0]["variants"]) by[v["variant"].get<std::string>()] = v;
+  ASSERT_TRUE(by.count("original (float32)") && by.count("fixed")) << j.dump();
+  EXPECT_LT(by["fixed"]["maxUlps"].get<double>(), by["original (float32)"]["maxUlps"].get<double>());
+}
+
 // A compile error in one function leaves the file's other functions verified; the error is told
 // with the file's own line numbers; a file where nothing runs at all fails the run.
 TEST(VerifyCli, AFunctionThatCompilesOnItsOwnIsVerifiedBesideOneThatDoesNot) {

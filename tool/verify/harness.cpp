@@ -1278,6 +1278,9 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
     // Per case (harness_case_names), outside the edge cases: the worst score, its error in the
     // output's own terms, and how far the object was from the camera there; -1 where none was judged.
     std::vector<double> case_score = std::vector<double>(cases().size(), -1), case_error = case_score, case_distance = case_score;
+    // Per case, the largest component of the worst world-unit output as the variant holds it (its
+    // own frame): an absolute position cannot be closer than half its own float32 spacing.
+    std::vector<double> case_magnitude = std::vector<double>(cases().size(), -1);
     bool world = false;  // some judged output is in world units (the case errors are cm)
   };
   std::optional<Comparison> original_total;  // the original against the reference, per case
@@ -1318,6 +1321,8 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
         std::vector<double> got = decode(leaf, &r.out[i * k.code.out_stride]);
         std::vector<double> want = decode(ref_leaf, &ref.out[i * reference.code.out_stride]);
         if (got.size() != want.size()) continue;
+        double magnitude = 0;  // in the variant's own frame, before any move
+        for (int c = 0; c < 3 && c < static_cast<int>(got.size()); ++c) magnitude = std::max(magnitude, std::abs(got[c]));
         if (translated != ref_translated)  // move the variant's value into the reference's frame
           for (int c = 0; c < 3 && c < static_cast<int>(got.size()); ++c) got[c] += (translated ? 1 : -1) * s.camera[c];
         Verdict v = judge(got, want, s, integer, clip, world);
@@ -1334,6 +1339,7 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
         if (integer) cmp.mismatches += v.bad;
         if (size_t c = i % cases().size(); !s.edge && v.what.empty() && v.score > cmp.case_score[c]) {
           cmp.case_score[c] = v.score, cmp.case_error[c] = v.error, cmp.case_distance[c] = distance(s);
+          cmp.case_magnitude[c] = world && !clip ? magnitude : -1;
           cmp.world |= world || clip;
         }
         if ((world || clip) && !s.non_finite && !integer) cmp.errors.push_back(v.error);
@@ -1410,6 +1416,15 @@ FunctionResult verify_function(WorkerDevice& device, const DriverProbes& probes,
         std::frexp(own.case_distance[c], &exponent);
         text += fmt::format(", the object {:.3g} cm from the camera, where float32 values are {:.3g} cm apart", own.case_distance[c],
                             std::ldexp(1.0, exponent - 24));
+        // A result held as a large float32 (an absolute position) has the spacing of its own
+        // magnitude, whatever the variant computed it from: say so where it is the wider one.
+        if (own.case_magnitude[c] > own.case_distance[c] && own.case_magnitude[c] < INFINITY) {
+          int result_exponent;
+          std::frexp(own.case_magnitude[c], &result_exponent);
+          if (result_exponent > exponent)
+            text += fmt::format("; the result itself is {:.3g} cm from the origin in float32, where values are {:.3g} cm apart",
+                                own.case_magnitude[c], std::ldexp(1.0, result_exponent - 24));
+        }
       }
       missed.push_back(text + (original.case_score[c] >= 0 ? fmt::format("; the original {})", amount(original, c)) : ")"));
     }
