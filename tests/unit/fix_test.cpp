@@ -42,6 +42,22 @@ TEST(ChooseFixes, SkipsUnsafeUnlessAskedAndAnythingOverlappingAnEarlierChoice) {
   EXPECT_EQ(choose_fixes(inserts, false).size(), 1u);
 }
 
+// A chain's fix (many edits) goes before a one-line fix it overlaps, whatever their order in the
+// file: the chain's rewrite covers that line too, and taking the line's fix first would leave the
+// chain for a later round that may no longer find it.
+TEST(ChooseFixes, AWholeChainGoesBeforeTheOneLineFixesItOverlaps) {
+  std::vector<Finding> findings = {with_fix({10, 14}, Applicability::safe), with_fix({0, 2}, Applicability::unsafe)};
+  findings[1].fixes[0].edits.push_back({{11, 13}, "y"});
+  findings[1].fixes[0].edits.push_back({{20, 22}, "z"});
+  std::vector<const Fix*> chosen = choose_fixes(findings, true);
+  ASSERT_EQ(chosen.size(), 1u);
+  EXPECT_EQ(chosen[0]->edits.size(), 3u);
+  // Without unsafe fixes the chain is not a candidate, and the line's own fix stands.
+  chosen = choose_fixes(findings, false);
+  ASSERT_EQ(chosen.size(), 1u);
+  EXPECT_EQ(chosen[0]->edits.size(), 1u);
+}
+
 TEST(UnifiedDiff, HunksWithContextAndTheMissingFinalNewline) {
   EXPECT_EQ(unified_diff("f", "same\n", "same\n"), "");
   std::string before, after;

@@ -23,7 +23,16 @@ bool allowed(const Fix& fix, bool unsafe) { return fix.applicability == Applicab
 std::vector<const Fix*> choose_fixes(const std::vector<Finding>& findings, bool unsafe) {
   std::vector<const Fix*> chosen;
   std::vector<const Edit*> taken;
-  for (const Finding& f : findings) {
+  // A fix that moves a whole chain goes before the one-line fixes it may overlap: they would make
+  // it clash, and the next round's analysis of their text may no longer find the chain.
+  std::vector<const Finding*> order;
+  for (const Finding& f : findings) order.push_back(&f);
+  std::stable_sort(order.begin(), order.end(), [](const Finding* a, const Finding* b) {
+    auto size = [](const Finding* f) { return f->fixes.empty() ? size_t{0} : f->fixes.front().edits.size(); };
+    return size(a) > size(b);
+  });
+  for (const Finding* finding : order) {
+    const Finding& f = *finding;
     if (f.fixes.empty() || !allowed(f.fixes.front(), unsafe)) continue;
     const Fix& fix = f.fixes.front();
     bool clash = false;
