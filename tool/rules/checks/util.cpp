@@ -145,6 +145,8 @@ const WorldData::TranslatedInPlace* view_member_translated_in_place(const CheckC
 bool translated_in_target(const CheckContext& ctx, int node, int depth) {
   const SyntaxTree& t = ctx.tree;
   if (node < 0 || depth > 3) return false;
+  // Only UE4 code moving to UE5 reads such members as UE4 did: nothing to look for otherwise.
+  if (!ctx.unreal || ctx.unreal->era == UnrealEra::ue4 || ctx.world.code_era() != UnrealEra::ue4) return false;
   for (int id = node; id < static_cast<int>(t.nodes.size()) && t.at(id).begin < t.at(node).end; ++id) {
     if (t.is(id, "field_expression"))
       if (const auto* e = view_member_translated_in_place(ctx, id); e && !e->plane) return true;
