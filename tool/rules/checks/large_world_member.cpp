@@ -255,8 +255,7 @@ class LargeWorldMember : public Check {
       int inner = side;
       while (t.is(inner, "parenthesized_expression")) inner = t.named_child(inner);
       if (int mul = mul_call(t, inner); mul >= 0) transform = mul;
-      Member m = member_of(t, is_field_of(t, inner, t.child_by_field(inner, "argument"), "xyz") ? t.child_by_field(inner, "argument") : inner);
-      if (m.member == "PreViewTranslation") translation = is_field_of(t, inner, t.child_by_field(inner, "argument"), "xyz") ? t.child_by_field(inner, "argument") : inner;
+      if (member_of(t, without_xyz(t, inner)).member == "PreViewTranslation") translation = without_xyz(t, inner);
     }
     if (transform < 0 || translation < 0) return {-1, ""};
     auto args = call_arguments(t, transform);
@@ -271,13 +270,13 @@ class LargeWorldMember : public Check {
 
   // `dot(View.GlobalClippingPlane, float4(P - View.PreViewTranslation, 1))`: a translated point
   // made absolute only to meet a plane that UE 5.0 hands over translated under the same name
-  // (rules/world-space.json engine "view-members-translated-in-place"). The point and the plane, where the use is that subtraction;
-  // else -1.
+  // (rules/world-space.json engine "view-members-translated-in-place"). The point and the plane,
+  // where the use is that subtraction; else -1.
   std::pair<int, std::string> plane_point(const CheckContext& ctx, const Use& use) const {
     const SyntaxTree& t = ctx.tree;
     int difference = use.parent;
     if (!t.is(difference, "binary_expression") || t.text(t.child_by_field(difference, "operator")) != "-" ||
-        t.child_by_field(difference, "right") != use.node || !ctx.unreal || ctx.unreal->era == UnrealEra::ue4)
+        t.child_by_field(difference, "right") != use.node)
       return {-1, ""};
     int homogeneous = t.at(difference).parent;
     if (!t.is(homogeneous, "argument_list") || position_of_homogeneous(t, t.at(homogeneous).parent).empty()) return {-1, ""};
@@ -323,7 +322,7 @@ class LargeWorldMember : public Check {
   bool large_world_value(const CheckContext& ctx, int node, UnrealEra era) const {
     const SyntaxTree& t = ctx.tree;
     while (t.is(node, "parenthesized_expression")) node = t.named_child(node);
-    if (t.is(node, "field_expression") && t.text(t.child_by_field(node, "field")) == "xyz") node = t.child_by_field(node, "argument");
+    node = without_xyz(t, node);
     if (t.is(node, "identifier")) {
       int var = ctx.world.variable_at(node);
       return var >= 0 && large_world_type(ctx.world.variables()[static_cast<size_t>(var)].type);
@@ -342,7 +341,7 @@ class LargeWorldMember : public Check {
   static bool translated_from_ue5(const CheckContext& ctx, int node) {
     const SyntaxTree& t = ctx.tree;
     while (t.is(node, "parenthesized_expression")) node = t.named_child(node);
-    if (is_field_of(t, node, t.child_by_field(node, "argument"), "xyz")) node = t.child_by_field(node, "argument");
+    node = without_xyz(t, node);
     const WorldData::EngineMember* e = engine_member_at(ctx, node);
     return e && e->ue5_kind == Kind::translated && ctx.world.code_era() == UnrealEra::ue4 && ctx.unreal && ctx.unreal->era != UnrealEra::ue4;
   }

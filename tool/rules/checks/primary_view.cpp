@@ -90,7 +90,7 @@ class PrimaryView : public Check {
   std::string view_position(const CheckContext& ctx, int n) const {
     const SyntaxTree& t = ctx.tree;
     while (t.is(n, "parenthesized_expression")) n = t.named_child(n);
-    if (is_field_of(t, n, t.child_by_field(n, "argument"), "xyz")) n = t.child_by_field(n, "argument");
+    n = without_xyz(t, n);
     int base = t.is(n, "field_expression") ? t.child_by_field(n, "argument") : -1;
     if (base < 0 || !t.is(base, "identifier") || !matches_any(objects_, t.text(base))) return {};
     int var = ctx.world.variable_at(base);

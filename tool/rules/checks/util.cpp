@@ -65,6 +65,11 @@ bool is_field_of(const SyntaxTree& tree, int node, int base, std::string_view na
   return field >= 0 && tree.text(field) == name;
 }
 
+int without_xyz(const SyntaxTree& tree, int node) {
+  int base = tree.is(node, "field_expression") ? tree.child_by_field(node, "argument") : -1;
+  return is_field_of(tree, node, base, "xyz") ? base : node;
+}
+
 bool read_as_coordinates(const SyntaxTree& tree, int node) {
   int parent = tree.at(node).parent;
   int field = tree.is(parent, "field_expression") && tree.child_by_field(parent, "argument") == node ? tree.child_by_field(parent, "field") : -1;
@@ -118,11 +123,8 @@ std::string translated_source(const CheckContext& ctx, int node) {
     left = call_arguments(t, value)[0], right = call_arguments(t, value)[1];
   }
   if (left < 0 || right < 0) return {};
-  right = undemoted(t, right);
-  if (int base = t.child_by_field(right, "argument"); is_field_of(t, right, base, "xyz")) right = base;
-  if (member_of(t, right).member != "PreViewTranslation") return {};
-  int point = left;
-  if (int base = t.child_by_field(point, "argument"); is_field_of(t, point, base, "xyz")) point = base;
+  if (member_of(t, without_xyz(t, undemoted(t, right))).member != "PreViewTranslation") return {};
+  int point = without_xyz(t, left);
   // Read later through the local, the point must still hold what it held then.
   int source = t.is(point, "identifier") ? ctx.world.variable_at(point) : -1;
   if (source < 0 || (local && stored_again(ctx, source))) return {};

@@ -40,6 +40,8 @@ size_t function_arity(const SyntaxTree& tree, int definition);
 int parameter_variable(const CheckContext& ctx, int definition, size_t index);
 // True when `node` is `base.name`: that member or swizzle of that expression.
 bool is_field_of(const SyntaxTree& tree, int node, int base, std::string_view name);
+// A 3-vector's own value: the node without its trailing `.xyz` (`View.PreViewTranslation.xyz`).
+int without_xyz(const SyntaxTree& tree, int node);
 // True when `node` is read one or two coordinates at a time (`P.z`, `P.xy`): a height, a clamp,
 // where the absolute value is what the code wants.
 bool read_as_coordinates(const SyntaxTree& tree, int node);
