@@ -89,6 +89,28 @@ TEST(Variants, ASuppressionUsedInOneArmIsNotUnused) {
   EXPECT_EQ(count(findings, "lwc-primary-view"), 2u);
 }
 
+// An arm the engine never builds may not parse (a `;` missing before `#endif`): only the variant
+// that keeps it meets the error, so the variants that read the code cleanly decide the rewrite,
+// unless the broken arm spells a name the rewrite takes away.
+TEST(Variants, AnArmThatDoesNotParseLeavesTheRewritesAroundIt) {
+  auto fog = [](const std::string& broken_arm) {
+    return "float3 Fog(float3 P)\n{\n\tfloat3 ToCamera = P - View.WorldCameraOrigin;\n#if USE_EXPOSURE\n"
+           "\tconst float Exposure = 1.0f;\n#else\n\tconst float Exposure = " + broken_arm + "\n#endif\n"
+           "\treturn ToCamera * Exposure;\n}\n";
+  };
+  auto found = test::lint_text(fog("2.0f"), Lang::hlsl);
+  ASSERT_EQ(count(found, "lwc-primary-view"), 1u);
+  ASSERT_EQ(count(found, "lwc-input"), 1u);
+  for (const Finding& f : found)
+    if (f.rule == "lwc-primary-view") EXPECT_EQ(f.fixes.size(), 1u);
+  for (const Finding& f : test::lint_text(fog("View.PreExposure"), Lang::hlsl)) {
+    if (f.rule != "lwc-primary-view") continue;
+    EXPECT_TRUE(f.fixes.empty());
+    ASSERT_FALSE(f.withheld.empty());
+    EXPECT_NE(f.withheld.back().find("could not be parsed"), std::string::npos);
+  }
+}
+
 TEST(SyntaxErrors, OnlyTheBrokenDeclarationLosesItsRewrites) {
   std::string code =
       "float3 Broken(float3 P) { return P - View.WorldCameraOrigin +* ; }\n"

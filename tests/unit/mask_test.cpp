@@ -166,6 +166,28 @@ TEST(Conditionals, ArmsThatOpenBlocksOfTheirOwnAreResolved) {
   for (const Variant& x : v) EXPECT_EQ(x.errors, 0) << x.masked;
 }
 
+// A group is weighed with one arm of each group nested in it: the nested group is read per variant,
+// the one around it by the grammar. Where one arm only is ever kept (`#if 0` / `#else`), only the
+// dead arm and the directives are out of bounds for rewrites.
+TEST(Conditionals, OnlyTheNestedGroupWhoseArmsOpenBlocksIsResolved) {
+  std::string code = "#if OUTER\n#if A\nvoid F(int a) {\n#else\nvoid F() {\n#endif\n\tfloat x = 1;\n}\n#endif\n";
+  MaskResult m = mask_source(code, Lang::hlsl, {nullptr, 0});
+  ASSERT_EQ(m.resolved_conditionals.size(), 1u);
+  EXPECT_EQ(m.resolved_conditionals[0].begin, code.find("#if A"));
+  EXPECT_EQ(m.resolved_conditionals[0].end, code.find("\n\tfloat x"));
+  ASSERT_EQ(m.kept_arms.size(), 1u);
+  EXPECT_NE(code.substr(m.kept_arms[0].begin, m.kept_arms[0].end - m.kept_arms[0].begin).find("int a"), std::string::npos);
+  for (const Variant& x : variants(code)) EXPECT_EQ(x.errors, 0) << x.masked;
+
+  std::string dead = "float F(float a) {\n#if 0\n\ta = (a\n#else\n\ta = a * 2;\n#endif\n\treturn a;\n}\n";
+  MaskResult d = mask_source(dead, Lang::hlsl, {nullptr, 0});
+  EXPECT_EQ(d.variants, 1);
+  ASSERT_EQ(d.resolved_conditionals.size(), 2u);
+  size_t live = dead.find("a * 2");
+  for (Span r : d.resolved_conditionals) EXPECT_FALSE(r.begin <= live && live < r.end);
+  EXPECT_TRUE(d.kept_arms.empty());
+}
+
 // `#define X` with blanks after it (or a comment blanked there): the grammar took the next line as
 // its value and lost the group's `#endif`. The line now breaks before the blanks; every other byte,
 // the next line's `#endif` included, stays where it was. Both languages, LF and CRLF.

@@ -100,10 +100,19 @@ ConditionalPlan plan_conditionals(std::string_view text, const std::vector<Token
     bool boundary = before.empty() || before == ";" || before == "{" || before == "}";
     return boundary && depth[i] == 0 && !in_init[i] && code_after(i) != "else";
   };
-  auto balanced = [&](size_t from, size_t to) {
+  // Per token: the deepest group in whose second or later arm it lies (-1: none). An arm is
+  // weighed with one arm of each group nested in it, the first, as one variant would see it:
+  // two arms that each open a function body are one brace, not two.
+  std::vector<int> later_arm(n, -1);
+  for (const Group& g : groups) {
+    if (!g.closed || g.nesting > kMaxResolvedNesting) continue;
+    for (size_t i = g.directives[1] + 1; i < g.directives.back(); ++i)
+      later_arm[i] = std::max(later_arm[i], static_cast<int>(g.nesting));
+  }
+  auto balanced = [&](size_t from, size_t to, size_t nesting) {
     int paren = 0, bracket = 0, brace = 0;
     for (size_t i = from + 1; i < to; ++i) {
-      if (tokens[i].kind != Tok::punct) continue;
+      if (tokens[i].kind != Tok::punct || later_arm[i] > static_cast<int>(nesting)) continue;
       std::string_view w = word(text, tokens[i]);
       paren += w == "(" ? 1 : w == ")" ? -1 : 0;
       bracket += w == "[" ? 1 : w == "]" ? -1 : 0;
@@ -117,7 +126,7 @@ ConditionalPlan plan_conditionals(std::string_view text, const std::vector<Token
     if (!g.closed || g.nesting >= kMaxResolvedNesting) continue;
     bool resolve = std::find(g.zero.begin(), g.zero.end(), true) != g.zero.end();
     for (size_t k = 0; k < g.directives.size() && !resolve; ++k) resolve = !readable_at(g.directives[k]);
-    for (size_t k = 0; k + 1 < g.directives.size() && !resolve; ++k) resolve = !balanced(g.directives[k], g.directives[k + 1]);
+    for (size_t k = 0; k + 1 < g.directives.size() && !resolve; ++k) resolve = !balanced(g.directives[k], g.directives[k + 1], g.nesting);
     if (!resolve) continue;
     size_t arms = g.directives.size() - 1;
     std::vector<size_t> choices;
@@ -131,7 +140,15 @@ ConditionalPlan plan_conditionals(std::string_view text, const std::vector<Token
     for (size_t k = 0; k < arms; ++k)
       if (k != keep)
         for (size_t i = g.directives[k] + 1; i < g.directives[k + 1]; ++i) plan.dropped[i] = true;
-    plan.regions.push_back({tokens[g.directives.front()].begin, tokens[g.directives.back()].end});
+    // With one arm live in every variant, only the dead arms and the directives differ from
+    // the code as compiled: a rewrite inside the live arm fits every variant.
+    if (choices.size() == 1 && keep < arms) {
+      plan.regions.push_back({tokens[g.directives.front()].begin, tokens[g.directives[keep]].end});
+      plan.regions.push_back({tokens[g.directives[keep + 1]].begin, tokens[g.directives.back()].end});
+    } else {
+      plan.regions.push_back({tokens[g.directives.front()].begin, tokens[g.directives.back()].end});
+      if (keep < arms) plan.kept_arms.push_back({tokens[g.directives[keep]].end, tokens[g.directives[keep + 1]].begin});
+    }
   }
   return plan;
 }

@@ -18,6 +18,7 @@ struct ConditionalPlan {
   int variants = 1;                // how many variants cover every arm of every resolved group
   std::vector<bool> dropped;       // per token: not part of this variant
   std::vector<Span> regions;       // byte ranges of the resolved groups, directives included
+  std::vector<Span> kept_arms;     // the arms this variant keeps where other variants keep others
 };
 
 // At most this many variants are parsed; arms past the last are seen in none (rare: a group

@@ -481,6 +481,7 @@ MaskResult mask_source(std::string_view original, Lang lang, const MaskOptions& 
   ConditionalPlan plan = plan_conditionals(source, lexed.tokens, options.variant);
   result.variants = plan.variants;
   result.resolved_conditionals = std::move(plan.regions);
+  result.kept_arms = std::move(plan.kept_arms);
   std::vector<Token> kept;
   kept.reserve(lexed.tokens.size());
   for (size_t i = 0; i < lexed.tokens.size(); ++i) {

@@ -36,6 +36,7 @@ struct MaskResult {
   std::optional<uint32_t> unterminated_comment;
   int variants = 1;                        // variants needed to see every arm of every resolved group
   std::vector<Span> resolved_conditionals;  // their byte ranges: no rewrite may touch them
+  std::vector<Span> kept_arms;              // the arms of them this variant keeps (where variants differ)
 };
 
 MaskResult mask_source(std::string_view text, Lang lang, const MaskOptions& options = {});

@@ -399,6 +399,7 @@ SyntaxTree parse(const Source& source, Lang lang, const MaskOptions& options) {
   out.unterminated_comment = masked.unterminated_comment;
   out.variants = masked.variants;
   out.resolved_conditionals = std::move(masked.resolved_conditionals);
+  out.kept_arms = std::move(masked.kept_arms);
   TSParser* parser = thread_parser(lang);
   ts_parser_set_timeout_micros(parser, static_cast<uint64_t>(std::max(1e-6, options.max_parse_seconds) * 1e6));
   ParseReuse::Last* last = options.reuse ? &options.reuse->last_[{lang, options.variant}] : nullptr;

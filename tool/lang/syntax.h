@@ -52,6 +52,7 @@ class SyntaxTree {
   bool timed_out = false;  // the parser ran out of its budget (MaskOptions::max_parse_seconds): no nodes
   int variants = 1;  // how many variants the file's preprocessor groups need (lang/conditionals.h)
   std::vector<Span> resolved_conditionals;  // groups resolved per variant: no rewrite touches them
+  std::vector<Span> kept_arms;              // the arms of them this variant keeps (where variants differ)
   // A parse that edited the document's last one (ParseReuse): its number, the last one's, and
   // the top-level declarations it copied from there unchanged (their first node here and there,
   // and how many nodes each has). Analyses of the last tree can keep what they found there.

@@ -324,30 +324,52 @@ void share_ports(const Source& source, std::vector<Finding>& findings) {
   }
 }
 
+// One finding among the variants of a file: its rule and place.
+using FindingKey = std::tuple<std::string, uint32_t, uint32_t>;
+FindingKey key_of(const Finding& f) { return {f.rule, f.span.begin, f.span.end}; }
+
 // What a syntax error leaves untrustworthy: a finding inside a part the parser could not read
-// is dropped, and no rewrite is offered in a top-level declaration that holds an error.
-void drop_what_errors_touch(const SyntaxTree& tree, std::vector<Finding>& findings) {
-  if (tree.error_count == 0) return;
-  std::vector<Span> errors, broken;
-  for (int id = 0; id < static_cast<int>(tree.nodes.size()); ++id) {
+// is dropped, and no rewrite is offered in a top-level declaration that holds an error. An error
+// at one of `own_errors` (where only some variants of the file fail, so the arm of a preprocessor
+// group they keep is at fault, such as a dead `#else` the engine never compiles) withholds
+// nothing here: VariantMerge lets the variants that read the code cleanly decide. Returned: the
+// findings with such an error in their declaration.
+std::set<FindingKey> drop_what_errors_touch(const SyntaxTree& tree, std::vector<Finding>& findings, const std::set<uint32_t>& own_errors) {
+  std::vector<Span> errors, broken, own_broken;
+  for (int id = 0; tree.error_count > 0 && id < static_cast<int>(tree.nodes.size()); ++id) {
     const Node& n = tree.at(id);
     if (!n.error) continue;
     if (std::string_view(n.type) == "ERROR") errors.push_back(tree.span(id));
     int top = id;
     while (top >= 0 && tree.at(top).parent > 0) top = tree.at(top).parent;
-    broken.push_back(tree.span(top >= 0 ? top : id));
+    (own_errors.count(n.begin) ? own_broken : broken).push_back(tree.span(top >= 0 ? top : id));
   }
+  auto in_any = [](const std::vector<Span>& spans, Span s) {
+    return std::any_of(spans.begin(), spans.end(), [&](Span b) { return overlaps(s, b) || inside(s, b); });
+  };
   std::vector<Finding> kept;
+  std::set<FindingKey> unread;
   for (Finding& f : findings) {
     if (std::any_of(errors.begin(), errors.end(), [&](Span e) { return inside(f.span, e); })) continue;
-    if (!f.fixes.empty() && std::any_of(broken.begin(), broken.end(), [&](Span b) { return overlaps(f.span, b) || inside(f.span, b); })) {
+    if (!f.fixes.empty() && in_any(broken, f.span)) {
       f.fixes.clear();
       f.withheld.push_back("the declaration around it has a syntax error (see `lwcport parse --verbose`), so a rewrite "
                            "could land in the wrong place");
     }
+    if (in_any(own_broken, f.span)) unread.insert(key_of(f));
     kept.push_back(std::move(f));
   }
   findings = std::move(kept);
+  return unread;
+}
+
+// The byte offsets of a tree's syntax errors.
+std::set<uint32_t> error_offsets(const SyntaxTree& tree) {
+  std::set<uint32_t> at;
+  if (tree.error_count == 0) return at;
+  for (const Node& n : tree.nodes)
+    if (n.error) at.insert(n.begin);
+  return at;
 }
 
 // The LWC libraries' own definitions are not migration debt: only the rules about error-free
@@ -373,25 +395,37 @@ void drop_older_engine_arms(std::string_view text, const UnrealTarget& unreal, c
 
 // The variants of a file (lang/conditionals.h) report the same finding once. A rewrite is kept
 // only where every variant proposes exactly it and it touches no resolved preprocessor group:
-// a rewrite seen through one arm could miss what another arm holds.
+// a rewrite seen through one arm could miss what another arm holds. A variant that could not
+// parse its own arm still votes, but a variant that read everything cleanly must agree, and the
+// rewrite may not take away a name that variant's own arms spell (the parser may not have seen it).
 class VariantMerge {
  public:
-  explicit VariantMerge(std::vector<Span> regions) : regions_(std::move(regions)) {}
+  VariantMerge(std::string_view text, std::vector<Span> regions) : text_(text), regions_(std::move(regions)) {}
 
-  void add(std::vector<Finding> found) {
+  // `unread`: the findings in whose declaration the variant met a syntax error the others did not;
+  // `arms`: the arms the variant keeps.
+  void add(std::vector<Finding> found, const std::set<FindingKey>& unread, const std::vector<Span>& arms) {
     ++variants_;
+    std::set<std::string, std::less<>> arm_names;
+    if (!unread.empty())
+      for (Span a : arms) arm_names.merge(identifiers(text_.substr(a.begin, a.end - a.begin)));
     for (Finding& f : found) {
-      auto key = std::make_tuple(f.rule, f.span.begin, f.span.end);
+      FindingKey key = key_of(f);
+      bool clean = !unread.count(key);
       auto it = index_.find(key);
       if (it == index_.end()) {
         index_.emplace(key, merged_.size());
         votes_.push_back(f.fixes.empty() ? 0 : 1);
+        clean_votes_.push_back(!f.fixes.empty() && clean ? 1 : 0);
+        unread_names_.emplace_back(clean ? std::set<std::string, std::less<>>() : arm_names);
         merged_.push_back(std::move(f));
         continue;
       }
+      if (!clean) unread_names_[it->second].insert(arm_names.begin(), arm_names.end());
       Finding& m = merged_[it->second];
       bool same = !f.fixes.empty() && !m.fixes.empty() && f.fixes.front().edits == m.fixes.front().edits;
       if (same) ++votes_[it->second];
+      if (same && clean) ++clean_votes_[it->second];
     }
   }
 
@@ -399,24 +433,34 @@ class VariantMerge {
     for (size_t i = 0; i < merged_.size(); ++i) {
       Finding& f = merged_[i];
       if (f.fixes.empty()) continue;
-      bool touches = false;
+      bool touches = false, renames = false;
       for (const Fix& fix : f.fixes)
-        for (const Edit& e : fix.edits)
+        for (const Edit& e : fix.edits) {
           for (Span r : regions_) touches = touches || overlaps(e.span, r) || (e.span.begin == e.span.end && r.begin < e.span.begin && e.span.begin < r.end);
-      if (votes_[i] == variants_ && !touches) continue;
+          if (unread_names_[i].empty()) continue;
+          // A name the edit takes away (renamed, or replaced by another expression).
+          auto now = identifiers(e.text);
+          for (const std::string& name : identifiers(text_.substr(e.span.begin, e.span.end - e.span.begin)))
+            renames = renames || (!now.count(name) && unread_names_[i].count(name));
+        }
+      if (votes_[i] == variants_ && clean_votes_[i] > 0 && !touches && !renames) continue;
       f.fixes.clear();
-      f.withheld.push_back("the code around it depends on preprocessor branches that lwcport reads one at a time "
-                           "(an #if inside a parameter list, a call or an expression), so no rewrite is sure to fit every branch");
+      f.withheld.push_back(renames ? "a preprocessor arm that uses what the rewrite changes could not be parsed, so the rewrite "
+                                     "might leave it behind"
+                                   : "the code around it depends on preprocessor branches that lwcport reads one at a time "
+                                     "(an #if inside a parameter list, a call or an expression), so no rewrite is sure to fit every branch");
     }
     return std::move(merged_);
   }
 
  private:
+  std::string_view text_;
   std::vector<Span> regions_;
+  std::vector<std::set<std::string, std::less<>>> unread_names_;  // per finding: names in arms a voter could not read
   int variants_ = 0;
   std::vector<Finding> merged_;
-  std::vector<int> votes_;
-  std::map<std::tuple<std::string, uint32_t, uint32_t>, size_t> index_;
+  std::vector<int> votes_, clean_votes_;
+  std::map<FindingKey, size_t> index_;
 };
 
 std::string quoted_list(const std::vector<std::string>& names) {
@@ -501,16 +545,25 @@ void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, co
   std::set<SyntaxError> errors;
   int too_deep = 0;
   std::optional<uint32_t> first_too_deep;
-  std::optional<SyntaxTree> first;  // variant 0, kept for the suppressions' own fixes
+  // Every variant is parsed first: an error only some of them meet lies in an arm they keep.
+  std::vector<SyntaxTree> trees;
   for (int variant = 0, variants = 1; variant < variants; ++variant) {
-    SyntaxTree tree = parse(code, lang, {&macros, variant, options.max_parse_seconds, literal ? nullptr : options.reuse});
-    if (tree.timed_out) {
+    trees.push_back(parse(code, lang, {&macros, variant, options.max_parse_seconds, literal ? nullptr : options.reuse}));
+    if (trees.back().timed_out) {
       findings.push_back(input_finding(
           Severity::error, 0, fmt::format("the parser gave up after {:g} s (its error recovery on this file found no end); not analysed", options.max_parse_seconds),
           "look for a stray or binary byte sequence in the file, or raise \"max-parse-seconds\" in .lwcport.json"));
       return;
     }
-    variants = tree.variants;
+    variants = trees.back().variants;
+  }
+  std::vector<std::set<uint32_t>> error_sets;
+  for (const SyntaxTree& tree : trees) error_sets.push_back(error_offsets(tree));
+  for (int variant = 0; variant < static_cast<int>(trees.size()); ++variant) {
+    const SyntaxTree& tree = trees[static_cast<size_t>(variant)];
+    std::set<uint32_t> own_errors;
+    for (uint32_t at : error_sets[static_cast<size_t>(variant)])
+      if (std::any_of(error_sets.begin(), error_sets.end(), [&](const std::set<uint32_t>& other) { return !other.count(at); })) own_errors.insert(at);
     add_syntax_errors(tree, errors);
     ModelContext this_variant = context;
     this_variant.reuse = literal || !options.reuse ? nullptr : options.model_reuse;
@@ -525,7 +578,7 @@ void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, co
     for (Finding& f : found)
       for (ProvenanceStep& step : tracer.trace(value_node_for(world, f.span)))
         if (!(step.span == f.span)) f.related.emplace_back(step.span, std::move(step.text));
-    drop_what_errors_touch(tree, found);
+    std::set<FindingKey> unread = drop_what_errors_touch(tree, found, own_errors);
     if (!options.lint_library) drop_library_findings(library_definitions(tree, data), data, found);
     if (!world.too_deep().empty()) {
       too_deep += static_cast<int>(world.too_deep().size());
@@ -538,11 +591,10 @@ void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, co
       for (int id = 0; id < static_cast<int>(tree.nodes.size()); ++id)
         if (tree.is(id, "comment")) comments.push_back(tree.span(id));
       sups = find_suppressions(code, comments);
-      merge.emplace(tree.resolved_conditionals);
+      merge.emplace(text, tree.resolved_conditionals);
     }
     suppress(sups, code, found);
-    merge->add(std::move(found));
-    if (variant == 0) first.emplace(std::move(tree));
+    merge->add(std::move(found), unread, tree.kept_arms);
   }
   std::vector<Finding> found = merge->take();
   if (unreal) {
@@ -551,8 +603,8 @@ void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, co
   }
   if (literal) keep_fixes_inside({*literal}, found);
   findings.insert(findings.end(), std::make_move_iterator(found.begin()), std::make_move_iterator(found.end()));
-  if (first->unterminated_comment) {
-    findings.push_back(input_finding(Severity::error, *first->unterminated_comment,
+  if (trees.front().unterminated_comment) {
+    findings.push_back(input_finding(Severity::error, *trees.front().unterminated_comment,
                                      "unterminated block comment: everything after it is a comment",
                                      "close the comment with */ (no fixes are offered in this file until then)"));
     for (Finding& f : findings) f.fixes.clear();

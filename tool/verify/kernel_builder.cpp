@@ -191,7 +191,7 @@ bool collect_leaves(const Structs& structs, const std::string& type, const std::
         return false;
     return true;
   }
-  Leaf leaf{path, name, type, semantic};
+  Leaf leaf{path, name, type, semantic, {}};
   if (auto special = special_encoding(type)) {
     leaf.encoding = special->first;
     leaf.components = special->second;
