@@ -369,6 +369,29 @@ TEST(HarnessOnLavapipe, DoubleFloatInverseMatrixSubtractsItsPreTranslationAsTheE
   }
 }
 
+// The rotation of an object's inverse transform is finite whatever its origin: the harness moves
+// the origin out of the float matrix without letting an infinite one (the Inf input case) reach
+// the rotation as 0 * inf. The rewrite that takes only the rotation (`DFToFloat3x3`) then gives
+// the float32 original's result on every case.
+TEST(HarnessOnLavapipe, AnInverseMatrixWithAnInfiniteOriginKeepsAFiniteRotation) {
+  Driver d = start_driver();
+  ASSERT_NE(d.device, nullptr);
+  auto shader = [](const std::string& parameters, const std::string& body) {
+    return "#include \"/Engine/Private/Common.ush\"\n"
+           "float3 ToLocalDirection(" + parameters + ") { " + body + " }\n";
+  };
+  HarnessSetup setup = small_setup(Lang::hlsl, "ToLocalDirection.usf");
+  setup.unreal = true;
+  FunctionResult r = verify_function(
+      *d.device, d.probes, setup, "ToLocalDirection",
+      {{"original (float32)", shader("float3 WorldDirection, float4x4 WorldToLocal", "return mul(WorldDirection, (float3x3)WorldToLocal);"), 427},
+       {"rotation", shader("float3 WorldDirection, FDFInverseMatrix WorldToLocal", "return mul(WorldDirection, DFToFloat3x3(WorldToLocal));"), 504}});
+  ASSERT_EQ(r.variants.size(), 2u);
+  EXPECT_EQ(r.variants[0].status, "pass") << r.variants[0].worst;
+  EXPECT_EQ(r.variants[1].status, "pass") << r.variants[1].worst;
+  EXPECT_EQ(r.variants[1].max_error, r.variants[0].max_error);
+}
+
 // glslang's HLSL narrows `sqrt`, `floor`, `dot`... on doubles to float: the float64 reference calls
 // double versions of its own. On lavapipe they are exact (rounding functions) or within an ulp or
 // two of double (sqrt and what uses it), where the float forms are off by 2^-24.

@@ -662,10 +662,14 @@ void encode(const Leaf& leaf, const std::vector<double>& v, bool float64, bool o
         moved[r] = leaf.encoding == Encoding::lwc_inverse_matrix ? tiles(world_origin[r]) * kTile
                    : float64                                     ? 0.0
                                                                  : static_cast<float>(world_origin[r]);
-      Mat4 m{};
-      std::copy(v.begin(), v.begin() + 16, m.begin());
-      Mat4 shifted = multiply(m, translation(moved));
-      for (int i = 0; i < 16; ++i) put(i, shifted[i]);
+      // M T(moved): only the translation column changes. Written out, so that an infinite
+      // translation does not turn the rotation into NaN through 0 * inf, as no engine matrix does.
+      for (int i = 0; i < 16; ++i) {
+        double value = v[i];
+        for (int k = 0; i >= 12 && k < 3; ++k)
+          if (v[k * 4 + i - 12] != 0 && moved[k] != 0) value += v[k * 4 + i - 12] * moved[k];
+        put(i, value);
+      }
       for (int r = 0; r < 3; ++r) put(16 + r, leaf.encoding == Encoding::lwc_inverse_matrix ? -moved[r] / kTile : moved[r]);
       break;
     }

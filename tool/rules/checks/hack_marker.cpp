@@ -109,7 +109,7 @@ class HackMarker : public Check {
     }
     Member m = member_of(t, value);
     LargeWorldValue v{call, std::string(t.text(value)), kind, m.object, m.member};
-    LibraryRewrite r = library_rewrite(t, ctx.world.data(), v, name == "DFHackToFloat");
+    LibraryRewrite r = library_rewrite(ctx, v, name == "DFHackToFloat");
     if (r.fix.empty() && !r.blocker.empty()) f.withheld.push_back(r.blocker);
     if (r.fix.empty()) return !r.blocker.empty();
     r.vars["marker"] = name;

@@ -209,7 +209,7 @@ class LargeWorldMember : public Check {
       ctx.fix(f, "marker-beside", vars, {{t.span(id), vars["marker"] + "(" + value.text + ")"}});
       return;
     }
-    LibraryRewrite r = library_rewrite(t, ctx.world.data(), value, era != UnrealEra::ue5_0);
+    LibraryRewrite r = library_rewrite(ctx, value, era != UnrealEra::ue5_0);
     if (!r.fix.empty()) {
       for (const auto& [key, text] : r.vars) vars[key] = text;
       ctx.fix(f, r.fix, vars, r.edits);

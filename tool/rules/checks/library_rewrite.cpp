@@ -22,7 +22,62 @@ int absolute_partner(const CheckContext& ctx, int use, Kind kind) {
   return -1;
 }
 
-LibraryRewrite library_rewrite(const SyntaxTree& t, const WorldData& data, const LargeWorldValue& value, bool df) {
+namespace {
+// A declared type of three components (`float3`, `half3`, `MaterialFloat3`; not `float3x3`).
+bool three_component_type(std::string_view type) { return type.ends_with('3') && type.find('x') == std::string_view::npos; }
+
+// An expression lwcport can tell is a 3-vector: a name declared so, a three-letter swizzle, or an
+// engine struct's member of that type in UE4 (`FMaterialPixelParameters.CameraVector`).
+bool three_vector(const CheckContext& ctx, int node) {
+  const SyntaxTree& t = ctx.tree;
+  while (t.is(node, "parenthesized_expression")) node = t.named_child(node);
+  if (t.is(node, "identifier")) {
+    int var = ctx.world.variable_at(node);
+    return var >= 0 && three_component_type(ctx.world.variables()[static_cast<size_t>(var)].type);
+  }
+  int field = t.is(node, "field_expression") ? t.child_by_field(node, "field") : -1;
+  if (field >= 0 && is_swizzle(t.text(field))) return t.text(field).size() == 3;
+  const WorldData::EngineMember* e = field >= 0 ? engine_member_at(ctx, node) : nullptr;
+  return e && three_component_type(e->types[0]);
+}
+
+// Whether only the first three components of `node`'s value are read: through parentheses,
+// negation, arithmetic and `normalize`, it reaches a `.xyz`, a 3-vector declaration, assignment or
+// return, or a `length`/`dot`/`distance`. (A 3-vector times a 4x4 transform is a 4-vector whose w
+// is 0 for an affine transform: the 3x3 product is the same vector wherever only xyz count.)
+bool read_as_three(const CheckContext& ctx, int node) {
+  const SyntaxTree& t = ctx.tree;
+  for (int p = t.at(node).parent; p >= 0; node = p, p = t.at(p).parent) {
+    if (t.is(p, "parenthesized_expression") || t.is(p, "unary_expression") || t.is(p, "binary_expression")) continue;
+    if (is_field_of(t, p, node, "xyz")) return true;
+    if (t.is(p, "argument_list")) {
+      std::string_view callee = call_name(t, t.at(p).parent);
+      if (callee == "length" || callee == "dot" || callee == "distance") return true;
+      if (callee != "normalize") return false;
+      p = t.at(p).parent;
+      continue;
+    }
+    if (t.is(p, "init_declarator")) {
+      int declaration = t.at(p).parent;
+      int type = t.is(declaration, "declaration") ? t.child_by_field(declaration, "type") : -1;
+      return type >= 0 && three_component_type(t.text(type));
+    }
+    if (t.is(p, "assignment_expression")) return t.child_by_field(p, "right") == node && three_vector(ctx, t.child_by_field(p, "left"));
+    if (t.is(p, "return_statement")) {
+      int fn = p;
+      while (fn >= 0 && !t.is(fn, "function_definition")) fn = t.at(fn).parent;
+      int type = fn >= 0 ? t.child_by_field(fn, "type") : -1;
+      return type >= 0 && three_component_type(t.text(type));
+    }
+    return false;
+  }
+  return false;
+}
+}  // namespace
+
+LibraryRewrite library_rewrite(const CheckContext& ctx, const LargeWorldValue& value, bool df) {
+  const SyntaxTree& t = ctx.tree;
+  const WorldData& data = ctx.world.data();
   LibraryRewrite out;
   int node = value.node, p = t.at(node).parent;
   while (t.is(p, "parenthesized_expression")) node = p, p = t.at(p).parent;
@@ -112,6 +167,17 @@ LibraryRewrite library_rewrite(const SyntaxTree& t, const WorldData& data, const
     // A direction (`mul(float4(D, 0), M)`): no translation moves it, so the view's translated twin
     // gives the same vector, and any transform's 3x3 part does.
     std::string direction = args.size() == 2 && args[1] == node ? direction_of_homogeneous(t, args[0]) : "";
+    // A 3-vector times the 4x4 transform of an object (HLSL takes its upper 3x4 block): the
+    // rotation alone, where only xyz of the product are read. A view's matrices may project
+    // (w is not 0 then), so only the object's transforms.
+    if (direction.empty() && args.size() == 2 && args[1] == node && !view &&
+        (value.kind == Kind::world_matrix || value.kind == Kind::from_world_matrix) &&
+        three_vector(ctx, args[0]) && read_as_three(ctx, call)) {
+      out.fix = "rotation";
+      out.vars["call"] = to3x3;
+      out.edits = {{t.span(node), fmt::format("{}({})", to3x3, value.text)}};
+      return out;
+    }
     if (direction.empty()) return out;
     if (view && twin != data.twins.members.end()) {
       out.fix = "direction-twin";

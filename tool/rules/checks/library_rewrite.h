@@ -33,6 +33,6 @@ struct LibraryRewrite {
 // original often cancel: both must move to translated world together. -1 when there is none.
 int absolute_partner(const CheckContext& ctx, int use, Kind kind);
 
-LibraryRewrite library_rewrite(const SyntaxTree& t, const WorldData& data, const LargeWorldValue& value, bool double_float);
+LibraryRewrite library_rewrite(const CheckContext& ctx, const LargeWorldValue& value, bool double_float);
 
 }  // namespace lwc::checks

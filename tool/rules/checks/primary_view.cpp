@@ -65,7 +65,7 @@ class PrimaryView : public Check {
     }
     // A point or direction transformed by a view matrix: in the era's library, or by its twin.
     UnrealEra era = ctx.unreal ? ctx.unreal->era : UnrealEra::ue5_4;
-    LibraryRewrite r = library_rewrite(t, ctx.world.data(), {id, "PrimaryView." + member, ctx.world.kind(id), "PrimaryView", member},
+    LibraryRewrite r = library_rewrite(ctx, {id, "PrimaryView." + member, ctx.world.kind(id), "PrimaryView", member},
                                        era != UnrealEra::ue5_0);
     if (!r.fix.empty()) {
       for (const auto& [key, text] : r.vars) vars[key] = text;
