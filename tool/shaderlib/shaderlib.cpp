@@ -207,13 +207,13 @@ std::string unreal_environment_text(std::string_view code, const std::string& li
   static const std::set<std::string, std::less<>> copied_functions = {"TransformLocalToWorld", "TransformLocalToTranslatedWorld",
                                                                       "SvPositionToWorld", "SvPositionToTranslatedWorld",
                                                                       "ComputeDirectionalLightStaticShadowing", "ComputeDirectionalLightDynamicShadowing",
-                                                                      "GetDistanceToNearestSurfaceGlobal"};
+                                                                      "GetDistanceToNearestSurfaceGlobal", "ScreenAlignedPosition", "Rand3DPCG16"};
   TokenText tokens(code);
   bool material_parameters = false, light_data = false;
   std::set<std::string, std::less<>> defined;
   for (size_t i = 0; i + 1 < tokens.size(); ++i) {
     if (i + 2 < tokens.size() && tokens[i + 2] == "(" && copied_functions.count(tokens[i + 1]) &&
-        (tokens[i].starts_with("float") || tokens[i].starts_with("F")))
+        (tokens[i].starts_with("float") || tokens[i].starts_with("uint") || tokens[i].starts_with("F")))
       defined.insert(std::string(tokens[i + 1]));
     light_data |= tokens[i] == "float4x4" && tokens[i + 1] == "LightFunctionWorldToLight";
     if (tokens[i] != "struct") continue;
