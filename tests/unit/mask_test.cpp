@@ -88,6 +88,16 @@ precise out vec3 vOut;
 void main() { precise vec3 d = position - cam.eye; vOut = d; gl_Position = cam.viewProj * vec4(position, 1.0); }
 )";
   EXPECT_EQ(errors(code, Lang::glsl), 0);
+  // Memory qualifiers before a storage block or an image (GLSL 4.30).
+  std::string storage = R"(#version 430
+layout(std430, binding = 0) restrict buffer Lights { vec4 data[]; };
+layout(std430, binding = 1) restrict readonly buffer Inputs { vec4 inputs[]; };
+layout(rgba16f, binding = 2) restrict writeonly uniform image2D target;
+layout(r32f, binding = 3) coherent volatile uniform image2D scratch;
+layout(local_size_x = 8) in;
+void main() { imageStore(target, ivec2(gl_GlobalInvocationID.xy), inputs[0] + data[0]); }
+)";
+  EXPECT_EQ(errors(storage, Lang::glsl), 0);
 }
 
 TEST(Languages, ExtensionsAndOverride) {
