@@ -232,14 +232,14 @@ class Masker {
            word(n) == "}";
   }
 
-  // What the GLSL grammar (0.2.0) reads badly and lwcport does not need: precision and memory
-  // qualifiers on declarations (`restrict writeonly uniform image2D`), a scalar constructor after
+  // What the GLSL grammar (0.2.0) reads badly and lwcport does not need: precision qualifiers and
+  // the memory qualifiers it has no rule for (`restrict`, `coherent`, `volatile`; `readonly` and
+  // `writeonly` it reads, and the verifier's kernels need them), a scalar constructor after
   // `(` (`(float(n) * p)` reads as a cast), and array types written on the type (`float[9] kernel`,
   // `float[](...)`), whose brackets become spaces.
   size_t glsl_identifier(size_t i) {
     std::string_view w = word(i);
-    if (w == "highp" || w == "mediump" || w == "lowp" || w == "restrict" || w == "coherent" || w == "volatile" ||
-        w == "readonly" || w == "writeonly") {
+    if (w == "highp" || w == "mediump" || w == "lowp" || w == "restrict" || w == "coherent" || w == "volatile") {
       mask(i, i);
       return i;
     }
