@@ -39,6 +39,8 @@ class FloatWorldPosition : public Check {
       // A transform kept in a local, and a parameter of a whole program: the chain moves whole.
       if (is_matrix(h.kind) && h.what == AbsoluteHolder::What::variable && unreal_code(ctx.tree))
         offer_move(ctx, f, h, "translated-matrix", [&](int var, RewritePlan& plan) { return chain_.move_matrix(ctx, *names, var, plan, 0); });
+      if (is_matrix(h.kind) && h.what == AbsoluteHolder::What::parameter && unreal_code(ctx.tree))
+        offer_move(ctx, f, h, "translated-matrix", [&](int var, RewritePlan& plan) { return chain_.move_matrix_parameter(ctx, *names, var, plan, 0); });
       if (h.kind != Kind::absolute) continue;
       if (h.what == AbsoluteHolder::What::variable) offer_rewrites(ctx, f, h, *names);
       if (h.what == AbsoluteHolder::What::return_value) offer_function_rewrite(ctx, f, h, *names);

@@ -283,7 +283,17 @@ void TranslatedChain::rename_with_callers(const CheckContext& ctx, const Declare
   for (int call : calls_to(t, fn)) {
     if (!plan.blocker.empty()) return;
     if (covered(plan, t.span(t.child_by_field(call, "function")))) continue;  // renamed as another call's partner
-    follow_use(ctx, names, call, new_name + std::string(t.text(t.child_by_field(call, "arguments"))), plan, depth + 1);
+    // What the plan already changed in the arguments (a transform passed on, renamed) goes into
+    // the call's new text, which replaces the whole call.
+    int args = t.child_by_field(call, "arguments");
+    Span inside = t.span(args);
+    std::vector<Edit> within;
+    std::erase_if(plan.edits, [&](const Edit& e) {
+      bool in = inside.begin <= e.span.begin && e.span.end <= inside.end;
+      if (in) within.push_back(e);
+      return in;
+    });
+    follow_use(ctx, names, call, new_name + spliced(std::string(t.text(args)), inside.begin, within), plan, depth + 1);
   }
 }
 

@@ -40,6 +40,11 @@ class TranslatedChain {
   // world-to-local transform takes a translated point), its rotation rows and 3x3 part stay, its
   // translation row is the translated origin. Returns why not, or "".
   std::string move_matrix(const CheckContext& ctx, const DeclaredNames& names, int var, RewritePlan& plan, int depth) const;
+  // A transform parameter of a function of this file (a whole program) moves the same way under a
+  // translated name: its uses follow, and each call passes a translated transform (a local or
+  // parameter that moves with it, or the engine's transform made translated there). Returns why
+  // not, or "".
+  std::string move_matrix_parameter(const CheckContext& ctx, const DeclaredNames& names, int var, RewritePlan& plan, int depth) const;
 
   // Renames a function of this file to `new_name`, its returned values made translated, and
   // follows every call. Returns why not, or "".

@@ -9,32 +9,97 @@
 
 namespace lwc::checks {
 
+namespace {
+// An engine transform (through a demotion or marker: `DFHackToFloat(Primitive.LocalToWorld)`) made
+// translated in the era's library, as text; else "" and `why` says why not.
+std::string translated_engine_transform(const CheckContext& ctx, int expression, Kind& kind, std::string& why) {
+  const SyntaxTree& t = ctx.tree;
+  int value = undemoted(t, expression);
+  Member m = member_of(t, value);
+  const WorldData::EngineMember* e = engine_member_at(ctx, value);
+  bool ue5_0 = ctx.unreal->era == UnrealEra::ue5_0;
+  const std::string type = e ? e->types[ue5_0 ? 1 : 2] : "";
+  if (!e || !is_matrix(e->kind) || !(type.starts_with("FDF") || type.starts_with("FLWC"))) {
+    why = fmt::format("its value (`{}`) is not an engine transform lwcport can move to translated world", shortened(t.text(expression)));
+    return {};
+  }
+  kind = e->kind;
+  std::string matrix = ue5_spelling(ctx, value);
+  std::string translation = std::string("PrimaryView.") + (m.member.starts_with("Prev") ? "PrevPreViewTranslation" : "PreViewTranslation");
+  return !ue5_0 ? fmt::format("DFFastToTranslatedWorld({}, {})", matrix, translation)
+         : e->kind == Kind::world_matrix ? fmt::format("LWCMultiplyTranslation({}, {})", matrix, translation)
+                                         : fmt::format("LWCMultiplyTranslation(LWCNegate({}), {})", translation, matrix);
+}
+}  // namespace
+
 std::string TranslatedChain::move_matrix(const CheckContext& ctx, const DeclaredNames& names, int var, RewritePlan& plan, int depth) const {
   const SyntaxTree& t = ctx.tree;
   const Variable& v = ctx.world.variables()[var];
   if (!ctx.unreal || ctx.unreal->era == UnrealEra::ue4) return "the translated transform is made with UE5's library: set \"unreal\" to the engine this code moves to";
   if (v.role != Variable::Role::local || v.init < 0) return "not a local with a value";
+  if (moving(plan, var)) return {};
   std::string new_name = translated_name(v.name);
   if (new_name == v.name || names.taken(new_name, v.function)) return fmt::format("the name `{}` is already taken", new_name);
-  // The engine's large-world transform the value reads (through a demotion or marker).
-  int value = undemoted(t, v.init);
-  Member m = member_of(t, value);
-  const WorldData::EngineMember* e = engine_member_at(ctx, value);
-  bool ue5_0 = ctx.unreal->era == UnrealEra::ue5_0;
-  const std::string type = e ? e->types[ue5_0 ? 1 : 2] : "";
-  if (!e || !is_matrix(e->kind) || !(type.starts_with("FDF") || type.starts_with("FLWC")))
-    return fmt::format("its value (`{}`) is not an engine transform lwcport can move to translated world", shortened(t.text(v.init)));
-  std::string matrix = ue5_spelling(ctx, value);
-  std::string translation = std::string("PrimaryView.") + (m.member.starts_with("Prev") ? "PrevPreViewTranslation" : "PreViewTranslation");
-  std::string call = !ue5_0 ? fmt::format("DFFastToTranslatedWorld({}, {})", matrix, translation)
-                     : e->kind == Kind::world_matrix ? fmt::format("LWCMultiplyTranslation({}, {})", matrix, translation)
-                                                     : fmt::format("LWCMultiplyTranslation(LWCNegate({}), {})", translation, matrix);
+  Kind kind = Kind::unknown;
+  std::string why, call = translated_engine_transform(ctx, v.init, kind, why);
+  if (call.empty()) return why;
   plan.moving_variables.push_back(var);
   plan.edits.push_back({t.span(v.init), call});
   plan.edits.push_back({t.span(v.decl), new_name});
   for (int use : ctx.world.uses(var)) {
     if (!plan.blocker.empty()) break;
-    follow_matrix_use(ctx, names, use, e->kind, new_name, plan, depth);
+    follow_matrix_use(ctx, names, use, kind, new_name, plan, depth);
+  }
+  return plan.blocker;
+}
+
+std::string TranslatedChain::move_matrix_parameter(const CheckContext& ctx, const DeclaredNames& names, int var, RewritePlan& plan, int depth) const {
+  const SyntaxTree& t = ctx.tree;
+  const Variable& p = ctx.world.variables()[var];
+  if (!ctx.unreal || ctx.unreal->era == UnrealEra::ue4) return "the translated transform is made with UE5's library: set \"unreal\" to the engine this code moves to";
+  if (moving(plan, var)) return {};
+  if (depth > 8) return "the calls it passes through nest too deep";
+  if (p.output) return fmt::format("`{}` is an `out` parameter", p.name);
+  if (p.kind != Kind::world_matrix && p.kind != Kind::from_world_matrix) return fmt::format("`{}` is not a transform to or from world", p.name);
+  int fn = p.function;
+  std::string function(t.text(function_name(t, fn)));
+  // Another file may call a header's function with an absolute transform.
+  if (!whole_program(t)) return fmt::format("`{}` is a parameter of `{}`, which other files may call with an absolute transform", p.name, function);
+  std::string new_name = translated_name(p.name);
+  if (new_name == p.name || names.taken(new_name, fn)) return fmt::format("the name `{}` is already taken", new_name);
+  size_t index = 0, arity = function_arity(t, fn);
+  while (index < arity && parameter_variable(ctx, fn, index) != var) ++index;
+  std::vector<int> calls = calls_to(t, fn);
+  if (index == arity || calls.empty()) return fmt::format("no call in this file passes `{}`", p.name);
+  plan.moving_variables.push_back(var);
+  plan.edits.push_back({t.span(p.decl), new_name});
+  // Each call passes a translated transform: a local or parameter that moves with it (its use
+  // there is renamed as it follows), or the engine's transform made translated in place. The
+  // calls go first: a call the uses below rewrite whole then carries its renamed argument.
+  for (int call : calls) {
+    if (!plan.blocker.empty()) break;
+    int argument = call_arguments(t, call)[index];
+    while (t.is(argument, "parenthesized_expression")) argument = t.named_child(argument);
+    int source = t.is(argument, "identifier") ? ctx.world.variable_at(argument) : -1;
+    const Variable* s = source >= 0 ? &ctx.world.variables()[static_cast<size_t>(source)] : nullptr;
+    std::string why;
+    if (s && s->role == Variable::Role::local && s->kind == p.kind) {
+      why = move_matrix(ctx, names, source, plan, depth + 1);
+    } else if (s && s->role == Variable::Role::parameter && s->kind == p.kind) {
+      why = move_matrix_parameter(ctx, names, source, plan, depth + 1);
+    } else if (!s) {
+      Kind kind = Kind::unknown;
+      std::string made = translated_engine_transform(ctx, argument, kind, why);
+      if (!made.empty() && kind != p.kind) why = fmt::format("`{}` is not the same kind of transform", shortened(t.text(argument)));
+      else if (!made.empty()) plan.edits.push_back({t.span(argument), made});
+    } else {
+      why = fmt::format("`{}` is not a transform lwcport can move with it", s->name);
+    }
+    if (!why.empty() && plan.blocker.empty()) plan.blocker = fmt::format("the call on line {} passes `{}`: {}", line_of(t, call), shortened(t.text(argument)), why);
+  }
+  for (int use : ctx.world.uses(var)) {
+    if (!plan.blocker.empty()) break;
+    follow_matrix_use(ctx, names, use, p.kind, new_name, plan, depth + 1);
   }
   return plan.blocker;
 }
@@ -81,6 +146,21 @@ void TranslatedChain::follow_matrix_use(const CheckContext& ctx, const DeclaredN
       renamed();
       if (std::string why = translate_value(ctx, names, point[0], plan, depth + 1); !why.empty() && plan.blocker.empty())
         plan.blocker = fmt::format("the point `{}` it transforms (line {}): {}", shortened(t.text(point[0])), line_of(t, call), why);
+      return;
+    }
+  }
+  // Handed whole to a function of this file: its transform parameter moves with it.
+  if (call >= 0 && mul_call(t, call) != call) {
+    std::vector<int> all = call_arguments(t, call);
+    size_t index = std::find(all.begin(), all.end(), use) - all.begin();
+    int fn = defined_function(t, call_name(t, call));
+    int param = fn >= 0 && index < all.size() && function_arity(t, fn) == all.size() ? parameter_variable(ctx, fn, index) : -1;
+    if (param >= 0 && is_matrix(ctx.world.variables()[static_cast<size_t>(param)].kind)) {
+      renamed();
+      std::string why = ctx.world.variables()[static_cast<size_t>(param)].kind == kind ? move_matrix_parameter(ctx, names, param, plan, depth + 1)
+                                                                                        : "it takes another kind of transform";
+      if (!why.empty() && plan.blocker.empty())
+        plan.blocker = fmt::format("it is passed to `{}` (line {}): {}", call_name(t, call), line_of(t, call), why);
       return;
     }
   }
