@@ -207,7 +207,8 @@ std::string unreal_environment_text(std::string_view code, const std::string& li
   static const std::set<std::string, std::less<>> copied_functions = {"TransformLocalToWorld", "TransformLocalToTranslatedWorld",
                                                                       "SvPositionToWorld", "SvPositionToTranslatedWorld",
                                                                       "ComputeDirectionalLightStaticShadowing", "ComputeDirectionalLightDynamicShadowing",
-                                                                      "GetDistanceToNearestSurfaceGlobal", "ScreenAlignedPosition", "Rand3DPCG16"};
+                                                                      "GetDistanceToNearestSurfaceGlobal", "ScreenAlignedPosition", "Rand3DPCG16",
+                                                                      "TransformLocalPositionToWorld"};
   TokenText tokens(code);
   bool material_parameters = false, light_data = false;
   std::set<std::string, std::less<>> defined;

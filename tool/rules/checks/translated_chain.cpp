@@ -15,6 +15,28 @@ constexpr size_t kMaxSplitCallers = 32;
 
 }  // namespace
 
+namespace {
+// A call (or its `.xyz`) of an engine function that returns a large-world position in the era the
+// code moves to, which the file does not define: that value made translated in the era's library
+// (`DFFastToTranslatedWorld`; the tile/offset sum in UE 5.0-5.3); else "".
+std::string engine_position_to_translated(const CheckContext& ctx, int value) {
+  const SyntaxTree& t = ctx.tree;
+  if (!ctx.unreal || ctx.unreal->era == UnrealEra::ue4) return {};
+  int call = without_xyz(t, value);
+  if (!t.is(call, "call_expression")) return {};
+  std::string name(call_name(t, call));
+  const auto& types = ctx.world.data().engine_function_types;
+  auto entry = types.find(name);
+  bool ue5_0 = ctx.unreal->era == UnrealEra::ue5_0;
+  if (entry == types.end() || defines_function(t, name) || ctx.world.kind(call) != Kind::absolute) return {};
+  const std::string& type = entry->second[ue5_0 ? 1 : 2];
+  if (!type.starts_with("FDFVector3") && !type.starts_with("FLWCVector3")) return {};
+  std::string text(t.text(call));
+  return ue5_0 ? fmt::format("LWCToFloat(LWCAdd({}, PrimaryView.PreViewTranslation))", text)
+               : fmt::format("DFFastToTranslatedWorld({}, PrimaryView.PreViewTranslation)", text);
+}
+}  // namespace
+
 bool unreal_code(const SyntaxTree& t) {
   const std::string& p = t.source->path();
   return p.ends_with(".usf") || p.ends_with(".ush");
@@ -110,6 +132,12 @@ std::string TranslatedChain::translate_value(const CheckContext& ctx, const Decl
   // A wrapper that only changes how the value is computed (`INVARIANT(P)`): its operand moves.
   if (t.is(value, "call_expression") && matches_any(wrappers_, call_name(t, value)))
     if (auto args = call_arguments(t, value); args.size() == 1) return translate_value(ctx, names, args[0], plan, depth);
+  // An engine function UE5 returns as a large-world position, with no translated twin
+  // (`TransformLocalPositionToWorld(Parameters, P)`): the library takes it to translated world.
+  if (std::string moved = engine_position_to_translated(ctx, value); !moved.empty()) {
+    plan.edits.push_back({t.span(value), moved});
+    return {};
+  }
   // Another local holding an absolute position, or a call of a function of this file returning
   // one: it moves too, and this value follows it as one of its uses.
   if (int var = t.is(value, "identifier") ? ctx.world.variable_at(value) : -1; var >= 0) {
