@@ -42,6 +42,18 @@ TEST(VerifyCli, AHangingShaderTimesOutAndTheOtherFilesAreStillVerified) {
   EXPECT_EQ(r.exit_code, 1);
 }
 
+// A file whose only findings are lwcport's notes on its input (a template placeholder it cannot
+// parse) holds no world-space code to run: nothing is verified, and nothing fails.
+TEST(VerifyCli, AFileWithOnlyInputNotesRunsNothing) {
+  std::string dir = test::scratch("verify-input-notes");
+  test::write(dir + "/templated.vert", "#version 120\nvoid main() { float s = @scale; gl_Position = vec4(s); }\n");
+  test::Run lint = test::run(test::binary() + " lint " + dir + " --format json --fail-on none");
+  ASSERT_NE(lint.out.find("\"lwc-input\""), std::string::npos) << lint.out;
+  test::Run r = test::run(test::binary() + " verify " + dir + " --format json");
+  EXPECT_EQ(r.out.find("\"function\""), std::string::npos) << r.out;
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+}
+
 // On a terminal, verify shows which function it is on, out of how many, on one line rewritten in
 // place (`script` gives the run a terminal); redirected, it prints nothing of the kind.
 TEST(VerifyCli, ProgressIsShownOnATerminalOnly) {

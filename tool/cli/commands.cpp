@@ -559,6 +559,8 @@ std::vector<std::string> functions_with_findings(const Source& source, const Ana
   AnalyzeOptions with_summary = options;
   if (facts) with_summary.summary_for_includers = &summary;
   std::vector<Finding> findings = analyze(source, with_summary);
+  // What lwcport says of its input (a parse note, an unused suppression) is no code to run.
+  std::erase_if(findings, [](const Finding& f) { return f.rule == kInputRule || f.rule == kUnusedSuppressionRule; });
   if (facts && summary) {
     facts->returns = summary->function_returns;
     facts->globals = summary->globals;
