@@ -219,9 +219,49 @@ bool replaces_store_target(const SyntaxTree& tree, const Edit& e) {
   return false;
 }
 
+// The same edit twice is one edit; an edit inside another whose text already carries it (a call
+// rewritten whole around an argument renamed before: the outer text holds the inner span's text
+// with the inner edits made) is part of that one. Both go; any other overlap stays, and is refused.
+void merge_carried_edits(std::string_view source, std::vector<Edit>& edits) {
+  // By where they start, the longer first; the edits keep their order.
+  std::vector<size_t> order(edits.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    const Span x = edits[a].span, y = edits[b].span;
+    return x.begin != y.begin ? x.begin < y.begin : x.end != y.end ? x.end > y.end : a < b;
+  });
+  std::vector<bool> gone(edits.size(), false);
+  for (size_t k = 1; k < order.size(); ++k)
+    if (edits[order[k]] == edits[order[k - 1]]) gone[order[k]] = true;
+  for (size_t o = 0; o < order.size(); ++o) {
+    const Edit& outer = edits[order[o]];
+    if (gone[order[o]] || !outer.path.empty() || outer.span.end > source.size()) continue;
+    std::vector<size_t> inner;
+    for (size_t i = o + 1; i < order.size() && edits[order[i]].span.begin < outer.span.end; ++i) {
+      const Edit& e = edits[order[i]];
+      if (!gone[order[i]] && e.path.empty() && e.span.end <= outer.span.end && !(e.span == outer.span)) inner.push_back(order[i]);
+    }
+    if (inner.empty()) continue;
+    // The outer span's text with the inner edits made, back to front (where they overlap each
+    // other the rewrite is refused anyway).
+    std::string text(source.substr(outer.span.begin, outer.span.end - outer.span.begin));
+    bool disjoint = true;
+    for (size_t k = inner.size(); k-- > 0 && disjoint;) {
+      const Edit& e = edits[inner[k]];
+      if (k + 1 < inner.size() && e.span.end > edits[inner[k + 1]].span.begin) disjoint = false;
+      else text.replace(e.span.begin - outer.span.begin, e.span.end - e.span.begin, e.text);
+    }
+    if (disjoint && outer.text.find(text) != std::string::npos)
+      for (size_t i : inner) gone[i] = true;
+  }
+  size_t k = 0;
+  edits.erase(std::remove_if(edits.begin(), edits.end(), [&](const Edit&) { return gone[k++]; }), edits.end());
+}
+
 }  // namespace
 
 Fix* CheckContext::fix(Finding& finding, std::string_view kind, const Vars& vars, std::vector<Edit> edits) const {
+  merge_carried_edits(tree.source->text(), edits);
   size_t bytes = 0;
   for (const Edit& e : edits) bytes += e.text.size();
   if (too_long(finding, kind, bytes)) return nullptr;

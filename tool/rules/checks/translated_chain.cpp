@@ -312,15 +312,12 @@ void TranslatedChain::rename_with_callers(const CheckContext& ctx, const Declare
     if (!plan.blocker.empty()) return;
     if (covered(plan, t.span(t.child_by_field(call, "function")))) continue;  // renamed as another call's partner
     // What the plan already changed in the arguments (a transform passed on, renamed) goes into
-    // the call's new text, which replaces the whole call.
+    // the call's new text, which replaces the whole call (the fix then keeps that one edit).
     int args = t.child_by_field(call, "arguments");
     Span inside = t.span(args);
     std::vector<Edit> within;
-    std::erase_if(plan.edits, [&](const Edit& e) {
-      bool in = inside.begin <= e.span.begin && e.span.end <= inside.end;
-      if (in) within.push_back(e);
-      return in;
-    });
+    for (const Edit& e : plan.edits)
+      if (e.path.empty() && inside.begin <= e.span.begin && e.span.end <= inside.end) within.push_back(e);
     follow_use(ctx, names, call, new_name + spliced(std::string(t.text(args)), inside.begin, within), plan, depth + 1);
   }
 }
