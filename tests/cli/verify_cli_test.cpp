@@ -42,6 +42,18 @@ TEST(VerifyCli, AHangingShaderTimesOutAndTheOtherFilesAreStillVerified) {
   EXPECT_EQ(r.exit_code, 1);
 }
 
+// A GLSL file that includes another (resolved as lint resolves it) compiles in verify as well,
+// without an `#extension` line of its own.
+TEST(VerifyCli, AGlslIncludeIsResolved) {
+  std::string dir = test::scratch("verify-glsl-include");
+  test::write(dir + "/lib.glsl", "uniform vec3 cameraPosition;\nvec3 toCamera(vec3 worldPosition) { return worldPosition - cameraPosition; }\n");
+  test::write(dir + "/a.vert", "#version 450\n#include \"lib.glsl\"\nlayout(location = 0) in vec3 worldPosition;\n"
+                               "layout(location = 0) out vec3 v;\nvoid main() { v = toCamera(worldPosition); gl_Position = vec4(v, 1.0); }\n");
+  test::Run r = test::run(test::binary() + " verify " + dir + "/a.vert --format json");
+  EXPECT_NE(r.out.find("\"function\": \"main\""), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("does not compile"), std::string::npos) << r.out;
+}
+
 // A file whose only findings are lwcport's notes on its input (a template placeholder it cannot
 // parse) holds no world-space code to run: nothing is verified, and nothing fails.
 TEST(VerifyCli, AFileWithOnlyInputNotesRunsNothing) {

@@ -138,19 +138,23 @@ class Includer : public glslang::TShader::Includer {
 };
 
 // The strings glslang reads when it parses: they must outlive the parse.
+// GLSL `#include`, which lint resolves, is a glslang extension: turned on for every GLSL file (an
+// engine's own preprocessor, or the file's `#extension` line, usually does).
 struct SourceStrings {
   explicit SourceStrings(const CompileInput& input)
-      : text(input.text.c_str()), name(input.name.c_str()), length(static_cast<int>(input.text.size())) {}
+      : text(input.text.c_str()), name(input.name.c_str()), length(static_cast<int>(input.text.size())),
+        preamble((input.lang == Lang::hlsl ? "" : "#extension GL_GOOGLE_include_directive : enable\n") + input.preamble) {}
   const char* text;
   const char* name;
   int length;
+  std::string preamble;
 };
 
 // The source, preamble and input language; `vulkan`: compile for Vulkan SPIR-V (HLSL always is).
 void set_source(glslang::TShader& shader, const CompileInput& input, SourceStrings& s, EShLanguage stage, bool vulkan) {
   shader.setStringsWithLengthsAndNames(&s.text, &s.length, &s.name, 1);
-  if (!input.preamble.empty()) shader.setPreamble(input.preamble.c_str());
   bool hlsl = input.lang == Lang::hlsl;
+  if (!s.preamble.empty()) shader.setPreamble(s.preamble.c_str());
   shader.setEnvInput(hlsl ? glslang::EShSourceHlsl : glslang::EShSourceGlsl, stage,
                      vulkan ? glslang::EShClientVulkan : glslang::EShClientNone, 100);
   if (vulkan) {
