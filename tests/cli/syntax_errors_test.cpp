@@ -142,5 +142,20 @@ TEST(SyntaxErrors, EffectFrameworkBlocksAreNamedAsTheCause) {
   EXPECT_EQ(r.out.find("a macro used as syntax"), std::string::npos) << r.out;
 }
 
+// A template an engine's own preprocessor fills in (`@name` placeholders): the note names them as
+// the cause; an `@` inside a comment or a string is no placeholder.
+TEST(SyntaxErrors, TemplatePlaceholdersAreNamedAsTheCause) {
+  std::string dir = test::scratch("template-placeholders");
+  test::write(dir + "/water.frag", "#version 120\n// see user@example\nuniform sampler2D normalMap;\n"
+                                   "void main() { gl_FragColor = texture2D(normalMap, gl_TexCoord[@normalMapUV].xy); }\n");
+  test::write(dir + "/plain.frag", "#version 120\n// mail: user@example\nvoid main() { gl_FragColor = vec4(1.0) +; }\n");
+  auto r = test::run("cd " + dir + " && " + test::binary() + " lint water.frag --color never 2>&1");
+  EXPECT_NE(r.out.find("the file holds `@name` placeholders"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("a macro used as syntax"), std::string::npos) << r.out;
+  auto plain = test::run("cd " + dir + " && " + test::binary() + " lint plain.frag --color never 2>&1");
+  EXPECT_NE(plain.out.find("syntax error(s) the parser could not place"), std::string::npos) << plain.out;
+  EXPECT_EQ(plain.out.find("`@name` placeholders"), std::string::npos) << plain.out;
+}
+
 }  // namespace
 }  // namespace lwc

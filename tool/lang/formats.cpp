@@ -50,6 +50,16 @@ bool reads_as_hlsl(std::string_view text) {
   return false;
 }
 
+bool holds_template_placeholders(std::string_view text) {
+  for (size_t i = 0; i + 1 < text.size(); ++i) {
+    if (text[i] == '/' && text[i + 1] == '/') i = std::min(text.find('\n', i), text.size());
+    else if (text[i] == '/' && text[i + 1] == '*') i = std::min(text.find("*/", i + 2), text.size());
+    else if (text[i] == '"') i = std::min(text.find('"', i + 1), text.size());
+    else if (text[i] == '@' && ident_char(text[i + 1])) return true;
+  }
+  return false;
+}
+
 bool holds_effect_framework(std::string_view text) {
   auto word_at = [&](size_t at, std::string_view word) {
     return (at == 0 || !ident_char(text[at - 1])) && (at + word.size() == text.size() || !ident_char(text[at + word.size()]));

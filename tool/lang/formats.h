@@ -26,6 +26,10 @@ bool reads_as_hlsl(std::string_view text);
 // `technique11` block, a pass's `compile vs_3_0 ...`, a `sampler_state { ... }` initialiser.
 bool holds_effect_framework(std::string_view text);
 
+// `@name` outside comments and strings: a template placeholder (neither HLSL nor GLSL has `@`)
+// that an engine's own preprocessor fills in before the compiler sees the file.
+bool holds_template_placeholders(std::string_view text);
+
 // Which files are shaders, by extension (the longest matching one, case-insensitive: `.glsl.js`
 // before `.js`). The defaults cover what engines ship; a project's `.lwcport.json` "extensions"
 // adds to them or overrides them.

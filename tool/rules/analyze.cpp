@@ -612,6 +612,10 @@ void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, co
     std::string hint = lang == Lang::glsl && reads_as_hlsl(text)
                            ? "this file reads as HLSL (`cbuffer`, `register(..)`, `SV_` semantics) but its extension says GLSL: map "
                              "the extension in .lwcport.json \"extensions\" (for example {\".frag\": \"hlsl\"}) or pass --lang hlsl"
+                       : holds_template_placeholders(text)
+                           ? "the file holds `@name` placeholders, which neither HLSL nor GLSL has: it is a template that an "
+                             "engine's own preprocessor fills in before compiling, and lwcport reads it as written, so the "
+                             "declarations around each placeholder may be missed (lint a filled-in copy to see them)"
                        : holds_effect_framework(text)
                            ? "the file holds Direct3D effect-framework blocks (`technique`/`pass`, `sampler_state`), which lwcport "
                              "does not parse; the functions around them are read as usual, and the blocks themselves only bind "
