@@ -662,13 +662,14 @@ void encode(const Leaf& leaf, const std::vector<double>& v, bool float64, bool o
         moved[r] = leaf.encoding == Encoding::lwc_inverse_matrix ? tiles(world_origin[r]) * kTile
                    : float64                                     ? 0.0
                                                                  : static_cast<float>(world_origin[r]);
-      // M T(moved): only the translation column changes. Written out, so that an infinite
-      // translation does not turn the rotation into NaN through 0 * inf, as no engine matrix does.
-      for (int i = 0; i < 16; ++i) {
-        double value = v[i];
-        for (int k = 0; i >= 12 && k < 3; ++k)
-          if (v[k * 4 + i - 12] != 0 && moved[k] != 0) value += v[k * 4 + i - 12] * moved[k];
-        put(i, value);
+      // M T(moved): only the translation column (12..15) changes. Written out, so that an
+      // infinite translation does not turn the rotation into NaN through 0 * inf.
+      for (int i = 0; i < 12; ++i) put(i, v[i]);
+      for (int r = 0; r < 4; ++r) {
+        double column = v[12 + r];
+        for (int k = 0; k < 3; ++k)
+          if (v[k * 4 + r] != 0 && moved[k] != 0) column += v[k * 4 + r] * moved[k];
+        put(12 + r, column);
       }
       for (int r = 0; r < 3; ++r) put(16 + r, leaf.encoding == Encoding::lwc_inverse_matrix ? -moved[r] / kTile : moved[r]);
       break;

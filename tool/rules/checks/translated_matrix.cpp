@@ -151,10 +151,7 @@ void TranslatedChain::follow_matrix_use(const CheckContext& ctx, const DeclaredN
   }
   // Handed whole to a function of this file: its transform parameter moves with it.
   if (call >= 0 && mul_call(t, call) != call) {
-    std::vector<int> all = call_arguments(t, call);
-    size_t index = std::find(all.begin(), all.end(), use) - all.begin();
-    int fn = defined_function(t, call_name(t, call));
-    int param = fn >= 0 && index < all.size() && function_arity(t, fn) == all.size() ? parameter_variable(ctx, fn, index) : -1;
+    int param = parameter_of(ctx, use);
     if (param >= 0 && is_matrix(ctx.world.variables()[static_cast<size_t>(param)].kind)) {
       renamed();
       std::string why = ctx.world.variables()[static_cast<size_t>(param)].kind == kind ? move_matrix_parameter(ctx, names, param, plan, depth + 1)
