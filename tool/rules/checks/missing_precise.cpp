@@ -28,12 +28,19 @@ bool is_zero(const Poly& p) {
   return std::all_of(p.begin(), p.end(), [](const auto& t) { return t.second == 0; });
 }
 
-void add_to(Poly& into, const Poly& p, double scale) {
+// Adds `scale * p`; true when a term that reads an input cancels (`(a + b) - a`): an error term
+// cancels inputs, while a blend whose weight is a constant 0 (`c * (1 - 1) + 0`) cancels numbers only.
+bool add_to(Poly& into, const Poly& p, double scale) {
+  bool cancelled = false;
   for (const auto& [m, c] : p) {
     double& slot = into[m];
     slot += scale * c;
-    if (slot == 0) into.erase(m);
+    if (slot == 0) {
+      cancelled |= !m.empty();
+      into.erase(m);
+    }
   }
+  return cancelled;
 }
 
 std::string times(const std::string& a, const std::string& b) {
@@ -212,6 +219,7 @@ class MissingPrecise : public Check {
     bool rounded = false;  // a substituted value combined two inputs
     bool reused = false;   // a temporary was substituted twice: TwoSum recovers both inputs from one
     bool integer = false;  // a substituted variable is not a float: integers do not round
+    bool cancelled = false;  // a term reading an input cancelled (add_to)
     int budget = kMaxExpansions;
   };
 
@@ -250,7 +258,7 @@ class MissingPrecise : public Check {
       auto v = evaluate(ctx, d, t.child_by_field(n, "argument"), expand, e);
       if (!v) return std::nullopt;
       Poly out;
-      add_to(out, *v, o == "-" ? -1 : 1);
+      e.cancelled |= add_to(out, *v, o == "-" ? -1 : 1);
       return out;
     }
     if (type == "cast_expression") return evaluate(ctx, d, t.child_by_field(n, "value"), expand, e);
@@ -263,7 +271,7 @@ class MissingPrecise : public Check {
       if (!b) return std::nullopt;
       if (o == "*") return product(t, left, right, *a, *b, e);
       Poly out = *a;
-      add_to(out, *b, o == "-" ? -1 : 1);
+      e.cancelled |= add_to(out, *b, o == "-" ? -1 : 1);
       return out;
     }
     if (type == "call_expression") {
@@ -279,7 +287,7 @@ class MissingPrecise : public Check {
         if (!b) return std::nullopt;
         if (as == "multiply") return product(t, args[0], args[1], *a, *b, e);
         Poly out = *a;
-        add_to(out, *b, as == "subtract" ? -1 : 1);
+        e.cancelled |= add_to(out, *b, as == "subtract" ? -1 : 1);
         return out;
       }
       if (as == "fma" && args.size() == 3) {
@@ -290,7 +298,7 @@ class MissingPrecise : public Check {
         if (!c) return std::nullopt;
         auto ab = multiply(*a, *b);
         if (!ab) return std::nullopt;
-        add_to(*ab, *c, 1);
+        e.cancelled |= add_to(*ab, *c, 1);
         return ab;
       }
     }
@@ -363,7 +371,7 @@ class MissingPrecise : public Check {
       Evaluation e;
       auto expanded = evaluate(ctx, d, id, true, e);
       bool rounds = e.rounded || e.split || e.product || e.fma;
-      if (expanded && is_zero(*expanded) && !e.expanded.empty() && rounds && !e.integer) {
+      if (expanded && is_zero(*expanded) && e.cancelled && !e.expanded.empty() && rounds && !e.integer) {
         std::string name = e.fma || e.product ? "TwoProduct" : e.split ? "Dekker split" : e.reused ? "TwoSum" : "Fast2Sum";
         std::string operation = e.fma || e.product ? "product" : e.split ? "split" : e.reused ? "sum" : "fast-sum";
         return {name + " error term", true, e.expanded, operation};
