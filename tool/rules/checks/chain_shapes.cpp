@@ -32,7 +32,8 @@ int climb_point(const CheckContext& ctx, int n) {
     if (!t.is(p, "binary_expression")) return n;
     std::string_view op = t.text(t.child_by_field(p, "operator"));
     int left = t.child_by_field(p, "left"), right = t.child_by_field(p, "right");
-    bool small = small_vector(ctx, left == n ? right : left);
+    int other = left == n ? right : left;
+    bool small = op == "/" ? small_vector(ctx, other) : point_offset(ctx, other, op, p);
     if ((op == "/" && left == n && small) || (op == "+" && small) || (op == "-" && left == n && small)) {
       n = p;
       continue;
@@ -120,6 +121,66 @@ bool small_vector_at(const CheckContext& ctx, int n, int depth) {
 
 bool small_vector(const CheckContext& ctx, int n) { return small_vector_at(ctx, n, 0); }
 
+namespace {
+bool says_point(std::string_view name) {
+  for (std::string_view w : {"Pos", "pos", "Center", "center", "Centre", "Origin", "origin", "Location", "Point", "point", "Min", "Max",
+                             "Corner", "Bound", "Start", "End", "Eye", "Camera", "Sphere", "Translation"})
+    if (name.find(w) != std::string_view::npos) return true;
+  return false;
+}
+
+bool says_offset(std::string_view name) {
+  for (std::string_view w : {"Bias", "Offset", "Delta", "Step", "Jitter", "Extent", "Radius"})
+    if (name.find(w) != std::string_view::npos) return true;
+  return false;
+}
+
+// No identifier, member or call in `n` is known to be a position or matrix, or named as a point.
+bool holds_no_point(const CheckContext& ctx, int n) {
+  const SyntaxTree& t = ctx.tree;
+  std::vector<int> stack{n};
+  while (!stack.empty()) {
+    int m = stack.back();
+    stack.pop_back();
+    Kind k = ctx.world.kind(m);
+    if (k != Kind::unknown && k != Kind::local && k != Kind::direction) return false;
+    if (t.is(m, "identifier") || t.is(m, "field_identifier")) {
+      if (says_point(t.text(m))) return false;
+    } else if (t.is(m, "call_expression") && (call_name(t, m) == "mul" || says_point(call_name(t, m)))) {
+      return false;
+    }
+    for (int c : t.named_children(m)) stack.push_back(c);
+  }
+  return true;
+}
+
+bool scalar_term(const CheckContext& ctx, int n) {
+  const SyntaxTree& t = ctx.tree;
+  if (t.is(n, "number_literal")) return true;
+  int var = t.is(n, "identifier") ? ctx.world.variable_at(n) : -1;
+  return var >= 0 && scalar_type(ctx.world.variables()[var].type) && !is_position(ctx.world.kind(n));
+}
+
+// `(A + B) * 0.5`, `(A + B) / 2`: the sum is averaged (a midpoint), not a point moved.
+bool averaged(const SyntaxTree& t, int sum) {
+  int n = sum, p = t.at(n).parent;
+  while (t.is(p, "parenthesized_expression")) n = p, p = t.at(p).parent;
+  if (!t.is(p, "binary_expression")) return false;
+  std::string_view op = t.text(t.child_by_field(p, "operator"));
+  return op == "*" || op == "/";
+}
+}  // namespace
+
+bool point_offset(const CheckContext& ctx, int other, std::string_view op, int sum) {
+  const SyntaxTree& t = ctx.tree;
+  while (t.is(other, "parenthesized_expression")) other = t.named_child(other);
+  if (small_vector(ctx, other) || scalar_term(ctx, other)) return true;
+  if (!holds_no_point(ctx, other)) return false;
+  if (op == "+") return sum < 0 || !averaged(t, sum);
+  int name = t.is(other, "field_expression") ? t.child_by_field(other, "field") : other;
+  return (t.is(name, "identifier") || t.is(name, "field_identifier")) && says_offset(t.text(name));
+}
+
 bool shifted_in_place(const CheckContext& ctx, int use) {
   const SyntaxTree& t = ctx.tree;
   int target = use, parent = t.at(use).parent;
@@ -134,7 +195,7 @@ bool shifted_in_place(const CheckContext& ctx, int use) {
   std::string_view op = t.text(t.child_by_field(parent, "operator"));
   if (op != "+=" && op != "-=") return false;
   int offset = t.child_by_field(parent, "right");
-  if (small_vector(ctx, offset)) return true;
+  if (point_offset(ctx, offset, op == "+=" ? "+" : "-", -1)) return true;
   // One coordinate moved by a scalar: every identifier in it a scalar that is no position.
   if (!component) return false;
   std::vector<int> stack{offset};

@@ -30,6 +30,11 @@ bool is_position(Kind k);
 // vectors (`normalize(..)`) and locals holding such vectors, scaled by scalars and numbers
 // (`Normal * Bias`, `L * MaxDistance`).
 bool small_vector(const CheckContext& ctx, int n);
+// The other term `other` of `point op other` (op "+" or "-", `sum` the whole expression) moves the
+// point by an offset: a small vector, a scalar, or, in a sum, a vector in which no position is known
+// and no name calls a point (`P + DepthBias`): two points added make no point, unless averaged
+// (`(A + B) * 0.5`), which the sum must not be. A difference takes only an offset its name says.
+bool point_offset(const CheckContext& ctx, int other, std::string_view op, int sum);
 // A point moved in place by an offset (`P -= Bias * Dir`, `P.z += Height` with Height a scalar):
 // the statement keeps it a point of the same space.
 bool shifted_in_place(const CheckContext& ctx, int use);

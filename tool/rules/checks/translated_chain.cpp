@@ -95,8 +95,11 @@ std::string TranslatedChain::translate_value(const CheckContext& ctx, const Decl
       return {};
     }
     // A point and a small offset (`P + Normal * Bias`, `P - Dir * T`): the point moves.
-    if ((op == "+" || op == "-") && small_vector(ctx, right)) return translate_value(ctx, names, left, plan, depth);
-    if (op == "+" && small_vector(ctx, left)) return translate_value(ctx, names, right, plan, depth);
+    // (Any offset, where the point is known to be one.)
+    if ((op == "+" || op == "-") && (small_vector(ctx, right) || (is_position(ctx.world.kind(left)) && point_offset(ctx, right, op, value))))
+      return translate_value(ctx, names, left, plan, depth);
+    if (op == "+" && (small_vector(ctx, left) || (is_position(ctx.world.kind(right)) && point_offset(ctx, left, op, value))))
+      return translate_value(ctx, names, right, plan, depth);
     // The camera plus a vector that is no position (`ScreenVector * SceneDepth + View.WorldCameraOrigin`,
     // a view ray scaled to a depth): the camera takes its translated twin, the vector stays.
     if (op == "+" || op == "-") {
@@ -603,7 +606,12 @@ bool TranslatedChain::follow_into_local(const CheckContext& ctx, const DeclaredN
   std::string new_name = translated_name(v.name);
   if (std::find(plan.moving_variables.begin(), plan.moving_variables.end(), local) != plan.moving_variables.end()) return true;
   if (new_name == v.name || names.taken(new_name, v.function)) return false;
-  return move_local(ctx, names, local, false, plan, depth + 1).empty();
+  // A local that cannot move (every use of it needs the absolute value) is left as it was: the
+  // use that feeds it reads the absolute value back instead.
+  PlanMark before = mark(plan);
+  if (move_local(ctx, names, local, false, plan, depth + 1).empty()) return true;
+  roll_back(plan, before);
+  return false;
 }
 
 bool TranslatedChain::follow_partner(const CheckContext& ctx, const DeclaredNames& names, int partner, RewritePlan& plan, int depth) const {
