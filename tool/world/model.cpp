@@ -377,6 +377,7 @@ void Analyzer::run() {
   }
   if (log_) context_.reuse->logs_[context_.variant] = std::move(log_);
   if (m_.era_ == UnrealEra::ue4) engine_contract_parameters();
+  absolute_by_translation();
   // A stage output named as world-space data holds what the file stores into it when every
   // store is classified and none is absolute (`cameraPosition = vec3(1.0)`): the name was wrong.
   for (const auto& [var, output] : named_outputs_) {
@@ -431,6 +432,55 @@ void Analyzer::engine_contract_parameters() {
       }
     }
   }
+}
+
+namespace {
+bool says_point(std::string_view name) {
+  for (std::string_view w : {"Pos", "Center", "Centre", "Origin", "Location", "Point"})
+    if (name.find(w) != std::string_view::npos) return true;
+  return false;
+}
+}  // namespace
+
+void Analyzer::absolute_by_translation() {
+  // The variable a point operand reads (`P`, `P.xyz`), or -1.
+  auto variable_of = [&](int n) {
+    if (t_.is(n, "field_expression") && t_.text(t_.child_by_field(n, "field")) == "xyz") n = t_.child_by_field(n, "argument");
+    return t_.is(n, "identifier") ? m_.variable_at(n) : -1;
+  };
+  auto vector = [](const Variable& v) { return v.type == "float3" || v.type == "float4"; };
+  auto operands = [&](int n, std::string_view op) {
+    std::vector<std::pair<int, int>> out;
+    if (t_.is(n, "binary_expression") && t_.text(t_.child_by_field(n, "operator")) == op) {
+      int left = t_.child_by_field(n, "left"), right = t_.child_by_field(n, "right");
+      out = {{left, right}, {right, left}};
+    }
+    return out;
+  };
+  // `P + PreViewTranslation` makes a translated point only of an absolute one: a local or
+  // parameter of no known kind added to the camera offset holds an absolute world position,
+  // whatever it is called (space from structure, before names).
+  for (int n = 0; n < static_cast<int>(t_.nodes.size()); ++n)
+    for (auto [point, offset] : operands(n, "+")) {
+      int var = m_.kind(offset) == Kind::camera_offset && m_.kind(point) == Kind::unknown ? variable_of(point) : -1;
+      if (var < 0) continue;
+      const Variable& v = m_.variables_[var];
+      if ((v.role == Variable::Role::local || v.role == Variable::Role::parameter) && !v.output && v.kind == Kind::unknown && !v.clip &&
+          vector(v))
+        hold(var, Kind::absolute, v.decl);
+    }
+  // A uniform point taken from an absolute one, or the other way round (`length(P - LodOrigin)`),
+  // is a point of the same world: a difference of points means something in one frame only. Only a
+  // name that says point makes it one (a vector may be an offset).
+  for (int n = 0; n < static_cast<int>(t_.nodes.size()); ++n)
+    for (auto [point, other] : operands(n, "-")) {
+      int p = variable_of(point);
+      bool absolute = m_.kind(point) == Kind::absolute || (p >= 0 && m_.variables_[p].kind == Kind::absolute);
+      int var = absolute && m_.kind(other) == Kind::unknown ? variable_of(other) : -1;
+      if (var < 0) continue;
+      Variable& v = m_.variables_[var];
+      if (v.role == Variable::Role::global && v.uniform && v.kind == Kind::unknown && vector(v) && says_point(v.name)) v.kind = Kind::absolute;
+    }
 }
 
 std::string_view Analyzer::type_of(int declaration) const {

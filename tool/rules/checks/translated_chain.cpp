@@ -2,6 +2,7 @@
 #include "rules/checks/translated_chain.h"
 
 #include <algorithm>
+#include <cctype>
 
 #include <fmt/format.h>
 
@@ -36,6 +37,20 @@ std::string engine_position_to_translated(const CheckContext& ctx, int value) {
                : fmt::format("DFFastToTranslatedWorld({}, PrimaryView.PreViewTranslation)", text);
 }
 }  // namespace
+
+std::string input_semantic(const SyntaxTree& t, const Variable& p) {
+  if (p.declaration < 0) return {};
+  std::string_view text = t.source->text();
+  size_t at = t.at(p.declaration).end;
+  while (at < text.size() && (text[at] == ' ' || text[at] == '\t')) ++at;
+  if (at >= text.size() || text[at] != ':') return {};
+  ++at;
+  while (at < text.size() && (text[at] == ' ' || text[at] == '\t')) ++at;
+  size_t end = at;
+  while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '_')) ++end;
+  std::string semantic(text.substr(at, end - at));
+  return semantic.empty() || semantic.starts_with("SV_") || semantic.starts_with("sv_") ? std::string() : semantic;
+}
 
 bool unreal_code(const SyntaxTree& t) {
   const std::string& p = t.source->path();
@@ -249,6 +264,12 @@ std::string TranslatedChain::move_parameter(const CheckContext& ctx, const Decla
   size_t index = 0, arity = function_arity(t, fn);
   while (index < arity && parameter_variable(ctx, fn, index) != var) ++index;
   std::vector<int> calls = calls_to(t, fn);
+  if (index < arity && calls.empty() && !header)
+    if (std::string semantic = input_semantic(t, p); !semantic.empty())
+      return fmt::format("`{}` is a shader input (`{}`) that the host or the stage before writes: no shader rewrite recovers what was "
+                         "rounded there; the producer must write it in translated world (relative to the camera, computed in double) "
+                         "or as a high/low pair",
+                         p.name, semantic);
   if (index == arity || (calls.empty() && !header)) return fmt::format("no call in this file passes `{}`", p.name);
   plan.moving_variables.push_back(var);
   plan.edits.push_back({t.span(p.decl), new_name});

@@ -13,6 +13,8 @@ namespace lwc::checks {
 
 // Unreal shader code by its file's extension (.usf, .ush).
 bool unreal_code(const SyntaxTree& t);
+// The semantic of an entry point's parameter (`ATTRIBUTE1`; not an `SV_` value), or "".
+std::string input_semantic(const SyntaxTree& t, const Variable& p);
 
 class TranslatedChain {
  public:
