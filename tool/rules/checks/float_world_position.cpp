@@ -41,15 +41,36 @@ class FloatWorldPosition : public Check {
         offer_move(ctx, f, h, "translated-matrix", [&](int var, RewritePlan& plan) { return chain_.move_matrix(ctx, *names, var, plan, 0); });
       if (is_matrix(h.kind) && h.what == AbsoluteHolder::What::parameter && unreal_code(ctx.tree))
         offer_move(ctx, f, h, "translated-matrix", [&](int var, RewritePlan& plan) { return chain_.move_matrix_parameter(ctx, *names, var, plan, 0); });
-      if (h.kind != Kind::absolute) continue;
-      if (h.what == AbsoluteHolder::What::variable) offer_rewrites(ctx, f, h, *names);
-      if (h.what == AbsoluteHolder::What::return_value) offer_function_rewrite(ctx, f, h, *names);
-      if (h.what == AbsoluteHolder::What::parameter)
-        offer_move(ctx, f, h, "translated-parameter", [&](int var, RewritePlan& plan) { return chain_.move_parameter(ctx, *names, var, plan, 0); });
+      if (h.kind == Kind::absolute) {
+        if (h.what == AbsoluteHolder::What::variable) offer_rewrites(ctx, f, h, *names);
+        if (h.what == AbsoluteHolder::What::return_value) offer_function_rewrite(ctx, f, h, *names);
+        if (h.what == AbsoluteHolder::What::parameter)
+          offer_move(ctx, f, h, "translated-parameter", [&](int var, RewritePlan& plan) { return chain_.move_parameter(ctx, *names, var, plan, 0); });
+      }
+      // Every finding without a rewrite says why.
+      if (f.fixes.empty() && f.withheld.empty()) f.withheld.push_back(no_rewrite_reason(ctx, h));
     }
   }
 
  private:
+  // Why a holder no planner tried has no rewrite.
+  static std::string no_rewrite_reason(const CheckContext& ctx, const AbsoluteHolder& h) {
+    int var = ctx.world.variable_declared_at(h.site);
+    const Variable* v = var >= 0 ? &ctx.world.variables()[var] : nullptr;
+    if (h.kind == Kind::camera_offset)
+      return fmt::format("translated world: `{}` holds the pre-view translation itself, which has no translated twin: the code it is "
+                         "handed to must take it as a large-world value (`FDFVector3`) and add it in the DoubleFloat library", h.name);
+    if (h.what == AbsoluteHolder::What::field)
+      return fmt::format("translated world: `{}` is a struct field; lwcport moves locals, parameters and returns, not fields: a port moves "
+                         "every store into it and every read of it together", h.name);
+    if (v && v->role == Variable::Role::global)
+      return fmt::format("translated world: `{}` is a global, which every function of the file may read; lwcport moves locals, "
+                         "parameters and returns, not globals", h.name);
+    if (is_matrix(h.kind) && !unreal_code(ctx.tree))
+      return "translated world: lwcport moves world matrices to translated world in Unreal code only (its view and primitive data)";
+    return fmt::format("translated world: lwcport has no rewrite for a {} of this kind", h.what == AbsoluteHolder::What::parameter ? "parameter" : "value");
+  }
+
   // A parameter the function never reads: what its callers pass is rounded at the call (reported
   // there, where it is a variable or a member), not here.
   static bool never_read(const CheckContext& ctx, const AbsoluteHolder& h) {
@@ -76,8 +97,8 @@ class FloatWorldPosition : public Check {
       if (!translated.blocker.empty()) offer_plain_rewrite(ctx, f, var);
       return;
     }
-    if (!local) return;
     if (!translated.blocker.empty()) f.withheld.push_back("translated world: " + translated.blocker);
+    if (!local) return;
     RewritePlan df = plan_double_float(ctx, var);
     if (df.blocker.empty())
       ctx.fix(f, "df", {{"name", v.name}}, df.edits);

@@ -420,13 +420,16 @@ bool TranslatedChain::follow_partner_call(const CheckContext& ctx, const Declare
   return false;
 }
 
-void TranslatedChain::follow_translated(const CheckContext& ctx, const DeclaredNames& names, int var, const std::string& new_name, RewritePlan& plan, int depth) const {
+void TranslatedChain::follow_translated(const CheckContext& ctx, const DeclaredNames& names, int var, const std::string& new_name, RewritePlan& plan, int depth,
+                                        int assigned) const {
   const SyntaxTree& t = ctx.tree;
   uint32_t translated_from = UINT32_MAX;
   size_t followed = plan.followed, bridged = plan.bridged;
   for (int use : ctx.world.uses(var)) {
     if (!plan.blocker.empty()) return;
-    if (t.at(use).begin >= translated_from) {
+    if (use == assigned) {
+      plan.edits.push_back({t.span(use), new_name});
+    } else if (t.at(use).begin >= translated_from) {
       plan.edits.push_back({t.span(use), new_name});
       ++plan.followed;
     } else if (int statement = rebase_statement(ctx, use); statement >= 0) {
@@ -729,6 +732,20 @@ bool TranslatedChain::follow_into_helper(const CheckContext& ctx, const Declared
   return plan.blocker.empty();
 }
 
+int TranslatedChain::assigned_once(const CheckContext& ctx, int var, const std::vector<int>& uses) {
+  const SyntaxTree& t = ctx.tree;
+  int first = uses.front(), assignment = t.at(first).parent;
+  if (!t.is(assignment, "assignment_expression") || t.child_by_field(assignment, "left") != first ||
+      t.text(t.child_by_field(assignment, "operator")) != "=")
+    return -1;
+  int statement = t.at(assignment).parent;
+  const Variable& v = ctx.world.variables()[var];
+  if (!t.is(statement, "expression_statement") || v.declaration < 0 || t.at(statement).parent != t.at(v.declaration).parent) return -1;
+  for (size_t i = 1; i < uses.size(); ++i)
+    if (stores_into(ctx, uses[i])) return -1;
+  return t.child_by_field(assignment, "right");
+}
+
 std::string TranslatedChain::move_out_local(const CheckContext& ctx, const DeclaredNames& names, int var, RewritePlan& plan, int depth) const {
   const SyntaxTree& t = ctx.tree;
   const auto& vars = ctx.world.variables();
@@ -736,8 +753,19 @@ std::string TranslatedChain::move_out_local(const CheckContext& ctx, const Decla
   std::string new_name = translated_name(v.name);
   if (new_name == v.name || names.taken(new_name, v.function)) return fmt::format("the name `{}` is already taken", new_name);
   std::vector<int> uses = ctx.world.uses(var);
+  // Declared, then given its value once by a plain assignment in the same block before any read
+  // (`float3 P; P = mul(..);`, as generated material code writes): that value is its own.
+  if (int value = uses.empty() ? -1 : assigned_once(ctx, var, uses); value >= 0) {
+    plan.moving_variables.push_back(var);
+    if (std::string why = translate_value(ctx, names, value, plan, depth); !why.empty()) return why;
+    plan.edits.push_back({t.span(v.decl), new_name});
+    follow_translated(ctx, names, var, new_name, plan, depth, uses.front());
+    return plan.blocker;
+  }
   int param = uses.empty() ? -1 : out_parameter_of(ctx, uses.front());
-  if (param < 0) return fmt::format("`{}` gets its value from nothing lwcport can follow", v.name);
+  if (param < 0)
+    return fmt::format("`{}` gets its value from nothing lwcport can follow (it moves a local given its value once, in its own block "
+                       "before any read, or by one call's `out` parameter)", v.name);
   for (size_t i = 1; i < uses.size(); ++i)
     if (out_parameter_of(ctx, uses[i]) >= 0) return fmt::format("`{}` is written by more than one call", v.name);
   std::string_view callee = call_name(t, t.at(t.at(uses.front()).parent).parent);

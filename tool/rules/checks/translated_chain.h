@@ -113,7 +113,12 @@ class TranslatedChain {
   // A statement that moves the variable to translated world itself (`V += PreViewTranslation`, run
   // whenever the code reaches it) goes: the value is translated from the start, and every use after
   // it already took it so, and is only renamed.
-  void follow_translated(const CheckContext& ctx, const DeclaredNames& names, int var, const std::string& new_name, RewritePlan& plan, int depth) const;
+  // The value a local declared without one is given by its first use, a plain assignment in the
+  // same block with no other store after it; or -1.
+  static int assigned_once(const CheckContext& ctx, int var, const std::vector<int>& uses);
+  // (`assigned`: a use that is the one store of the variable's value, renamed and not followed.)
+  void follow_translated(const CheckContext& ctx, const DeclaredNames& names, int var, const std::string& new_name, RewritePlan& plan, int depth,
+                         int assigned = -1) const;
 
   // One use of a value that becomes translated (a variable, or a call of a function that now
   // returns translated), written `text` there: the variable's new name, or the renamed call.
