@@ -421,5 +421,39 @@ TEST(Cli, AProjectMapsItsOwnExtensions) {
   EXPECT_NE(bad.out.find("format must be hlsl, glsl, glsl-in-js or none"), std::string::npos) << bad.out;
 }
 
+TEST(Cli, AnUnmappedExtensionWhoseFilesReadAsShaderCodeIsNamedOnce) {
+  std::string dir = test::scratch("unmapped");
+  const char* hlsl = "cbuffer View : register(b0) { float4x4 World; float3 EyePosW; };\nfloat4 Main(float4 P : POSITION) : SV_Target { return P; }\n";
+  test::write(dir + "/shaders/a.shader", hlsl);
+  test::write(dir + "/shaders/b.shader", "// only a comment\n");
+  test::write(dir + "/shaders/c.shader", hlsl);
+  test::write(dir + "/shaders/ok.hlsl", "float4 Tint(float4 C) { return C; }\n");
+  test::write(dir + "/src/upload.cpp", std::string("// copies the cbuffer: float4 EyePos : SV_Target\n") + hlsl);
+  auto r = run_with_stderr(dir, "lint . --color never --fail-on none");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("shaders/a.shader:1:1: note: this file reads as HLSL (`cbuffer`"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("it and 2 more `.shader` files are not linted [lwc-input]"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(R"(add "extensions": {".shader": "hlsl"} to .lwcport.json)"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("c.shader"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("upload.cpp"), std::string::npos) << r.out;
+  // Said to be no shader: silent. Mapped: linted.
+  test::write(dir + "/.lwcport.json", R"({"extensions": {".shader": "none"}})");
+  EXPECT_EQ(run_with_stderr(dir, "lint . --color never --fail-on none").out.find(".shader"), std::string::npos);
+  test::write(dir + "/.lwcport.json", R"({"extensions": {".shader": "hlsl"}})");
+  auto mapped = run_with_stderr(dir, "lint . --color never --fail-on none");
+  EXPECT_NE(mapped.out.find("shaders/a.shader:1:40: warning: uniform `World`"), std::string::npos) << mapped.out;
+  EXPECT_EQ(mapped.out.find("reads as"), std::string::npos) << mapped.out;
+}
+
+TEST(Cli, UnityShaderLabFilesAreNotTakenForPlainShaderCode) {
+  std::string dir = test::scratch("shaderlab");
+  test::write(dir + "/Lit.shader",
+              "Shader \"Custom/Lit\" { SubShader { Pass { HLSLPROGRAM\ncbuffer UnityPerDraw { float4x4 unity_ObjectToWorld; };\n"
+              "float4 frag(float4 P : SV_POSITION) : SV_Target { return P; }\nENDHLSL } } }\n");
+  test::write(dir + "/Common.hlsl", "float4 Tint(float4 C) { return C; }\n");
+  auto r = run_with_stderr(dir, "lint . --color never --fail-on none");
+  EXPECT_EQ(r.out.find("Lit.shader"), std::string::npos) << r.out;
+}
+
 }  // namespace
 }  // namespace lwc

@@ -128,6 +128,14 @@ LoadedFile load(const InputFile& file, const Options& o, IncludeSummaries& inclu
   };
   if (!file.error.empty())
     return problem(input_finding(Severity::error, 0, "cannot read: " + file.error, "check the path and its permissions"));
+  if (const auto& u = file.unmapped)
+    return problem(input_finding(
+        Severity::note, 0,
+        fmt::format("this file reads as {} ({}), but `{}` is not an extension lwcport maps: it{} {} not linted", u->language, u->words,
+                    u->extension, u->more ? fmt::format(" and {} more `{}` file{}", u->more, u->extension, u->more == 1 ? "" : "s") : "",
+                    u->more ? "are" : "is"),
+        fmt::format("to lint them, add \"extensions\": {{\"{0}\": \"{1}\"}} to .lwcport.json; \"{0}\": \"none\" says they are not shaders",
+                    u->extension, u->language == "HLSL" ? "hlsl" : "glsl")));
   ReadResult r = file.content ? ReadResult{*file.content, "", file.content->size(), file.content->size() > config.max_file_bytes}
                               : read_file(file.path, config.max_file_bytes);
   if (!r.error.empty())
@@ -357,7 +365,7 @@ struct CodeCounter {
     const InputFile& file = files[next++];
     bool known = r.findings.empty() || r.findings.front().message.rfind("not a shader file", 0) != 0;
     if (with_code.size() <= file.argument) with_code.resize(file.argument + 1);
-    if (r.has_code && known && file.error.empty()) ++with_code[file.argument];
+    if (r.has_code && known && file.error.empty() && !file.unmapped) ++with_code[file.argument];
   }
 };
 

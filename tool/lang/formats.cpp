@@ -4,6 +4,7 @@
 #include <cctype>
 #include <initializer_list>
 #include <stdexcept>
+#include <vector>
 
 #include "lang/syntax.h"
 #include "lang/tokens.h"
@@ -117,6 +118,44 @@ void FormatTable::set(std::string_view extension, std::string_view format, std::
                              "glsl-in-js or none (got \"" + std::string(format) + "\")");
   by_extension_[lower(extension)] = *f;
   by_content_.erase(lower(extension));  // a project that names it has decided
+}
+
+std::optional<ShaderEvidence> reads_as_shader(std::string_view text) {
+  auto found = [&](std::string_view word) { return text.find(word) != std::string_view::npos; };
+  if (found("SubShader") || found("CGPROGRAM") || found("HLSLPROGRAM")) return std::nullopt;
+  std::vector<std::string_view> words;
+  auto collect = [&](std::initializer_list<std::string_view> list, size_t most) {
+    size_t taken = 0;
+    for (std::string_view w : list)
+      if (found(w) && taken < most) words.push_back(w), ++taken;
+  };
+  auto said = [&] {
+    std::string out;
+    for (std::string_view w : words) out += (out.empty() ? "`" : ", `") + std::string(w) + "`";
+    return out;
+  };
+  // GLSL: a version line and a stage's built-ins or entry point.
+  bool version = text.starts_with("#version") || found("\n#version");
+  collect({"gl_Position", "gl_FragColor", "gl_FragCoord", "gl_GlobalInvocationID"}, 2);
+  if (!words.empty() || (version && found("void main"))) {
+    if (version) words.insert(words.begin(), "#version");
+    return ShaderEvidence{"GLSL", said()};
+  }
+  // HLSL: what only HLSL writes, and its vector or resource types beside it.
+  if (!reads_as_hlsl(text)) return std::nullopt;
+  collect({"cbuffer", ": register(", "SV_Position", "SV_Target", "SV_DispatchThreadID", "[numthreads("}, 2);
+  size_t hlsl_words = words.size();
+  collect({"float4", "float3", "Texture2D", "SamplerState", "RWStructuredBuffer"}, 1);
+  if (words.size() == hlsl_words) return std::nullopt;
+  return ShaderEvidence{"HLSL", said()};
+}
+
+std::string FormatTable::mapped_extension(std::string_view path) const {
+  size_t slash = path.rfind('/');
+  std::string name = lower(slash == std::string_view::npos ? path : path.substr(slash + 1));
+  for (size_t dot = name.find('.'); dot != std::string::npos; dot = name.find('.', dot + 1))
+    if (dot > 0 && by_extension_.count(name.substr(dot))) return name.substr(dot);
+  return {};
 }
 
 std::optional<FileFormat> FormatTable::for_path(std::string_view path, std::string_view text) const {

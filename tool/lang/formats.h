@@ -30,6 +30,16 @@ bool holds_effect_framework(std::string_view text);
 // that an engine's own preprocessor fills in before the compiler sees the file.
 bool holds_template_placeholders(std::string_view text);
 
+// What makes a file of an extension lwcport does not map read as shader code: its language's name
+// ("HLSL", "GLSL") and the words that say so (`cbuffer`, `SV_Target`). Strict, so that C++ or C#
+// that mentions a `float4` is not taken for a shader; Unity's ShaderLab files (`SubShader`, a
+// `CGPROGRAM` block) are not plain shader code either.
+struct ShaderEvidence {
+  std::string language;
+  std::string words;
+};
+std::optional<ShaderEvidence> reads_as_shader(std::string_view text);
+
 // Which files are shaders, by extension (the longest matching one, case-insensitive: `.glsl.js`
 // before `.js`). The defaults cover what engines ship; a project's `.lwcport.json` "extensions"
 // adds to them or overrides them.
@@ -42,6 +52,9 @@ class FormatTable {
   // `text`, where known, decides the language of the stage extensions engines use for both
   // (`.vsh`, `.fsh`, `.psh`, `.csh`, `.gsh`) unless the project named it.
   std::optional<FileFormat> for_path(std::string_view path, std::string_view text = {}) const;
+  // The extension (lower case, with its dot) this table maps `path` by, to a format or to none;
+  // "" when it knows no extension of the name.
+  std::string mapped_extension(std::string_view path) const;
   // The extensions of one language, for messages ("usf, ush, ...").
   std::string extensions() const;
 

@@ -16,6 +16,7 @@
 #include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <map>
 #include <set>
 
 namespace fs = std::filesystem;
@@ -32,9 +33,64 @@ struct Walker {
   size_t argument = 0;
 
   void add(const fs::path& path, std::string display, std::string error = {}) {
-    InputFile f{path, std::move(display), nullptr, std::move(error), argument, {}};
+    InputFile f{path, std::move(display), nullptr, std::move(error), argument, {}, {}};
     f.config = configs.for_dir(path.parent_path().empty() ? fs::path(".") : path.parent_path());
     out.push_back(std::move(f));
+  }
+
+  // Files of unmapped extensions, per configuration and extension: how many, and the one (the
+  // first whose text reads as shader code) that carries the note, or none yet.
+  struct Unmapped {
+    size_t files = 0;
+    std::optional<size_t> noted;
+  };
+  std::map<std::pair<const ProjectConfig*, std::string>, Unmapped> unmapped;
+
+  // Nothing silent: an unmapped extension whose files read as shader code is named once.
+  void sniff(const fs::path& path, const std::string& display, const std::shared_ptr<const ProjectConfig>& config) {
+    std::string name = path.filename().string();
+    size_t dot = name.rfind('.');
+    if (dot == std::string::npos || dot == 0) return;
+    std::string ext = name.substr(dot);
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (not_shader_extensions().count(ext)) return;
+    Unmapped& u = unmapped[{config.get(), ext}];
+    ++u.files;
+    if (u.noted) return;
+    std::optional<ShaderEvidence> e = shader_evidence(path);
+    if (!e) return;
+    add(path, display);
+    out.back().unmapped = InputFile::Unmapped{ext, e->language, e->words, 0};
+    u.noted = out.size() - 1;
+  }
+
+  // After the walk: each note counts every other file of its extension.
+  void count_unmapped() {
+    for (const auto& [key, u] : unmapped)
+      if (u.noted) out[*u.noted].unmapped->more = u.files - 1;
+  }
+
+  // The start of a regular file of at most 4 MB read as shader code, or none.
+  static std::optional<ShaderEvidence> shader_evidence(const fs::path& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec) || fs::file_size(path, ec) > (4u << 20) || ec) return std::nullopt;
+    ReadResult r = read_file(path, 4u << 20);
+    if (!r.error.empty()) return std::nullopt;
+    return reads_as_shader(std::string_view(r.text).substr(0, 1u << 16));
+  }
+
+  // Extensions of files that are never shader code (sources of other languages, data, media,
+  // build files): not read.
+  static const std::set<std::string>& not_shader_extensions() {
+    static const std::set<std::string> set = {
+        ".c", ".cc", ".cpp", ".cxx", ".h", ".hh", ".hpp", ".hxx", ".inl", ".ipp", ".m", ".mm", ".cs", ".java", ".py", ".rb", ".go",
+        ".rs", ".swift", ".kt", ".lua", ".json", ".md", ".txt", ".rst", ".xml", ".yml", ".yaml", ".toml", ".ini", ".cfg", ".cmake",
+        ".mk", ".sh", ".bat", ".cmd", ".ps1", ".png", ".jpg", ".jpeg", ".tga", ".dds", ".exr", ".hdr", ".bmp", ".gif", ".ico",
+        ".svg", ".psd", ".ktx", ".uasset", ".umap", ".fbx", ".obj", ".gltf", ".glb", ".bin", ".spv", ".dxil", ".cso", ".o", ".a",
+        ".so", ".dll", ".lib", ".exe", ".pdb", ".zip", ".gz", ".7z", ".tar", ".pdf", ".html", ".htm", ".css", ".ttf", ".otf",
+        ".wav", ".mp3", ".ogg", ".uplugin", ".uproject", ".sln", ".vcxproj", ".filters", ".csproj", ".lock", ".log", ".csv",
+        ".tsv", ".meta", ".asset", ".prefab", ".unity", ".mat", ".gitignore", ".gitattributes", ".editorconfig"};
+    return set;
   }
 
   void walk_dir(const fs::path& dir, const std::string& display) {
@@ -71,6 +127,7 @@ struct Walker {
       }
       if (!config->formats.for_path(name)) {
         if (skipped) skipped->push_back({child, "not a shader extension (map it in .lwcport.json \"extensions\")"});
+        if (config->formats.mapped_extension(name).empty()) sniff(e.path(), child, config);
         continue;
       }
       bool is_symlink = e.is_symlink(type_ec);
@@ -86,7 +143,7 @@ struct Walker {
 }  // namespace
 
 std::vector<InputFile> discover(const std::vector<std::string>& args, ConfigFinder& configs, std::vector<SkippedFile>* skipped) {
-  Walker w{configs, skipped, {}, {}};
+  Walker w{configs, skipped, {}, {}, {}, {}};
   for (const std::string& arg : args) {
     w.argument = static_cast<size_t>(&arg - args.data());
     fs::path p(arg);
@@ -95,6 +152,7 @@ std::vector<InputFile> discover(const std::vector<std::string>& args, ConfigFind
     if (fs::is_directory(st)) w.walk_dir(p, arg);
     else w.add(p, arg, ec && !fs::is_symlink(fs::symlink_status(p)) ? ec.message() : std::string());
   }
+  w.count_unmapped();
   std::stable_sort(w.out.begin(), w.out.end(), [](const InputFile& a, const InputFile& b) { return a.display < b.display; });
   w.out.erase(std::unique(w.out.begin(), w.out.end(), [](const InputFile& a, const InputFile& b) { return a.display == b.display; }),
               w.out.end());

@@ -18,6 +18,14 @@ struct InputFile {
   std::string error;
   size_t argument = 0;  // which command-line path it came from
   std::optional<std::string> content;  // given instead of read from `path` (standard input)
+  // Not linted: its extension is not mapped, though its text reads as shader code (a note says
+  // which `extensions` entry to add); `more` is how many other files of the same folder's
+  // configuration share the extension.
+  struct Unmapped {
+    std::string extension, language, words;
+    size_t more = 0;
+  };
+  std::optional<Unmapped> unmapped;
 };
 
 // A file a walked folder holds that is not linted, and why.
