@@ -455,5 +455,30 @@ TEST(Cli, UnityShaderLabFilesAreNotTakenForPlainShaderCode) {
   EXPECT_EQ(r.out.find("Lit.shader"), std::string::npos) << r.out;
 }
 
+TEST(Cli, AHostThatRebasesPositionsLeavesOnlyWhatTheShaderMakesAbsoluteAgain) {
+  std::string dir = test::scratch("host-rebases");
+  test::write(dir + "/obj.vert",
+              "#version 450\nuniform mat4 modelMatrix;\nuniform mat4 viewProjection;\nuniform vec3 cameraPosition;\nuniform vec3 renderOrigin;\n"
+              "in vec3 position;\nout float fade;\nvoid main() {\n  vec4 worldPosition = modelMatrix * vec4(position, 1.0);\n"
+              "  fade = length(worldPosition.xyz - cameraPosition) / 1000.0;\n  vec3 geo = worldPosition.xyz + renderOrigin;\n"
+              "  fade += sin(geo.x);\n  gl_Position = viewProjection * worldPosition;\n}\n");
+  auto plain = run_with_stderr(dir, "lint . --color never --fail-on none");
+  EXPECT_NE(plain.out.find("obj.vert:2:14: warning: uniform `modelMatrix`"), std::string::npos) << plain.out;
+  EXPECT_NE(plain.out.find("obj.vert:9:8: warning: variable `worldPosition`"), std::string::npos) << plain.out;
+  // The host subtracts its render origin first: the conventional names hold relative data.
+  test::write(dir + "/.lwcport.json", R"({"host-rebases": true})");
+  auto rebased = run_with_stderr(dir, "lint . --color never --fail-on none");
+  EXPECT_NE(rebased.out.find("No findings in 1 file(s)"), std::string::npos) << rebased.out;
+  // The origin itself is absolute, as the project says: adding it back makes an absolute point.
+  test::write(dir + "/.lwcport.json", R"({"host-rebases": true, "world-sources": [{"match": "renderOrigin", "kind": "absolute-position"}]})");
+  auto origin = run_with_stderr(dir, "lint . --color never --fail-on none");
+  EXPECT_NE(origin.out.find("obj.vert:11:8: warning: variable `geo`"), std::string::npos) << origin.out;
+  EXPECT_EQ(origin.out.find("worldPosition`"), std::string::npos) << origin.out;
+  test::write(dir + "/.lwcport.json", R"({"host-rebases": "yes"})");
+  auto bad = run_with_stderr(dir, "lint .");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.out.find("\"host-rebases\" must be true or false"), std::string::npos) << bad.out;
+}
+
 }  // namespace
 }  // namespace lwc

@@ -573,7 +573,7 @@ std::vector<std::string> functions_with_findings(const Source& source, const Ana
     facts->returns = summary->function_returns;
     facts->globals = summary->globals;
     facts->parameters = summary->parameter_kinds;
-    facts->world = &world_data(lang, options.world_sources);
+    facts->world = &world_data(lang, options.world_sources, options.host_rebases);
   }
   std::vector<uint32_t> offsets;
   for (const Finding& finding : findings) offsets.push_back(finding.span.begin);

@@ -91,7 +91,7 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
     if (!find_rule(id)) fail(fmt::format("unknown rule id \"{}\"", id));
   };
   for (const auto& item : j.items()) {
-    static const char* known[] = {"severity", "select", "ignore", "include-dirs", "virtual-roots", "exclude", "world-sources", "max-file-bytes", "max-parse-seconds", "macros", "unreal", "library-definitions", "extensions", "defines", "overrides", "force-includes", "help-uri-base", "host", "engine-shaders"};
+    static const char* known[] = {"severity", "select", "ignore", "include-dirs", "virtual-roots", "exclude", "world-sources", "max-file-bytes", "max-parse-seconds", "macros", "unreal", "library-definitions", "extensions", "defines", "overrides", "force-includes", "help-uri-base", "host", "engine-shaders", "host-rebases"};
     const std::string& key = item.key();
     if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) == std::end(known))
       fail(fmt::format("unknown key \"{}\"", key));
@@ -142,6 +142,10 @@ ProjectConfig ProjectConfig::parse(const fs::path& file, const std::string& text
     if (p.empty() || p == "!") fail("\"exclude\" holds an empty pattern");
     for (const auto& part : fs::path(p))
       if (part == "..") fail(fmt::format("exclude pattern \"{}\" can match nothing: patterns are relative to the project's folder, and \"..\" leaves it", p));
+  }
+  if (j.contains("host-rebases")) {
+    if (!j.at("host-rebases").is_boolean()) fail("\"host-rebases\" must be true or false");
+    c.host_rebases = j.at("host-rebases").get<bool>();
   }
   if (j.contains("world-sources")) {
     c.world_sources = j.at("world-sources");
@@ -356,6 +360,7 @@ AnalyzeOptions analysis_options(const ProjectConfig& config) {
   a.macros = config.macros;
   a.unreal = config.unreal;
   a.lint_library = config.lint_library;
+  a.host_rebases = config.host_rebases;
   a.formats = &config.formats;
   a.max_bytes = config.max_file_bytes;
   a.max_parse_seconds = config.max_parse_seconds;

@@ -37,6 +37,9 @@ struct ProjectConfig {
   std::optional<UnrealEra> engine_era;
   FormatTable formats = FormatTable::defaults();  // which extensions are shaders, and how
   bool lint_library = false;        // report inside the LWC libraries' own definitions
+  // The host subtracts a render origin (or the camera) from every position before upload: the
+  // world data the tables name by convention is relative to it (`"host-rebases": true`).
+  bool host_rebases = false;
   std::string help_uri_base;  // where the rule pages are published (ends in '/'); "" for the installed pages
   nlohmann::json host = nlohmann::json::object();  // lwcport host: additions to rules/host-world.json
   // Macros the build defines (Unreal's ModifyCompilationEnvironment, -D flags), for where lwcport

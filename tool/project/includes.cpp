@@ -141,7 +141,7 @@ const FileSummary& IncludeSummaries::summarised(const Entry& e, const ProjectCon
   ReadResult r = content(e.file, config);
   if (r.error.empty() && !r.too_large) {
     Source src(e.file.string(), r.text);
-    *summary = include_summary(src, parse(src, *e.lang, {&macros, 0, config.max_parse_seconds}), config.world_sources,
+    *summary = include_summary(src, parse(src, *e.lang, {&macros, 0, config.max_parse_seconds}), config.world_sources, config.host_rebases,
                                model_context(src, *e.lang, nullptr));
   }
   ForkSafeLock lock(mutex_);

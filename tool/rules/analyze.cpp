@@ -58,12 +58,12 @@ std::optional<Lang> language_for(const Source& source, const AnalyzeOptions& opt
   return format ? std::optional<Lang>(format->lang) : std::nullopt;
 }
 
-const WorldData& world_data(Lang lang, const nlohmann::json& extra_sources) {
+const WorldData& world_data(Lang lang, const nlohmann::json& extra_sources, bool host_rebases) {
   static std::mutex mutex;
-  static std::map<std::pair<Lang, std::string>, std::unique_ptr<WorldData>> cache;
+  static std::map<std::tuple<Lang, std::string, bool>, std::unique_ptr<WorldData>> cache;
   std::lock_guard lock(mutex);
-  auto& slot = cache[{lang, extra_sources.dump()}];
-  if (!slot) slot = std::make_unique<WorldData>(WorldData::load(world_space_data(), extra_sources, lang));
+  auto& slot = cache[{lang, extra_sources.dump(), host_rebases}];
+  if (!slot) slot = std::make_unique<WorldData>(WorldData::load(world_space_data(), extra_sources, lang, host_rebases));
   return *slot;
 }
 
@@ -91,10 +91,10 @@ MacroTable macro_table(Lang lang, const MacroTable* included, const MacroTable& 
   return table;
 }
 
-FileSummary include_summary(const Source& source, const SyntaxTree& tree, const nlohmann::json& world_sources,
+FileSummary include_summary(const Source& source, const SyntaxTree& tree, const nlohmann::json& world_sources, bool host_rebases,
                             const ModelContext& context) {
   FileSummary summary;
-  if (!tree.timed_out) summary = WorldModel(tree, world_data(tree.lang, world_sources), context).summary();
+  if (!tree.timed_out) summary = WorldModel(tree, world_data(tree.lang, world_sources, host_rebases), context).summary();
   learn_macros(source.text(), known_macros(tree.lang), summary.macros);
   return summary;
 }
@@ -539,7 +539,7 @@ void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, co
   ModelContext context = model_context(code, lang, options.includes, options.engine_file);
   std::optional<UnrealTarget> unreal;
   if (context.era) unreal = options.unreal ? UnrealTarget{*options.unreal, false} : UnrealTarget{*context.era, true};
-  const WorldData& data = world_data(lang, options.world_sources);
+  const WorldData& data = world_data(lang, options.world_sources, options.host_rebases);
   std::vector<Suppression> sups;
   std::optional<VariantMerge> merge;
   std::set<SyntaxError> errors;
@@ -586,7 +586,7 @@ void analyze_unit(const Source& code, Lang lang, std::optional<Span> literal, co
     }
     if (variant == 0) {
       if (options.summary_for_includers && !literal)
-        *options.summary_for_includers = include_summary(code, tree, options.world_sources, {nullptr, context.names_as_evidence, context.plain_names, context.era});
+        *options.summary_for_includers = include_summary(code, tree, options.world_sources, options.host_rebases, {nullptr, context.names_as_evidence, context.plain_names, context.era});
       std::vector<Span> comments;
       for (int id = 0; id < static_cast<int>(tree.nodes.size()); ++id)
         if (tree.is(id, "comment")) comments.push_back(tree.span(id));
@@ -700,7 +700,7 @@ std::vector<Finding> analyze(const Source& source, const AnalyzeOptions& options
     SyntaxTree tree = parse(view, *lang, {&macros, 0, options.max_parse_seconds});
     ModelContext context;
     context.includes = options.includes;
-    summaries.push_back(tree.timed_out ? FileSummary{} : WorldModel(tree, world_data(*lang, options.world_sources), context).summary());
+    summaries.push_back(tree.timed_out ? FileSummary{} : WorldModel(tree, world_data(*lang, options.world_sources, options.host_rebases), context).summary());
   }
   for (size_t i = 0; i < shader.views.size(); ++i) {
     FileSummary known = options.includes ? *options.includes : FileSummary{};
@@ -751,7 +751,7 @@ std::optional<ValueDescription> describe_value(const Source& source, const Analy
   if (tree.timed_out) return std::nullopt;
   ModelContext context = model_context(source, format->lang, options.includes, options.engine_file);
   if (options.reuse) context.reuse = options.model_reuse;  // the parse moved on: so does the model
-  WorldModel world(tree, world_data(format->lang, options.world_sources), context);
+  WorldModel world(tree, world_data(format->lang, options.world_sources, options.host_rebases), context);
   int node = value_node_at(world, offset);
   if (node < 0) return std::nullopt;
   Kind kind = value_kind(world, node);

@@ -35,6 +35,7 @@ struct AnalyzeOptions {
   std::optional<FileSummary>* summary_for_includers = nullptr;
   MacroTable macros;                      // the project's macros (.lwcport.json "macros")
   bool lint_library = false;              // report in the LWC libraries' own definitions too
+  bool host_rebases = false;              // the host uploads world data relative to a render origin
   std::optional<UnrealEra> unreal;        // the engine the project builds against (else inferred per file)
   size_t max_bytes = 16u << 20;          // larger files are skipped with a diagnostic
   double max_parse_seconds = 30;         // the parser's budget per file variant (.lwcport.json "max-parse-seconds")
@@ -77,7 +78,7 @@ ShaderCode shader_code(const Source& source, const AnalyzeOptions& options);
 bool holds_shader_code(const Source& source, const AnalyzeOptions& options);
 
 // World-space data for a language plus extra sources, built once per distinct extra list.
-const WorldData& world_data(Lang lang, const nlohmann::json& extra_sources);
+const WorldData& world_data(Lang lang, const nlohmann::json& extra_sources, bool host_rebases = false);
 // How the world model reads a file: in Unreal code, the engine era its own code is written for
 // (inferred once from its text). Naming conventions count as evidence in plain code and in
 // Unreal code written for UE4 (whatever engine it now builds against): UE5-era code says what is
@@ -94,7 +95,7 @@ MacroTable macro_table(Lang lang, const MacroTable* included, const MacroTable& 
 // What a file tells the files that include it: its world model's summary (read without its own
 // includes, so no include cycle can change it) and what its #defines teach. `tree` is its
 // first variant, parsed with macro_table(..); `context` is model_context(source, lang, nullptr).
-FileSummary include_summary(const Source& source, const SyntaxTree& tree, const nlohmann::json& world_sources,
+FileSummary include_summary(const Source& source, const SyntaxTree& tree, const nlohmann::json& world_sources, bool host_rebases,
                             const ModelContext& context);
 
 // The rule ids a `lwcport-ignore:` comment lists from `from` (just after the colon): each id's

@@ -187,10 +187,16 @@ static bool applies_to(const nlohmann::json& entry, Lang lang) {
   return false;
 }
 
-WorldData WorldData::load(const nlohmann::json& ws, const nlohmann::json& extra_sources, Lang lang) {
+WorldData WorldData::load(const nlohmann::json& ws, const nlohmann::json& extra_sources, Lang lang, bool host_rebases) {
   WorldData d;
+  // Relative to the host's render origin: absolute world data becomes translated (origin-relative).
+  auto rebased = [&](Kind k) {
+    if (!host_rebases) return k;
+    return k == Kind::absolute ? Kind::translated : k == Kind::world_matrix ? Kind::translated_world_matrix
+                                                  : k == Kind::from_world_matrix ? Kind::from_translated_matrix : k;
+  };
   for (const auto& t : ws.at("float-types")) d.float_types.push_back(t.get<std::string>());
-  auto add_sources = [&](const nlohmann::json& list, std::string_view where) {
+  auto add_sources = [&](const nlohmann::json& list, std::string_view where, bool builtin) {
     for (const auto& s : list) {
       if (!s.is_object() || !s.contains("match") || !s.contains("kind"))
         throw std::runtime_error(std::string(where) + ": a world source needs \"match\" and \"kind\": " + s.dump());
@@ -203,12 +209,12 @@ WorldData WorldData::load(const nlohmann::json& ws, const nlohmann::json& extra_
       PathPattern pattern(s.at("match").get<std::string>());
       if (std::string why = pattern.problem(); !why.empty())
         throw std::runtime_error(std::string(where) + ": " + s.at("match").dump() + " can match nothing: " + why);
-      if (applies_to(s, lang)) d.sources.push_back({pattern, *kind, plain_only || by_name == true, plain_only});
+      if (applies_to(s, lang)) d.sources.push_back({pattern, builtin ? rebased(*kind) : *kind, plain_only || by_name == true, plain_only});
     }
   };
   // The project's sources come first so they can override the built-in ones.
-  if (extra_sources.is_array()) add_sources(extra_sources, "world-sources");
-  add_sources(ws.at("sources"), "rules/world-space.json");
+  if (extra_sources.is_array()) add_sources(extra_sources, "world-sources", false);
+  add_sources(ws.at("sources"), "rules/world-space.json", true);
   for (const auto& f : ws.at("functions")) {
     if (!applies_to(f, lang)) continue;
     std::string role = f.at("role").get<std::string>();

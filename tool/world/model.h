@@ -112,7 +112,9 @@ struct WorldData {
 
   // `world_space` is the "world-space" object; `extra_sources` is the config's list of
   // {"match", "kind", "languages"?}. Throws std::runtime_error naming a bad entry.
-  static WorldData load(const nlohmann::json& world_space, const nlohmann::json& extra_sources, Lang lang);
+  // `host_rebases`: the host uploads world data relative to a render origin, so what the built-in
+  // sources name by convention is relative too (the project's own sources keep their kinds).
+  static WorldData load(const nlohmann::json& world_space, const nlohmann::json& extra_sources, Lang lang, bool host_rebases = false);
   bool is_float_type(std::string_view type) const;
   // A float matrix type: `float4x4`, `half3x3`, `mat4`.
   bool is_matrix_type(std::string_view type) const;
