@@ -153,7 +153,7 @@ TEST(BadInput, SymlinkLoopsBrokenLinksFoldersAndFifos) {
   ASSERT_EQ(::mkfifo((dir + "/pipe.glsl").c_str(), 0644), 0);
   auto doc = lint_dir(dir);
   EXPECT_EQ(finding_for(doc, "self.usf")["message"], "cannot read: Too many levels of symbolic links");
-  EXPECT_EQ(finding_for(doc, "broken.usf")["message"], "cannot read: No such file or directory");
+  EXPECT_EQ(finding_for(doc, "broken.usf")["message"], "cannot read: dangling symbolic link to missing.usf: the file it points to does not exist");
   EXPECT_EQ(finding_for(doc, "sub/up")["message"], "cannot read: symlink loop: this folder is already being walked; not followed");
   EXPECT_EQ(finding_for(doc, "pipe.glsl")["message"], "cannot read: not a regular file");
   EXPECT_EQ(doc["files"], 5);  // the good file, three bad files and the loop; folder.hlsl is a folder

@@ -139,7 +139,7 @@ LoadedFile load(const InputFile& file, const Options& o, IncludeSummaries& inclu
   ReadResult r = file.content ? ReadResult{*file.content, "", file.content->size(), file.content->size() > config.max_file_bytes}
                               : read_file(file.path, config.max_file_bytes);
   if (!r.error.empty())
-    return problem(input_finding(Severity::error, 0, "cannot read: " + r.error, "check the path and its permissions"));
+    return problem(input_finding(Severity::error, 0, "cannot read: " + unreadable_because(file.path, r.error), "check the path and its permissions"));
   if (r.too_large) return problem(too_large_finding(r.size, config.max_file_bytes));
   AnalyzeOptions& a = out.options;
   a = analysis_options(config);

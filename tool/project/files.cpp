@@ -133,7 +133,7 @@ struct Walker {
       bool is_symlink = e.is_symlink(type_ec);
       bool regular = e.is_regular_file(type_ec);
       if (regular) add(e.path(), child);
-      else if (is_symlink) add(e.path(), child, type_ec ? type_ec.message() : "broken symbolic link");
+      else if (is_symlink) add(e.path(), child, unreadable_because(e.path(), type_ec ? type_ec.message() : "broken symbolic link"));
       else add(e.path(), child, "not a regular file");
     }
     walking.pop_back();
@@ -157,6 +157,16 @@ std::vector<InputFile> discover(const std::vector<std::string>& args, ConfigFind
   w.out.erase(std::unique(w.out.begin(), w.out.end(), [](const InputFile& a, const InputFile& b) { return a.display == b.display; }),
               w.out.end());
   return w.out;
+}
+
+std::string unreadable_because(const fs::path& path, const std::string& error) {
+  std::error_code ec;
+  if (!fs::is_symlink(fs::symlink_status(path, ec))) return error;
+  // A link in a loop is not dangling: its error says what it is.
+  if (fs::exists(path, ec) || (ec && ec != std::errc::no_such_file_or_directory)) return error;
+  fs::path target = fs::read_symlink(path, ec);
+  return ec ? "dangling symbolic link: the file it points to does not exist"
+            : fmt::format("dangling symbolic link to {}: the file it points to does not exist", target.string());
 }
 
 ReadResult read_file(const fs::path& path, size_t max_bytes) {

@@ -48,6 +48,9 @@ struct ReadResult {
   bool too_large = false;     // larger than the limit: not read
 };
 ReadResult read_file(const std::filesystem::path& path, size_t max_bytes);
+// Why `path` cannot be read, for a message: a dangling symbolic link says so and where it points;
+// otherwise `error` as it is.
+std::string unreadable_because(const std::filesystem::path& path, const std::string& error);
 
 
 }  // namespace lwc
