@@ -99,6 +99,17 @@ TEST(EmbeddedGlsl, TaggedCommentedAndVersionedLiteralsAreFound) {
   EXPECT_EQ(glsl_template_literals("tile.glsl.js", "export default `float f() { return 1.0; }`;\n").size(), 1u);
 }
 
+TEST(EmbeddedGlsl, UntaggedLiteralsAreFoundByTheirContent) {
+  auto count = [](std::string_view script) { return glsl_template_literals("layer.ts", script).size(); };
+  // A version line after a line continuation, a precision statement, a stage's output.
+  EXPECT_EQ(count("const vs = `\\\n#version 300 es\nvoid main() {}\n`;\n"), 1u);
+  EXPECT_EQ(count("const fs = `\nprecision highp float;\nvoid main() {}\n`;\n"), 1u);
+  EXPECT_EQ(count("const vs = `attribute vec3 p; void foo() { gl_Position = vec4(p, 1.0); }`;\n"), 1u);
+  EXPECT_EQ(count("const vs = `uniform mat4 m; in vec3 p; void main() { }`;\n"), 1u);
+  // Text that only mentions GLSL's words is not GLSL.
+  EXPECT_EQ(count("const html = `<div>void main</div>`;\nconst doc = `call main() to set gl_ state`;\n"), 0u);
+}
+
 TEST(EmbeddedGlsl, FindingsPointIntoTheScriptAndFixesStayInTheLiteral) {
   AnalyzeOptions o;
   Source script("layer.ts", kScript);

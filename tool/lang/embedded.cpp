@@ -136,9 +136,19 @@ class Scanner {
     return b == std::string_view::npos ? std::string_view() : t.substr(b, e - b + 1);
   }
 
+  // An untagged literal that is GLSL by its content: a version line first (after a line
+  // continuation, as some libraries open them), a precision statement first, or a stage's entry
+  // point or output beside GLSL's own words.
   bool starts_like_glsl(Span content) const {
     std::string_view t = trimmed(s_.substr(content.begin, content.end - content.begin));
-    return t.rfind("#version", 0) == 0;
+    if (t.starts_with("\\")) t = trimmed(t.substr(1));
+    if (t.starts_with("#version") || t.starts_with("precision highp") || t.starts_with("precision mediump") ||
+        t.starts_with("precision lowp"))
+      return true;
+    auto has = [&](std::string_view w) { return t.find(w) != std::string_view::npos; };
+    if (has("gl_Position") || has("gl_FragColor") || has("gl_FragData")) return true;
+    return has("void main") && (has("uniform ") || has("varying ") || has("attribute ") || has("in vec") || has("out vec") ||
+                                has("gl_FragCoord") || has("texture2D("));
   }
 
   std::string_view s_;
