@@ -195,6 +195,24 @@ TEST(HostBuilds, ErrorsOnlyThisClangRaisesDoNotFailAUnit) {
   EXPECT_EQ(j.at("units"), nlohmann::json({{"analysed", 2}, {"failed", 0}, {"crashed", 0}, {"skipped", 0}}));
 }
 
+// A database written with a relative `directory` ("." beside it, "../src" from a build folder):
+// resolved against the database's own folder, as Clang's tools resolve it, whether named with -p
+// or found upward from the unit.
+TEST(HostBuilds, ARelativeDirectoryInTheDatabaseIsItsOwnFolders) {
+  std::string dir = test::scratch("host-relative-dir");
+  test::write(dir + "/src/a.cpp", kFinding);
+  nlohmann::json here = nlohmann::json::array({{{"directory", "."}, {"file", "src/a.cpp"}, {"command", "clang++ -std=c++20 -I" + corpus_include() + " -c src/a.cpp"}}});
+  test::write(dir + "/compile_commands.json", here.dump());
+  EXPECT_EQ(rules_by_path(host_json(dir, "-p . src/a.cpp")), (std::map<std::string, std::vector<std::string>>{{"src/a.cpp", {"lwc-host-narrowed-world-upload"}}}));
+  EXPECT_EQ(rules_by_path(host_json(dir, "src/a.cpp")), (std::map<std::string, std::vector<std::string>>{{"src/a.cpp", {"lwc-host-narrowed-world-upload"}}}));
+  nlohmann::json build = nlohmann::json::array({{{"directory", "../src"}, {"file", "a.cpp"}, {"command", "clang++ -std=c++20 -I" + corpus_include() + " -c a.cpp"}}});
+  test::write(dir + "/build/compile_commands.json", build.dump());
+  std::string err;
+  nlohmann::json j = host_json(dir, "-p build src", &err);
+  EXPECT_EQ(rules_by_path(j), (std::map<std::string, std::vector<std::string>>{{"src/a.cpp", {"lwc-host-narrowed-world-upload"}}})) << j.dump() << err;
+  EXPECT_EQ(err.find("not found"), std::string::npos) << err;
+}
+
 // A unit the database lists that is not on disk yet (a source the build generates) is skipped,
 // counted and said, not reported as a file.
 TEST(HostBuilds, AUnitNotOnDiskIsSkippedAndCounted) {

@@ -7,11 +7,14 @@
 #include <clang/Lex/Preprocessor.h>
 #include <clang/Tooling/ArgumentsAdjusters.h>
 #include <clang/Tooling/CompilationDatabase.h>
+#include <clang/Tooling/JSONCompilationDatabase.h>
 #include <clang/Tooling/Tooling.h>
 #include <fmt/format.h>
 
 #include <filesystem>
 #include <set>
+
+#include <nlohmann/json.hpp>
 #include <tuple>
 
 #include "host/check.h"
@@ -262,6 +265,38 @@ class ActionFactory : public tooling::FrontendActionFactory {
   Reporter& out_;
 };
 
+// The compile_commands.json of `folder`, each relative `directory` resolved against the folder
+// (as Clang's tools resolve it: a database written with "." beside it, or "../src" from a build
+// folder), else the folder's database as Clang loads it; null and `error` when there is none.
+std::unique_ptr<tooling::CompilationDatabase> load_database(const fs::path& folder, std::string& error) {
+  std::error_code ec;
+  fs::path file = folder / "compile_commands.json";
+  ReadResult r = fs::is_regular_file(file, ec) ? read_file(file, 1u << 30) : ReadResult{};
+  nlohmann::json entries = r.error.empty() ? nlohmann::json::parse(r.text, nullptr, false) : nlohmann::json();
+  bool relative = false;
+  if (entries.is_array()) {
+    fs::path base = fs::absolute(folder, ec).lexically_normal();
+    for (auto& e : entries)
+      if (e.is_object() && e.contains("directory") && e.at("directory").is_string() && fs::path(e.at("directory").get<std::string>()).is_relative()) {
+        e["directory"] = (base / e.at("directory").get<std::string>()).lexically_normal().string();
+        relative = true;
+      }
+  }
+  if (!relative) return tooling::CompilationDatabase::loadFromDirectory(folder.string(), error);
+  return tooling::JSONCompilationDatabase::loadFromBuffer(entries.dump(), error, tooling::JSONCommandLineSyntax::AutoDetect);
+}
+
+// The database Clang's tools would find for a unit in `folder`: the nearest compile_commands.json
+// upward (load_database), else what Clang detects there (compile_flags.txt), or null.
+std::unique_ptr<tooling::CompilationDatabase> detect_database(const fs::path& folder, std::string& error) {
+  std::error_code ec;
+  for (fs::path at = fs::absolute(folder, ec); !at.empty(); at = at.parent_path()) {
+    if (fs::is_regular_file(at / "compile_commands.json", ec)) return load_database(at, error);
+    if (at == at.parent_path()) break;
+  }
+  return tooling::CompilationDatabase::autoDetectFromDirectory(folder.string(), error);
+}
+
 }  // namespace
 }  // namespace host
 
@@ -276,7 +311,7 @@ HostResult analyze_host(const HostOptions& options) {
   // its nearest neighbour.
   std::unique_ptr<tooling::CompilationDatabase> given;
   if (!options.build_dir.empty()) {
-    given = tooling::CompilationDatabase::loadFromDirectory(options.build_dir, error);
+    given = host::load_database(options.build_dir, error);
     if (!given) {
       result.errors.push_back(fmt::format("{}: no compile_commands.json here ({})", options.build_dir, error));
       return result;
@@ -292,7 +327,7 @@ HostResult analyze_host(const HostOptions& options) {
     auto [it, fresh] = found.emplace(folder, nullptr);
     if (fresh) {
       std::string why;
-      it->second = tooling::CompilationDatabase::autoDetectFromDirectory(folder, why);
+      it->second = host::detect_database(folder, why);
       if (!it->second) it->second = std::make_unique<tooling::FixedCompilationDatabase>(".", std::vector<std::string>{"-std=c++20"});
       it->second = tooling::inferMissingCompileCommands(std::move(it->second));
     }
