@@ -85,8 +85,13 @@ class FastMath : public Check {
       return;
     }
     if (auto* minus = match.Nodes.getNodeAs<BinaryOperator>("minus")) {
-      auto* ref = dyn_cast<DeclRefExpr>(strip(minus->getRHS()));
-      if (ref && ref->getDecl()->getIdentifier() && tables_.high_names.match(ref->getDecl()->getName().str())) split_site(match, minus);
+      // The high part taken from the value: a variable or a member (`P.High`), or an element of one.
+      const Expr* rhs = strip(minus->getRHS());
+      if (auto* element = dyn_cast<ArraySubscriptExpr>(rhs)) rhs = strip(element->getBase());
+      const NamedDecl* high = nullptr;
+      if (auto* ref = dyn_cast<DeclRefExpr>(rhs)) high = ref->getDecl();
+      else if (auto* member = dyn_cast<MemberExpr>(rhs)) high = member->getMemberDecl();
+      if (high && high->getIdentifier() && tables_.high_names.match(high->getName().str())) split_site(match, minus);
     }
   }
 
