@@ -70,6 +70,15 @@ std::string initialised_from(const Expr* e) {
   return name_of(init);
 }
 
+// A local made by narrowing a double (`hx = (float)x`): the name of what it narrows, "" otherwise.
+std::string narrowed_source(const Expr* e, const World& world) {
+  auto* ref = dyn_cast<DeclRefExpr>(strip(e));
+  auto* var = ref ? dyn_cast<VarDecl>(ref->getDecl()) : nullptr;
+  const Expr* from = var && var->getInit() ? narrowed_from(strip(var->getInit()), world) : nullptr;
+  const Expr *left = nullptr, *right = nullptr;
+  return from && !subtraction(from, left, right) ? name_of(from) : "";
+}
+
 // The name that says which half a store is: the first high or low name along `cb.PositionLow.y`.
 std::string half_name(const Expr* e, const Tables& tables) {
   for (e = strip(e); e;) {
@@ -128,9 +137,8 @@ class BrokenSplit : public Check {
     bool member_target = false;
     if (auto* bin = match.Nodes.getNodeAs<BinaryOperator>("assign")) member_target = isa<MemberExpr>(bin->getLHS()->IgnoreParenImpCasts());
     if (auto* op = match.Nodes.getNodeAs<CXXOperatorCallExpr>("assign")) member_target = isa<MemberExpr>(op->getArg(0)->IgnoreParenImpCasts());
-    if (target.empty() || !value) return;
+    if (target.empty() || !value || world.scalar(type) != 'f') return;
     bool low = tables_.low_names.match(target), high = tables_.high_names.match(target);
-    if ((!low && !high) || world.scalar(type) != 'f') return;
     // Swapped: a high part stored from the low one of the same value, or the reverse.
     std::string source = name_of(value);
     bool opposite = (low && tables_.high_names.match(source)) || (high && tables_.low_names.match(source));
@@ -138,15 +146,21 @@ class BrokenSplit : public Check {
       report(match, value, "swapped", {{"target", target}, {"source", source}});
       return;
     }
-    if (!low) return;
+    if (high) return;
     const Expr *left = nullptr, *right = nullptr;
     const Expr* inner = strip(value);
     if (const Expr* from = narrowed_from(inner, world)) inner = from;  // `(float)(x - hi)`: its subtraction
-    if (!subtraction(inner, left, right) || !tables_.high_names.match(name_of(right))) return;
+    if (!subtraction(inner, left, right)) return;
+    // The halves by their names (`PositionLow = .. - PositionHigh`), or by how the subtracted one
+    // was made, whatever they are called (`lx = (float)x - hx` with `hx = (float)x`).
+    bool named = low && tables_.high_names.match(name_of(right));
+    std::string high_from = named ? "" : narrowed_source(right, world);
+    if (!named && high_from.empty() && initialised_from(right).empty()) return;
     // In double: `x - hi` with x double (hi promoted), narrowed afterwards. Right.
     if (world.scalar(strip(inner)->getType()) == 'd') return;
     std::string high_name = name_of(right);
     if (const Expr* x = narrowed_from(left, world)) {
+      if (!named && name_of(x) != high_from) return;  // two values narrowed, not one split
       // `(float)x - hi`: x rounded first, so the difference is the rounding of a rounding.
       Finding* f = report(match, inner, "narrowed-first", {{"target", target}, {"high", high_name}, {"value", world.text(x->getSourceRange())}});
       if (f && x->getType()->isBuiltinType()) {
