@@ -138,6 +138,12 @@ Kind Analyzer::eval_field(int id, int depth) {
   }
   if (field < 0) return Kind::unknown;
   std::string name(t_.text(field));
+  // A member of a struct held in a constant buffer or uniform (`Frame.CameraPos`) is uniform data
+  // too: a position named as one would be on its own. (Not a matrix: engines that keep objects
+  // camera-relative on the host still call theirs `mWorld`.)
+  if (base >= 0 && t_.is(base, "identifier") && !is_swizzle(name))
+    if (int var = lookup(t_.text(base)); var >= 0 && m_.variables_[var].uniform && m_.variables_[var].role == Variable::Role::global)
+      if (auto k = source_kind(Path{{name, false}}, true); k == Kind::absolute) return *k;
   if (base >= 0 && t_.is(base, "identifier") && block_instances_.count(std::string(t_.text(base)))) {
     int var = lookup(name);
     if (var >= 0) {
