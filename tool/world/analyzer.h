@@ -127,6 +127,8 @@ class Analyzer {
   // UE4 code: a parameter passed whole to an engine function that takes a world position (one UE5
   // moved to translated world) holds an absolute position by UE4's contract.
   void engine_contract_parameters();
+  // What the structure of the code says (contracts.cpp): a point added to the pre-view translation is
+  // absolute, and so is a uniform point taken from an absolute one.
   void absolute_by_translation();
 
   void collect_struct(int id);

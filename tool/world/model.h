@@ -43,6 +43,9 @@ std::optional<Kind> parse_kind(std::string_view name);
 // Kinds whose float32 form loses precision far from the origin.
 bool holds_absolute(Kind kind);
 bool is_matrix(Kind kind);
+// A name that says it is a point (`LodOrigin`, `VolumeCenter`, `TouchPosition`): where nothing else
+// tells, a vector so named taken from a point is a point too, not an offset.
+bool named_as_point(std::string_view name);
 // A field that is a swizzle: one to four of xyzw, or of rgba.
 bool is_swizzle(std::string_view field);
 

@@ -122,7 +122,9 @@ bool small_vector_at(const CheckContext& ctx, int n, int depth) {
 bool small_vector(const CheckContext& ctx, int n) { return small_vector_at(ctx, n, 0); }
 
 namespace {
-bool says_point(std::string_view name) {
+// Broader than named_as_point: any name that might be a point (a corner, a ray's end, a bound)
+// keeps a vector from being taken for an offset.
+bool might_name_point(std::string_view name) {
   for (std::string_view w : {"Pos", "pos", "Center", "center", "Centre", "Origin", "origin", "Location", "Point", "point", "Min", "Max",
                              "Corner", "Bound", "Start", "End", "Eye", "Camera", "Sphere", "Translation"})
     if (name.find(w) != std::string_view::npos) return true;
@@ -145,8 +147,8 @@ bool holds_no_point(const CheckContext& ctx, int n) {
     Kind k = ctx.world.kind(m);
     if (k != Kind::unknown && k != Kind::local && k != Kind::direction) return false;
     if (t.is(m, "identifier") || t.is(m, "field_identifier")) {
-      if (says_point(t.text(m))) return false;
-    } else if (t.is(m, "call_expression") && (call_name(t, m) == "mul" || says_point(call_name(t, m)))) {
+      if (might_name_point(t.text(m))) return false;
+    } else if (t.is(m, "call_expression") && (call_name(t, m) == "mul" || might_name_point(call_name(t, m)))) {
       return false;
     }
     for (int c : t.named_children(m)) stack.push_back(c);

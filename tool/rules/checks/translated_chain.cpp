@@ -215,13 +215,8 @@ std::string TranslatedChain::host_twin(const CheckContext& ctx, const DeclaredNa
   bool matrix_type = v.type == "float4x4" || v.type == "float3x4";
   // A vector met in a difference may be an offset as well as a point: only a name that says point
   // (`VolumeCenter`, `TouchPosition`) makes it one.
-  auto says_point = [](std::string_view n) {
-    for (std::string_view w : {"Pos", "Center", "Centre", "Origin", "Location", "Point"})
-      if (n.find(w) != std::string_view::npos) return true;
-    return false;
-  };
   if (by_use && kind == Kind::unknown)
-    kind = matrix_type ? Kind::from_world_matrix : (v.type == "float3" || !suffix.empty()) && says_point(v.name) ? Kind::absolute : Kind::unknown;
+    kind = matrix_type ? Kind::from_world_matrix : (v.type == "float3" || !suffix.empty()) && named_as_point(v.name) ? Kind::absolute : Kind::unknown;
   bool from_world = kind == Kind::from_world_matrix, to_world = kind == Kind::world_matrix;
   if (v.role != Variable::Role::global || !v.uniform || v.private_global || (kind != Kind::absolute && !from_world && !to_world)) return {};
   for (std::string_view word : leading_words(t, v.declaration))
