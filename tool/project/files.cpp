@@ -16,6 +16,7 @@
 #include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <fstream>
 #include <map>
 #include <set>
 
@@ -70,13 +71,15 @@ struct Walker {
       if (u.noted) out[*u.noted].unmapped->more = u.files - 1;
   }
 
-  // The start of a regular file of at most 4 MB read as shader code, or none.
+  // The first 64 KiB of a regular file read as shader code, or none.
   static std::optional<ShaderEvidence> shader_evidence(const fs::path& path) {
     std::error_code ec;
-    if (!fs::is_regular_file(path, ec) || fs::file_size(path, ec) > (4u << 20) || ec) return std::nullopt;
-    ReadResult r = read_file(path, 4u << 20);
-    if (!r.error.empty()) return std::nullopt;
-    return reads_as_shader(std::string_view(r.text).substr(0, 1u << 16));
+    if (!fs::is_regular_file(path, ec)) return std::nullopt;
+    std::ifstream in(path, std::ios::binary);
+    std::string start(1u << 16, '\0');
+    in.read(start.data(), static_cast<std::streamsize>(start.size()));
+    start.resize(static_cast<size_t>(in.gcount()));
+    return reads_as_shader(start);
   }
 
   // Extensions of files that are never shader code (sources of other languages, data, media,
