@@ -148,8 +148,11 @@ bool holds_no_point(const CheckContext& ctx, int n) {
     if (k != Kind::unknown && k != Kind::local && k != Kind::direction) return false;
     if (t.is(m, "identifier") || t.is(m, "field_identifier")) {
       if (might_name_point(t.text(m))) return false;
-    } else if (t.is(m, "call_expression") && (call_name(t, m) == "mul" || might_name_point(call_name(t, m)))) {
-      return false;
+    } else if (t.is(m, "call_expression")) {
+      // What a call returns is its own (a jitter made from the pixel's position is no position);
+      // its kind above says where it is known.
+      if (call_name(t, m) == "mul" || might_name_point(call_name(t, m))) return false;
+      continue;
     }
     for (int c : t.named_children(m)) stack.push_back(c);
   }
