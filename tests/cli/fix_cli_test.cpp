@@ -47,6 +47,18 @@ TEST(FixCli, RewritesInPlaceKeepingBomLineEndingsModeAndEverythingOutsideTheEdit
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);
 }
 
+// A constant buffer opened by a macro lwcport cannot see into (an engine's `META_CB_BEGIN`): the
+// library's #include goes before the macro, never between it and the members.
+TEST(FixCli, TheLibraryIncludeGoesBeforeAConstantBufferAMacroOpens) {
+  std::string dir = test::scratch("fix-include-macro-cbuffer");
+  test::write(dir + "/draw.hlsl",
+              "// Per-draw constants.\n#include \"Common.hlsl\"\n\nMETA_CB_BEGIN(0, Data)\nfloat4x4 ViewProjectionMatrix;\nfloat4x4 WorldMatrix;\n"
+              "META_CB_END\n\nfloat4 VS(float3 P : POSITION) : SV_Position\n{\n\tfloat3 worldPosition = mul(float4(P, 1), WorldMatrix).xyz;\n"
+              "\treturn mul(float4(worldPosition, 1), ViewProjectionMatrix);\n}\n");
+  auto r = test::run("cd " + dir + " && " + test::binary() + " fix draw.hlsl --diff --unsafe-fixes --color never");
+  EXPECT_NE(r.out.find("+#include \"lwc_doublefloat.hlsl\"\n META_CB_BEGIN(0, Data)\n"), std::string::npos) << r.out;
+}
+
 TEST(FixCli, ReadOnlyFileGetsAClearErrorAndTheOtherFilesAreStillFixed) {
   std::string dir = ue54_project("fix-readonly");
   std::string code = "float3 F(float3 P) { return P - View.WorldCameraOrigin; }\n";

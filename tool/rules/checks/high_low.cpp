@@ -361,6 +361,41 @@ RewritePlan plan_translated_input(const CheckContext& ctx, int var, const Camera
   return plan;
 }
 
+namespace {
+// The start of the first line that holds code: not blank, a comment, a precision statement, or a
+// directive other than a conditional (`#if` may hold the whole file, and the include goes before it).
+uint32_t first_code_line(const std::string& text) {
+  bool in_comment = false;
+  for (size_t line = 0; line < text.size();) {
+    size_t end = std::min(text.find('\n', line), text.size());
+    std::string_view l(text.data() + line, end - line);
+    if (line == 0 && l.starts_with("\xEF\xBB\xBF")) l.remove_prefix(3);  // a byte-order mark is no code
+    size_t i = l.find_first_not_of(" \t\r");
+    bool code = false;
+    while (i != std::string_view::npos && i < l.size()) {
+      if (in_comment) {
+        size_t close = l.find("*/", i);
+        if (close == std::string_view::npos) break;
+        in_comment = false;
+        i = l.find_first_not_of(" \t\r", close + 2);
+      } else if (l.substr(i, 2) == "/*") {
+        in_comment = true;
+        i += 2;
+      } else if (l.substr(i, 2) == "//") {
+        break;
+      } else {
+        // (GLSL's default precision comes before the library, whose functions need it.)
+        code = (l[i] != '#' || l.substr(i).starts_with("#if")) && !l.substr(i).starts_with("precision ");
+        break;
+      }
+    }
+    if (code) return static_cast<uint32_t>(line);
+    line = end + 1;
+  }
+  return static_cast<uint32_t>(text.size());
+}
+}  // namespace
+
 std::vector<Edit> library_include_edits(const SyntaxTree& t) {
   std::string file = library_file_name(t.lang);
   const std::string& text = t.source->text();
@@ -376,6 +411,9 @@ std::vector<Edit> library_include_edits(const SyntaxTree& t) {
     at = line_start(t, t.at(c).begin);
     break;
   }
+  // Nor after source text the tree does not hold (a macro that opens a constant buffer,
+  // `META_CB_BEGIN(0, Data)`, is masked out of it): the first line of code in the text bounds it.
+  at = std::min(at, first_code_line(text));
   std::string include = "#include \"" + file + "\"\n";
   if (!glsl(t) || text.find("GL_GOOGLE_include_directive") != std::string::npos) return {{{at, at}, include}};
   // GLSL: the extension goes right after #version, before any other token.
